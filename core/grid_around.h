@@ -1,0 +1,19 @@
+#pragma once
+// An axis-aligned grid (identity direction) around a surface model at a requested spacing, for
+// conversions that have no reference image (DESIGN.md, "Coordinates and grids").
+//
+// Inputs   mesh (LPS mm, finite vertices), spacing per axis (mm, > 0), margin in voxels (>= 0).
+// Output   origin snapped to a multiple of the spacing (so the same mesh always lands on the same
+//          lattice), covering the mesh's bounding box plus `margin` voxel centres on each side.
+// Errors   INVALID_ARGUMENT for an empty mesh, a non-finite vertex, spacing <= 0, margin < 0.
+// Cost     O(V).
+
+#include "core/image_geometry.h"
+#include "core/status.h"
+#include "core/triangle_mesh.h"
+
+namespace soiq {
+
+Result<ImageGeometry> grid_around(const TriangleMesh& mesh, const Vec3& spacing_mm, int margin_voxels);
+
+}  // namespace soiq

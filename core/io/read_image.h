@@ -1,0 +1,23 @@
+#pragma once
+// Reads an image with its full geometry in LPS (DESIGN.md "Coordinates and grids"), by extension:
+//   .nii, .nii.gz  NIfTI-1/2 through libnifti (qform when qform_code > 0, else sform, else pixdim),
+//                  RAS converted to LPS;
+//   .nrrd, .nhdr   NRRD (raw or gzip encoding, `space` LPS/RAS, `space directions`, `space origin`);
+//   .mha, .mhd     MetaImage (Offset, TransformMatrix, ElementSpacing, MET_* types, compressed or not).
+// Voxel values are converted to float (scl_slope/scl_inter applied for NIfTI).
+// Errors  NOT_FOUND missing file; INVALID_ARGUMENT unknown extension, malformed or truncated
+//         header/data, non-3D images, sheared or non-orthogonal axes (message names the file).
+
+#include <string>
+
+#include "core/image.h"
+#include "core/status.h"
+
+namespace soiq {
+
+Result<Image> read_image(const std::string& path);
+
+// The voxels equal to `label` (or nonzero when label < 0) as a 0/1 mask on the image's grid.
+Mask mask_from_image(const Image& image, int label = -1);
+
+}  // namespace soiq

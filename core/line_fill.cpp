@@ -1,0 +1,70 @@
+#include "core/line_fill.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace soiq {
+
+namespace {
+
+// A voxel centre i is inside from the first integer >= x on: ceil(x), clamped to [-1, nx+1]
+// before the conversion so far-away crossings cannot overflow.
+int64_t first_centre_at_or_after(double x, int64_t nx) {
+  const double c = std::ceil(x);
+  if (c < -1.0) return -1;
+  if (c > double(nx + 1)) return nx + 1;
+  return int64_t(c);
+}
+
+void append_run(int64_t begin, int64_t end, int64_t nx, int64_t line_first_run, std::vector<Run>& runs) {
+  begin = std::max<int64_t>(begin, 0);
+  end = std::min<int64_t>(end, nx);
+  if (begin >= end) return;
+  if (int64_t(runs.size()) > line_first_run && runs.back().end >= begin) {
+    runs.back().end = int32_t(std::max<int64_t>(runs.back().end, end));
+    return;
+  }
+  runs.push_back({int32_t(begin), int32_t(end)});
+}
+
+void sort_by_x(LineCrossing* first, LineCrossing* last) {
+  // Lines cross a surface a handful of times: insertion sort beats std::sort here.
+  if (last - first > 32) {
+    std::sort(first, last, [](const LineCrossing& a, const LineCrossing& b) { return a.x < b.x; });
+    return;
+  }
+  for (LineCrossing* i = first + 1; i < last; ++i) {
+    const LineCrossing v = *i;
+    LineCrossing* j = i;
+    for (; j > first && (j - 1)->x > v.x; --j) *j = *(j - 1);
+    *j = v;
+  }
+}
+
+}  // namespace
+
+bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rule, int64_t line_first_run,
+               std::vector<Run>& runs) {
+  sort_by_x(first, last);
+  int32_t winding = 0;
+  bool inside = false;
+  int64_t begin = 0;
+  // Crossings at the same x may come in any order: a momentary flip there yields an empty or a
+  // touching run, which append_run drops or merges, so the result does not depend on the order.
+  for (LineCrossing* c = first; c < last; ++c) {
+    winding = rule == FillRule::kNonZero ? winding + c->sign : winding ^ 1;
+    const bool now = winding != 0;
+    if (now == inside) continue;
+    inside = now;
+    const int64_t edge = first_centre_at_or_after(c->x, nx);
+    if (now) {
+      begin = edge;
+    } else {
+      append_run(begin, edge, nx, line_first_run, runs);
+    }
+  }
+  if (inside) append_run(begin, nx, nx, line_first_run, runs);
+  return winding == 0;
+}
+
+}  // namespace soiq

@@ -1,0 +1,29 @@
+#pragma once
+// The line filler shared by the 1D method and the planar-contour fill (DESIGN.md step 4): the
+// crossings of one row line -> its runs of inside voxel centres.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/fill_rule.h"
+#include "core/run_length_volume.h"
+
+namespace soiq {
+
+struct LineCrossing {
+  double x;      // where the line crosses the surface, continuous index along the line
+  int32_t sign;  // +1 entering (surface normal against the line direction), -1 leaving
+};
+
+// Sorts [first, last) by x, then appends to `runs` the half-open runs of voxel centres i in
+// [0, nx) whose winding number (sum of signs at x <= i) is nonzero (kNonZero) or whose crossing
+// count at x <= i is odd (kEvenOdd). Runs touching the previous run of the same line are merged,
+// so `runs` stays canonical; `line_first_run` is the index in `runs` where this line's runs begin.
+// Returns false when the crossings do not balance (winding or parity not back to 0 at the end):
+// the surface is open along this line. Appending to `runs` rather than returning a vector keeps the
+// hot loop free of allocations; this is the one output parameter of core/.
+// Cost: O(n log n) for n crossings (n is tiny: an insertion sort in practice).
+bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rule, int64_t line_first_run,
+               std::vector<Run>& runs);
+
+}  // namespace soiq
