@@ -28,7 +28,8 @@ Result<ImageGeometry> grid_around(const TriangleMesh& mesh, const Vec3& spacing_
     const double first = std::floor(lo[a] / spacing_mm[a]) - margin_voxels;
     const double last = std::ceil(hi[a] / spacing_mm[a]) + margin_voxels;
     const double n = last - first + 1;
-    if (n > 1e12) return invalid_argument("mesh extent is absurd for a spacing of " + std::to_string(spacing_mm[a]) + " mm");
+    if (n > 1e12)
+      return invalid_argument("mesh extent is absurd for a spacing of " + std::to_string(spacing_mm[a]) + " mm");
     g.origin_mm[a] = first * spacing_mm[a];
     g.dims[a] = int64_t(n);
   }

@@ -52,8 +52,10 @@ Status check_grid_size(const ImageGeometry& g, int64_t max_voxels) {
   const double n = double(g.dims[0]) * double(g.dims[1]) * double(g.dims[2]);
   if (n > double(max_voxels)) {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "grid of %.3g voxels (%s) exceeds the limit of %.3g voxels; use a coarser spacing or a smaller region",
-                  n, describe(g).c_str(), double(max_voxels));
+    std::snprintf(
+        buf, sizeof buf,
+        "grid of %.3g voxels (%s) exceeds the limit of %.3g voxels; use a coarser spacing or a smaller region", n,
+        describe(g).c_str(), double(max_voxels));
     return resource_exhausted(buf);
   }
   return ok_status();

@@ -15,10 +15,10 @@
 namespace soiq {
 
 struct ImageGeometry {
-  Vec3 origin_mm{0, 0, 0};                 // centre of voxel (0,0,0), LPS
-  Vec3 spacing_mm{1, 1, 1};                // along i, j, k; > 0
-  std::array<int64_t, 3> dims{0, 0, 0};    // nx, ny, nz; >= 0
-  Mat3 direction = identity3();            // columns: unit directions of i, j, k in LPS
+  Vec3 origin_mm{0, 0, 0};               // centre of voxel (0,0,0), LPS
+  Vec3 spacing_mm{1, 1, 1};              // along i, j, k; > 0
+  std::array<int64_t, 3> dims{0, 0, 0};  // nx, ny, nz; >= 0
+  Mat3 direction = identity3();          // columns: unit directions of i, j, k in LPS
 
   int64_t voxel_count() const { return dims[0] * dims[1] * dims[2]; }
   double voxel_volume_mm3() const { return spacing_mm[0] * spacing_mm[1] * spacing_mm[2]; }

@@ -8,43 +8,42 @@ namespace soiq {
 
 namespace {
 
-// Directed edges a->b grouped by source vertex a (a counting sort, O(T + V)) and sorted within
-// each group: out-neighbours of a are targets[start[a] .. start[a+1]). Near-linear time keeps the
-// closedness check well below the cost of the voxelization it guards, and sorting the groups
-// keeps a hostile vertex of huge degree (a fan of a million triangles) from going quadratic.
-struct OutEdges {
-  std::vector<int64_t> start;
-  std::vector<int32_t> targets;
-
-  int64_t count(int32_t from, int32_t to) const {
-    const auto first = targets.begin() + start[size_t(from)];
-    const auto last = targets.begin() + start[size_t(from) + 1];
-    const auto range = std::equal_range(first, last, to);
-    return range.second - range.first;
-  }
-  // True when position e holds the first copy of its target (so each edge is visited once).
-  bool first_at(int32_t from, int64_t e) const {
-    return e == start[size_t(from)] || targets[size_t(e) - 1] != targets[size_t(e)];
-  }
+// Every undirected edge {a, b} (a < b), stored once per use at its smaller end a as
+// 2*b + (1 if the use runs a->b else 0), grouped by a with a counting sort and sorted within each
+// group. Uses of one edge are then adjacent, and nothing is looked up at the other end, which
+// keeps the pass close to memory speed: it guards every conversion, so it must cost less than the
+// conversion itself. Sorting the groups also keeps a hostile vertex of huge degree from going
+// quadratic.
+struct EdgeUses {
+  std::vector<int64_t> start;  // per vertex
+  std::vector<int64_t> uses;
 };
 
-OutEdges out_edges(const TriangleMesh& mesh, const std::vector<bool>& usable) {
+EdgeUses edge_uses(const TriangleMesh& mesh, const std::vector<bool>& usable) {
   const size_t nv = mesh.vertices_mm.size();
-  OutEdges g;
+  EdgeUses g;
   g.start.assign(nv + 1, 0);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     if (!usable[t]) continue;
-    for (int c = 0; c < 3; ++c) ++g.start[size_t(mesh.triangles[t][c]) + 1];
+    const auto& tri = mesh.triangles[t];
+    for (int c = 0; c < 3; ++c) ++g.start[size_t(std::min(tri[c], tri[(c + 1) % 3])) + 1];
   }
   for (size_t v = 0; v < nv; ++v) g.start[v + 1] += g.start[v];
-  g.targets.resize(size_t(g.start[nv]));
+  g.uses.resize(size_t(g.start[nv]));
   std::vector<int64_t> fill(g.start.begin(), g.start.end() - 1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     if (!usable[t]) continue;
     const auto& tri = mesh.triangles[t];
-    for (int c = 0; c < 3; ++c) g.targets[size_t(fill[size_t(tri[c])]++)] = tri[(c + 1) % 3];
+    for (int c = 0; c < 3; ++c) {
+      const int32_t a = tri[c], b = tri[(c + 1) % 3];
+      const int32_t lo = std::min(a, b), hi = std::max(a, b);
+      g.uses[size_t(fill[size_t(lo)]++)] = 2 * int64_t(hi) + (a < b ? 1 : 0);
+    }
   }
-  for (size_t v = 0; v < nv; ++v) std::sort(g.targets.begin() + g.start[v], g.targets.begin() + g.start[v + 1]);
+  for (size_t v = 0; v < nv; ++v) {
+    auto first = g.uses.begin() + g.start[v], last = g.uses.begin() + g.start[v + 1];
+    if (last - first > 1) std::sort(first, last);
+  }
   return g;
 }
 
@@ -76,15 +75,14 @@ MeshDefects mesh_defects(const TriangleMesh& mesh) {
     }
   }
 
-  const OutEdges g = out_edges(mesh, usable);
-  for (int32_t a = 0; a < int32_t(nv); ++a) {
-    for (int64_t e = g.start[a]; e < g.start[a + 1]; ++e) {
-      const int32_t b = g.targets[size_t(e)];
-      if (!g.first_at(a, e)) continue;
-      const int64_t forward = g.count(a, b);
-      const int64_t backward = g.count(b, a);
-      // Visit each undirected edge once: from its smaller end, or from its only end.
-      if (a > b && backward > 0) continue;
+  const EdgeUses g = edge_uses(mesh, usable);
+  for (size_t v = 0; v + 1 < g.start.size(); ++v) {
+    for (int64_t e = g.start[v]; e < g.start[v + 1];) {
+      const int64_t edge = g.uses[size_t(e)] >> 1;
+      int64_t forward = 0, backward = 0;
+      for (; e < g.start[v + 1] && (g.uses[size_t(e)] >> 1) == edge; ++e) {
+        (g.uses[size_t(e)] & 1 ? forward : backward) += 1;
+      }
       const int64_t uses = forward + backward;
       d.boundary_edges += uses == 1;
       d.nonmanifold_edges += uses >= 3;

@@ -29,7 +29,7 @@ TriangleMesh uv_sphere(const Vec3& centre_mm, double radius_mm, int rings, int s
     for (int s = 0; s < segments; ++s) {
       const double phi = 2 * pi * s / segments;
       m.vertices_mm.push_back(centre_mm + radius_mm * Vec3{std::sin(theta) * std::cos(phi),
-                                                          std::sin(theta) * std::sin(phi), std::cos(theta)});
+                                                           std::sin(theta) * std::sin(phi), std::cos(theta)});
     }
   }
   const int32_t south = int32_t(m.vertices_mm.size());
@@ -54,8 +54,7 @@ TriangleMesh uv_sphere_with_triangles(const Vec3& centre_mm, double radius_mm, i
   return uv_sphere(centre_mm, radius_mm, rings, 2 * rings);
 }
 
-TriangleMesh torus(const Vec3& centre_mm, double major_radius_mm, double minor_radius_mm, int n_major,
-                   int n_minor) {
+TriangleMesh torus(const Vec3& centre_mm, double major_radius_mm, double minor_radius_mm, int n_major, int n_minor) {
   n_major = std::max(n_major, 3);
   n_minor = std::max(n_minor, 3);
   TriangleMesh m;

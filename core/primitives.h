@@ -17,8 +17,7 @@ TriangleMesh uv_sphere(const Vec3& centre_mm, double radius_mm, int rings, int s
 TriangleMesh uv_sphere_with_triangles(const Vec3& centre_mm, double radius_mm, int64_t triangles);
 
 // A torus around the z axis: ring radius R, tube radius r < R; 2*n_major*n_minor triangles.
-TriangleMesh torus(const Vec3& centre_mm, double major_radius_mm, double minor_radius_mm, int n_major,
-                   int n_minor);
+TriangleMesh torus(const Vec3& centre_mm, double major_radius_mm, double minor_radius_mm, int n_major, int n_minor);
 
 // An axis-aligned box [lo, hi]; 12 triangles.
 TriangleMesh box(const Vec3& lo_mm, const Vec3& hi_mm);

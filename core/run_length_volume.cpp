@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/parallel_for.h"
+
 namespace soiq {
 
 RunLengthVolume empty_volume(const ImageGeometry& g) {
@@ -29,12 +31,24 @@ void fill_dense(const RunLengthVolume& v, uint8_t* out) {
   }
 }
 
-Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels) {
+Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels, int threads) {
   SOIQ_RETURN_IF_ERROR(check_grid_size(v.geometry, max_voxels));
   Mask m;
   m.geometry = v.geometry;
   m.voxels.assign(size_t(v.geometry.voxel_count()), 0);
-  fill_dense(v, m.voxels.data());
+  const int64_t nx = v.geometry.dims[0];
+  parallel_for(
+      v.line_count(), threads,
+      [&](int64_t first, int64_t last) {
+        uint8_t* out = m.voxels.data();
+        for (int64_t l = first; l < last; ++l) {
+          for (int64_t r = v.line_start[size_t(l)]; r < v.line_start[size_t(l + 1)]; ++r) {
+            std::memset(out + l * nx + v.runs[size_t(r)].begin, 1,
+                        size_t(v.runs[size_t(r)].end - v.runs[size_t(r)].begin));
+          }
+        }
+      },
+      256);
   return m;
 }
 
@@ -79,7 +93,10 @@ int64_t intersect_runs(const Run* a, const Run* a_end, const Run* b, const Run* 
     const int32_t lo = std::max(a->begin, b->begin);
     const int32_t hi = std::min(a->end, b->end);
     if (hi > lo) n += hi - lo;
-    if (a->end < b->end) ++a; else ++b;
+    if (a->end < b->end)
+      ++a;
+    else
+      ++b;
   }
   return n;
 }

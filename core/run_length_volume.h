@@ -35,8 +35,9 @@ RunLengthVolume empty_volume(const ImageGeometry& g);
 // Number of inside voxels. O(runs).
 int64_t voxel_count(const RunLengthVolume& v);
 
-// The dense 0/1 mask. RESOURCE_EXHAUSTED when the grid exceeds `max_voxels`. O(voxels).
-Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels = kDefaultMaxVoxels);
+// The dense 0/1 mask, filled by `threads` threads over slices. RESOURCE_EXHAUSTED when the grid
+// exceeds `max_voxels`. O(voxels).
+Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels = kDefaultMaxVoxels, int threads = 1);
 
 // Fills `out` (nx*ny*nz bytes, zeroed by the caller) with 1 for inside voxels. O(runs + inside).
 void fill_dense(const RunLengthVolume& v, uint8_t* out);

@@ -62,16 +62,25 @@ inline Status unimplemented(std::string m) { return {StatusCode::kUnimplemented,
 template <typename T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit on purpose, like StatusOr
+  Result(T value) : value_(std::move(value)) {}         // NOLINT: implicit on purpose, like StatusOr
   Result(Status status) : status_(std::move(status)) {  // NOLINT
     assert(!status_.ok() && "a Result without a value needs a non-OK status");
   }
 
   bool ok() const { return value_.has_value(); }
   const Status& status() const { return status_; }
-  const T& value() const& { assert(ok()); return *value_; }
-  T& value() & { assert(ok()); return *value_; }
-  T&& value() && { assert(ok()); return std::move(*value_); }
+  const T& value() const& {
+    assert(ok());
+    return *value_;
+  }
+  T& value() & {
+    assert(ok());
+    return *value_;
+  }
+  T&& value() && {
+    assert(ok());
+    return std::move(*value_);
+  }
   const T& operator*() const& { return value(); }
   T& operator*() & { return value(); }
   const T* operator->() const { return &value(); }
@@ -85,17 +94,16 @@ class [[nodiscard]] Result {
 }  // namespace soiq
 
 // Early return of a non-OK Status from a function returning Status or Result<T>.
-#define SOIQ_RETURN_IF_ERROR(expr)        \
-  do {                                    \
-    ::soiq::Status soiq_status_ = (expr); \
+#define SOIQ_RETURN_IF_ERROR(expr)               \
+  do {                                           \
+    ::soiq::Status soiq_status_ = (expr);        \
     if (!soiq_status_.ok()) return soiq_status_; \
   } while (0)
 
 #define SOIQ_CONCAT_INNER(a, b) a##b
 #define SOIQ_CONCAT(a, b) SOIQ_CONCAT_INNER(a, b)
 // `SOIQ_ASSIGN_OR_RETURN(auto mesh, read_mesh(path));`
-#define SOIQ_ASSIGN_OR_RETURN(lhs, expr) \
-  SOIQ_ASSIGN_OR_RETURN_IMPL(SOIQ_CONCAT(soiq_result_, __LINE__), lhs, expr)
+#define SOIQ_ASSIGN_OR_RETURN(lhs, expr) SOIQ_ASSIGN_OR_RETURN_IMPL(SOIQ_CONCAT(soiq_result_, __LINE__), lhs, expr)
 #define SOIQ_ASSIGN_OR_RETURN_IMPL(tmp, lhs, expr) \
   auto tmp = (expr);                               \
   if (!tmp.ok()) return tmp.status();              \

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/line_fill.h"
+#include "core/parallel_for.h"
 #include "core/three_axis_vote.h"
 
 namespace soiq {
@@ -35,8 +36,8 @@ struct ScanResult {
 // no sample point is on an edge, and each edge puts it on exactly one side for both triangles.
 struct ProjectedEdge {
   double lo_y, lo_z, dy, dz;
-  int flip;       // +1 when the triangle runs lo -> hi, -1 when hi -> lo
-  int tie_sign;   // the perturbed sign when the exact value is 0, already multiplied by flip
+  int flip;      // +1 when the triangle runs lo -> hi, -1 when hi -> lo
+  int tie_sign;  // the perturbed sign when the exact value is 0, already multiplied by flip
 
   ProjectedEdge(double ay, double az, double by, double bz) {
     flip = 1;
@@ -58,31 +59,42 @@ struct ProjectedEdge {
   static int sign_of(double v, int tie) { return v > 0 ? 1 : (v < 0 ? -1 : tie); }
 };
 
-// Triangle indices sorted by their first lattice slice (a counting sort): a slab [k0, k1) visits
-// only the buckets that can reach it, so no slab ever scans every triangle.
+// The lattice slices each triangle reaches, and the triangle indices sorted by their first slice
+// (a counting sort): a slab [k0, k1) visits only the buckets that can reach it, so no slab ever
+// scans every triangle. With a single slab the sort is skipped: index order is as good.
 struct SliceBuckets {
-  std::vector<int64_t> start;  // nz + 1
-  std::vector<int32_t> order;
   std::vector<int32_t> k_first, k_last;  // per triangle, clamped to the grid; first > last = none
+  std::vector<int64_t> start;            // nz + 1 (empty when not bucketed)
+  std::vector<int32_t> order;
   int64_t max_span = 0;
 };
 
-SliceBuckets bucket_by_slice(const ScanProblem& p) {
+SliceBuckets bucket_by_slice(const ScanProblem& p, bool sort, int threads) {
   const auto& tris = *p.triangles;
   SliceBuckets b;
   b.k_first.resize(tris.size());
   b.k_last.resize(tris.size());
+  const double last_slice = double(p.nz - 1);
+  std::atomic<int64_t> max_span_all{0};
+  parallel_for(int64_t(tris.size()), threads, [&](int64_t t_begin, int64_t t_end) {
+    int64_t max_span = 0;
+    for (size_t t = size_t(t_begin); t < size_t(t_end); ++t) {
+      const double z0 = p.z[size_t(tris[t][0])], z1 = p.z[size_t(tris[t][1])], z2 = p.z[size_t(tris[t][2])];
+      const double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
+      const double hi = std::min(std::floor(std::max({z0, z1, z2})), last_slice);
+      const bool any = lo <= hi;
+      b.k_first[t] = any ? int32_t(lo) : 1;
+      b.k_last[t] = any ? int32_t(hi) : 0;
+      if (any) max_span = std::max<int64_t>(max_span, b.k_last[t] - b.k_first[t]);
+    }
+    for (int64_t seen = max_span_all.load(); seen < max_span && !max_span_all.compare_exchange_weak(seen, max_span);) {
+    }
+  });
+  b.max_span = max_span_all.load();
+  if (!sort) return b;
   b.start.assign(size_t(p.nz + 1), 0);
   for (size_t t = 0; t < tris.size(); ++t) {
-    const double z0 = p.z[size_t(tris[t][0])], z1 = p.z[size_t(tris[t][1])], z2 = p.z[size_t(tris[t][2])];
-    const double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
-    const double hi = std::min(std::floor(std::max({z0, z1, z2})), double(p.nz - 1));
-    b.k_first[t] = int32_t(lo <= hi ? lo : 1);
-    b.k_last[t] = int32_t(lo <= hi ? hi : 0);
-    if (lo <= hi) {
-      ++b.start[size_t(b.k_first[t]) + 1];
-      b.max_span = std::max<int64_t>(b.max_span, b.k_last[t] - b.k_first[t]);
-    }
+    if (b.k_first[t] <= b.k_last[t]) ++b.start[size_t(b.k_first[t]) + 1];
   }
   for (int64_t k = 0; k < p.nz; ++k) b.start[size_t(k + 1)] += b.start[size_t(k)];
   b.order.resize(size_t(b.start[size_t(p.nz)]));
@@ -99,8 +111,8 @@ struct SlabCrossing {
 };
 
 // Appends the crossings of triangle t with the row lines of slices [k_lo, k_hi].
-void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi,
-                        int64_t k0, std::vector<SlabCrossing>& out) {
+void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi, int64_t k0,
+                        std::vector<SlabCrossing>& out) {
   const size_t a = size_t(tri[0]), b = size_t(tri[1]), c = size_t(tri[2]);
   const double ymin = std::min({p.y[a], p.y[b], p.y[c]}), ymax = std::max({p.y[a], p.y[b], p.y[c]});
   const int64_t j_lo = int64_t(std::max(std::ceil(ymin), 0.0));
@@ -131,17 +143,23 @@ struct SlabResult {
   int64_t unbalanced_lines = 0;
 };
 
-SlabResult scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1,
-                     bool drop_unbalanced) {
+SlabResult scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1, bool drop_unbalanced) {
   const auto& tris = *p.triangles;
   std::vector<SlabCrossing> crossings;
-  const int64_t first_bucket = std::max<int64_t>(0, k0 - buckets.max_span);
-  for (int64_t kb = first_bucket; kb < k1; ++kb) {
-    for (int64_t o = buckets.start[size_t(kb)]; o < buckets.start[size_t(kb + 1)]; ++o) {
-      const size_t t = size_t(buckets.order[size_t(o)]);
-      if (buckets.k_last[t] < k0) continue;
-      triangle_crossings(p, tris[t], std::max<int64_t>(buckets.k_first[t], k0),
-                         std::min<int64_t>(buckets.k_last[t], k1 - 1), k0, crossings);
+  // A closed surface crosses most lines it reaches at least twice.
+  crossings.reserve(size_t(2 * p.ny * (k1 - k0)));
+  auto visit = [&](size_t t) {
+    if (buckets.k_last[t] < k0 || buckets.k_first[t] >= k1) return;
+    triangle_crossings(p, tris[t], std::max<int64_t>(buckets.k_first[t], k0),
+                       std::min<int64_t>(buckets.k_last[t], k1 - 1), k0, crossings);
+  };
+  if (buckets.start.empty()) {
+    for (size_t t = 0; t < tris.size(); ++t) visit(t);
+  } else {
+    for (int64_t kb = std::max<int64_t>(0, k0 - buckets.max_span); kb < k1; ++kb) {
+      for (int64_t o = buckets.start[size_t(kb)]; o < buckets.start[size_t(kb + 1)]; ++o) {
+        visit(size_t(buckets.order[size_t(o)]));
+      }
     }
   }
   // Group by line with a counting sort: O(crossings + lines).
@@ -174,8 +192,8 @@ SlabResult scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t 
 // Scans every row line of the grid, slabs of slices in parallel, and concatenates the slabs in
 // slice order, so the result does not depend on the thread count.
 ScanResult scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
-  const SliceBuckets buckets = bucket_by_slice(p);
   const int64_t slab_count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 8));
+  const SliceBuckets buckets = bucket_by_slice(p, slab_count > 1, threads);
   std::vector<SlabResult> slabs(static_cast<size_t>(slab_count));
   auto slab_k = [&](int64_t s) { return p.nz * s / slab_count; };
   std::atomic<int64_t> next{0};
@@ -209,18 +227,21 @@ ScanResult scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
 // The mesh in index space of `g`, scanned along `axis` (0 = i, 1 = j, 2 = k). The other two axes
 // follow cyclically, (axis, axis+1, axis+2), a rotation that keeps the handedness and so the
 // meaning of the crossing signs.
-ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g, int axis, FillRule rule) {
+ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g, int axis, FillRule rule,
+                                int threads) {
   ScanProblem p;
   const size_t n = mesh.vertices_mm.size();
   p.x.resize(n);
   p.y.resize(n);
   p.z.resize(n);
-  for (size_t v = 0; v < n; ++v) {
-    const Vec3 u = g.physical_to_index(mesh.vertices_mm[v]);
-    p.x[v] = u[size_t(axis)];
-    p.y[v] = u[size_t((axis + 1) % 3)];
-    p.z[v] = u[size_t((axis + 2) % 3)];
-  }
+  parallel_for(int64_t(n), threads, [&](int64_t begin, int64_t end) {
+    for (size_t v = size_t(begin); v < size_t(end); ++v) {
+      const Vec3 u = g.physical_to_index(mesh.vertices_mm[v]);
+      p.x[v] = u[size_t(axis)];
+      p.y[v] = u[size_t((axis + 1) % 3)];
+      p.z[v] = u[size_t((axis + 2) % 3)];
+    }
+  });
   p.triangles = &mesh.triangles;
   p.nx = g.dims[size_t(axis)];
   p.ny = g.dims[size_t((axis + 1) % 3)];
@@ -238,11 +259,10 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, options.max_voxels));
   if (geometry.dims[0] > INT32_MAX - 2) return invalid_argument("grid rows longer than 2^31 voxels are not supported");
   Voxelization out;
-  out.defects = mesh_defects(mesh);
+  out.defects = options.known_defects ? *options.known_defects : mesh_defects(mesh);
   SOIQ_RETURN_IF_ERROR(validate_mesh(mesh, out.defects, name));
   if (!options.robust && !out.defects.closed()) {
-    return failed_precondition("mesh '" + name + "' is not closed and consistently oriented (" +
-                               describe(out.defects) +
+    return failed_precondition("mesh '" + name + "' is not closed and consistently oriented (" + describe(out.defects) +
                                "); use robust mode (--robust) or repair the mesh");
   }
   if (geometry.voxel_count() == 0) {
@@ -251,7 +271,7 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   }
   const int threads = std::max(1, options.threads);
   if (!options.robust) {
-    ScanResult r = scan(index_space_problem(mesh, geometry, 0, options.fill_rule), threads, false);
+    ScanResult r = scan(index_space_problem(mesh, geometry, 0, options.fill_rule, threads), threads, false);
     if (r.unbalanced_lines > 0) {
       return internal_error("mesh '" + name + "' passed the closedness check but " +
                             std::to_string(r.unbalanced_lines) +
@@ -266,7 +286,7 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   // number of times abstain (vote outside); a voxel is kept when two of the three fills agree.
   std::array<AxisRuns, 3> fills;
   for (int axis = 0; axis < 3; ++axis) {
-    ScanResult r = scan(index_space_problem(mesh, geometry, axis, options.fill_rule), threads, true);
+    ScanResult r = scan(index_space_problem(mesh, geometry, axis, options.fill_rule, threads), threads, true);
     fills[size_t(axis)] = {std::move(r.line_start), std::move(r.runs)};
   }
   out.volume = three_axis_vote(geometry, fills);

@@ -27,6 +27,7 @@
 //   Robust mode treats a line whose crossings do not balance as voting "outside" everywhere.
 
 #include <cstdint>
+#include <optional>
 
 #include "core/fill_rule.h"
 #include "core/image_geometry.h"
@@ -43,6 +44,9 @@ struct VoxelizeOptions {
   int threads = 1;      // >= 1
   int64_t max_voxels = kDefaultMaxVoxels;
   const char* name = "mesh";  // used in error messages
+  // The mesh's defects when the caller already has them (the store computes them once at upload,
+  // a benchmark once at load); otherwise voxelize_1d computes them, O(T log d) for degree d.
+  std::optional<MeshDefects> known_defects;
 };
 
 struct Voxelization {
