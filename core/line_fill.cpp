@@ -67,4 +67,31 @@ bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rul
   return winding == 0;
 }
 
+LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+                    bool drop_unbalanced) {
+  std::vector<int64_t> start(size_t(lines + 1), 0);
+  for (const LineCrossingAt& c : crossings) ++start[size_t(c.line + 1)];
+  for (int64_t l = 0; l < lines; ++l) start[size_t(l + 1)] += start[size_t(l)];
+  std::vector<LineCrossing> grouped(crossings.size());
+  {
+    std::vector<int64_t> fill(start.begin(), start.end() - 1);
+    for (const LineCrossingAt& c : crossings) grouped[size_t(fill[size_t(c.line)]++)] = c.crossing;
+  }
+  LineRuns r;
+  r.line_start.resize(size_t(lines + 1));
+  for (int64_t l = 0; l < lines; ++l) {
+    const int64_t first_run = int64_t(r.runs.size());
+    r.line_start[size_t(l)] = first_run;
+    LineCrossing* first = grouped.data() + start[size_t(l)];
+    LineCrossing* last = grouped.data() + start[size_t(l + 1)];
+    if (first == last) continue;
+    if (!fill_line(first, last, nx, rule, first_run, r.runs)) {
+      ++r.unbalanced_lines;
+      if (drop_unbalanced) r.runs.resize(size_t(first_run));
+    }
+  }
+  r.line_start[size_t(lines)] = int64_t(r.runs.size());
+  return r;
+}
+
 }  // namespace soiq

@@ -26,4 +26,22 @@ struct LineCrossing {
 bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rule, int64_t line_first_run,
                std::vector<Run>& runs);
 
+struct LineCrossingAt {
+  int64_t line;  // index of the row line in the caller's numbering, in [0, lines)
+  LineCrossing crossing;
+};
+
+// The runs of many lines: runs of line l are runs[line_start[l] .. line_start[l+1]).
+struct LineRuns {
+  std::vector<int64_t> line_start;  // lines + 1 entries
+  std::vector<Run> runs;
+  int64_t unbalanced_lines = 0;  // lines whose crossings did not balance
+};
+
+// Groups `crossings` by line (a counting sort, O(crossings + lines)) and fills every line with
+// fill_line. Unbalanced lines keep their runs, or have none when `drop_unbalanced` (robust mode's
+// abstention). Reorders `crossings`' storage as scratch.
+LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+                    bool drop_unbalanced);
+
 }  // namespace soiq

@@ -23,12 +23,6 @@ struct ScanProblem {
   FillRule rule = FillRule::kNonZero;
 };
 
-struct ScanResult {
-  std::vector<int64_t> line_start;  // ny*nz + 1
-  std::vector<Run> runs;
-  int64_t unbalanced_lines = 0;
-};
-
 // One edge of a triangle's (y,z) projection, set up so that the two triangles sharing it compute
 // bit-identical edge functions of opposite sign: the function is always evaluated from the
 // lexicographically smaller endpoint and then multiplied by `flip`. That, and the symbolic
@@ -105,14 +99,9 @@ SliceBuckets bucket_by_slice(const ScanProblem& p, bool sort, int threads) {
   return b;
 }
 
-struct SlabCrossing {
-  int64_t line;  // local to the slab: j + ny * (k - k0)
-  LineCrossing crossing;
-};
-
 // Appends the crossings of triangle t with the row lines of slices [k_lo, k_hi].
 void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi, int64_t k0,
-                        std::vector<SlabCrossing>& out) {
+                        std::vector<LineCrossingAt>& out) {
   const size_t a = size_t(tri[0]), b = size_t(tri[1]), c = size_t(tri[2]);
   const double ymin = std::min({p.y[a], p.y[b], p.y[c]}), ymax = std::max({p.y[a], p.y[b], p.y[c]});
   const int64_t j_lo = int64_t(std::max(std::ceil(ymin), 0.0));
@@ -137,15 +126,9 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   }
 }
 
-struct SlabResult {
-  std::vector<int64_t> line_start;  // lines of the slab + 1, indices into runs
-  std::vector<Run> runs;
-  int64_t unbalanced_lines = 0;
-};
-
-SlabResult scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1, bool drop_unbalanced) {
+LineRuns scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1, bool drop_unbalanced) {
   const auto& tris = *p.triangles;
-  std::vector<SlabCrossing> crossings;
+  std::vector<LineCrossingAt> crossings;
   // A closed surface crosses most lines it reaches at least twice.
   crossings.reserve(size_t(2 * p.ny * (k1 - k0)));
   auto visit = [&](size_t t) {
@@ -162,39 +145,15 @@ SlabResult scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t 
       }
     }
   }
-  // Group by line with a counting sort: O(crossings + lines).
-  const int64_t lines = p.ny * (k1 - k0);
-  std::vector<int64_t> start(size_t(lines + 1), 0);
-  for (const SlabCrossing& c : crossings) ++start[size_t(c.line + 1)];
-  for (int64_t l = 0; l < lines; ++l) start[size_t(l + 1)] += start[size_t(l)];
-  std::vector<LineCrossing> grouped(crossings.size());
-  {
-    std::vector<int64_t> fill(start.begin(), start.end() - 1);
-    for (const SlabCrossing& c : crossings) grouped[size_t(fill[size_t(c.line)]++)] = c.crossing;
-  }
-  SlabResult r;
-  r.line_start.resize(size_t(lines + 1));
-  for (int64_t l = 0; l < lines; ++l) {
-    const int64_t first_run = int64_t(r.runs.size());
-    r.line_start[size_t(l)] = first_run;
-    LineCrossing* first = grouped.data() + start[size_t(l)];
-    LineCrossing* last = grouped.data() + start[size_t(l + 1)];
-    if (first == last) continue;
-    if (!fill_line(first, last, p.nx, p.rule, first_run, r.runs)) {
-      ++r.unbalanced_lines;
-      if (drop_unbalanced) r.runs.resize(size_t(first_run));
-    }
-  }
-  r.line_start[size_t(lines)] = int64_t(r.runs.size());
-  return r;
+  return fill_lines(crossings, p.ny * (k1 - k0), p.nx, p.rule, drop_unbalanced);
 }
 
 // Scans every row line of the grid, slabs of slices in parallel, and concatenates the slabs in
 // slice order, so the result does not depend on the thread count.
-ScanResult scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
+LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
   const int64_t slab_count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 8));
   const SliceBuckets buckets = bucket_by_slice(p, slab_count > 1, threads);
-  std::vector<SlabResult> slabs(static_cast<size_t>(slab_count));
+  std::vector<LineRuns> slabs(static_cast<size_t>(slab_count));
   auto slab_k = [&](int64_t s) { return p.nz * s / slab_count; };
   std::atomic<int64_t> next{0};
   auto work = [&] {
@@ -209,7 +168,7 @@ ScanResult scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
     for (int t = 0; t < threads; ++t) pool.emplace_back(work);
     for (auto& t : pool) t.join();
   }
-  ScanResult out;
+  LineRuns out;
   out.line_start.reserve(size_t(p.ny * p.nz + 1));
   size_t total_runs = 0;
   for (const auto& s : slabs) total_runs += s.runs.size();
@@ -271,7 +230,7 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   }
   const int threads = std::max(1, options.threads);
   if (!options.robust) {
-    ScanResult r = scan(index_space_problem(mesh, geometry, 0, options.fill_rule, threads), threads, false);
+    LineRuns r = scan(index_space_problem(mesh, geometry, 0, options.fill_rule, threads), threads, false);
     if (r.unbalanced_lines > 0) {
       return internal_error("mesh '" + name + "' passed the closedness check but " +
                             std::to_string(r.unbalanced_lines) +
@@ -286,7 +245,7 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   // number of times abstain (vote outside); a voxel is kept when two of the three fills agree.
   std::array<AxisRuns, 3> fills;
   for (int axis = 0; axis < 3; ++axis) {
-    ScanResult r = scan(index_space_problem(mesh, geometry, axis, options.fill_rule, threads), threads, true);
+    LineRuns r = scan(index_space_problem(mesh, geometry, axis, options.fill_rule, threads), threads, true);
     fills[size_t(axis)] = {std::move(r.line_start), std::move(r.runs)};
   }
   out.volume = three_axis_vote(geometry, fills);
