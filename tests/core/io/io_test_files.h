@@ -1,0 +1,33 @@
+#pragma once
+// Helpers shared by the core/io tests: a per-process scratch directory and small file writers.
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <fstream>
+#include <string>
+#include <string_view>
+
+namespace soiq::testing_io {
+
+// A fresh directory under ::testing::TempDir(), made once per test process.
+inline const std::string& scratch_dir() {
+  static const std::string dir = [] {
+    std::string pattern = ::testing::TempDir() + "soiq_io_XXXXXX";
+    const char* made = mkdtemp(pattern.data());
+    return std::string(made ? made : ::testing::TempDir().c_str()) + "/";
+  }();
+  return dir;
+}
+
+inline std::string scratch_path(const std::string& name) { return scratch_dir() + name; }
+
+inline std::string write_bytes(const std::string& name, std::string_view bytes) {
+  const std::string path = scratch_path(name);
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  return path;
+}
+
+inline std::string data_path(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
+
+}  // namespace soiq::testing_io
