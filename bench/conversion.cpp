@@ -1,0 +1,82 @@
+#include "bench/conversion.h"
+
+#include <memory>
+
+#include "bench/peer_itk.h"
+#include "bench/peers_vtk.h"
+#include "core/reference/voxelize_2d_contours.h"
+#include "core/reference/voxelize_3d_raycast.h"
+#include "core/run_length_volume.h"
+#include "core/voxelize_1d.h"
+
+namespace soiq::bench {
+
+namespace {
+
+// Our methods produce a RunLengthVolume; the timed region includes materialising the dense mask
+// so every method delivers the same thing.
+Result<Mask> dense(Result<RunLengthVolume> v) {
+  if (!v.ok()) return v.status();
+  return to_mask(*v);
+}
+
+}  // namespace
+
+const char* method_name(Method m) {
+  switch (m) {
+    case Method::k1d:
+      return "1d";
+    case Method::k2d:
+      return "2d";
+    case Method::k3d:
+      return "3d";
+    case Method::kVtkStencil:
+      return "vtk-stencil";
+    case Method::kVtkEnclosed:
+      return "vtk-enclosed";
+    case Method::kItk:
+      return "itk";
+  }
+  return "?";
+}
+
+bool method_available(Method m) { return m != Method::kItk || itk_available(); }
+
+Result<Method> parse_method(const std::string& name) {
+  for (Method m : {Method::k1d, Method::k2d, Method::k3d, Method::kVtkStencil, Method::kVtkEnclosed, Method::kItk}) {
+    if (name != method_name(m)) continue;
+    if (!method_available(m)) return invalid_argument("method 'itk' needs a build with ITK (SOIQ_HAVE_ITK)");
+    return m;
+  }
+  return invalid_argument("unknown method '" + name + "'; use 1d, 2d, 3d, vtk-stencil, vtk-enclosed or itk");
+}
+
+Result<Conversion> prepare_conversion(Method method, const TriangleMesh& mesh, const ImageGeometry& geometry,
+                                      int threads) {
+  // The closures share the caller's mesh through a copy held by shared_ptr: preparing is untimed.
+  auto m = std::make_shared<const TriangleMesh>(mesh);
+  switch (method) {
+    case Method::k1d: {
+      VoxelizeOptions options;
+      options.threads = threads;
+      return Conversion([m, geometry, options]() -> Result<Mask> {
+        auto v = voxelize_1d(*m, geometry, options);
+        if (!v.ok()) return v.status();
+        return to_mask(v->volume);
+      });
+    }
+    case Method::k2d:
+      return Conversion([m, geometry] { return dense(voxelize_2d_contours(*m, geometry)); });
+    case Method::k3d:
+      return Conversion([m, geometry] { return dense(voxelize_3d_raycast(*m, geometry)); });
+    case Method::kVtkStencil:
+      return prepare_vtk_stencil(mesh, geometry);
+    case Method::kVtkEnclosed:
+      return prepare_vtk_enclosed(mesh, geometry, threads);
+    case Method::kItk:
+      return prepare_itk(mesh, geometry);
+  }
+  return invalid_argument("unknown method");
+}
+
+}  // namespace soiq::bench

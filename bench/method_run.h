@@ -1,0 +1,27 @@
+#pragma once
+// One cell of a benchmark table: prepare a method (untimed), time it (single-thread runs pinned to
+// one CPU), and compare its mask with a reference mask.
+
+#include <string>
+
+#include "bench/conversion.h"
+#include "bench/mask_agreement.h"
+#include "bench/timing.h"
+
+namespace soiq::bench {
+
+struct MethodRun {
+  Timed timed;
+  Agreement vs_reference;  // against the mask the table compares with (V1, or our 1d result)
+};
+
+// `pin_cpu` < 0: never pin. The error names the method.
+Result<MethodRun> run_method(Method method, const TriangleMesh& mesh, const Mask& reference, int threads, int runs,
+                             int pin_cpu);
+
+// "12.3" (median ms) or "n/a"; the table's time cell.
+std::string time_cell(const Result<MethodRun>& r);
+// "1.000000 (0)": IoU against the reference and differing voxels, or "n/a".
+std::string agreement_cell(const Result<MethodRun>& r);
+
+}  // namespace soiq::bench
