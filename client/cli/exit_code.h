@@ -1,0 +1,16 @@
+#pragma once
+// The one mapping from a soiq::Status to the `soiq` command's exit code (STYLE.md section 3; the
+// README repeats the table):
+//   0 OK; 2 INVALID_ARGUMENT (and usage errors); 3 NOT_FOUND; 4 ALREADY_EXISTS or
+//   FAILED_PRECONDITION; 5 RESOURCE_EXHAUSTED; 6 UNAVAILABLE, DEADLINE_EXCEEDED or CANCELLED;
+//   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code.
+
+#include "core/status.h"
+
+namespace soiq::cli {
+
+inline constexpr int kExitUsage = 2;  // a malformed command line, as for INVALID_ARGUMENT
+
+int exit_code(const soiq::Status& status);
+
+}  // namespace soiq::cli

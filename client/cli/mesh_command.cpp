@@ -1,0 +1,98 @@
+#include "client/cli/mesh_command.h"
+
+#include <charconv>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "client/cli/exit_code.h"
+#include "core/io/marching_cubes.h"
+#include "core/io/read_image.h"
+#include "core/io/write_mesh.h"
+#include "core/mesh_defects.h"
+
+namespace soiq::cli {
+namespace {
+
+constexpr const char* kUsage = "usage: soiq mesh MASK -o OUT.{stl,vtk,vtp,ply,obj} [--label N]\n";
+
+struct MeshArgs {
+  std::string mask_path;
+  std::string out_path;
+  int label = -1;  // < 0: every nonzero voxel
+  bool help = false;
+};
+
+Result<MeshArgs> parse_args(int argc, char** argv) {
+  MeshArgs args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&](std::string_view name) -> Result<std::string> {
+      if (i + 1 >= argc) return invalid_argument(std::string(name) + " needs a value");
+      return std::string(argv[++i]);
+    };
+    if (arg == "-h" || arg == "--help") {
+      args.help = true;
+    } else if (arg == "-o" || arg == "--output") {
+      SOIQ_ASSIGN_OR_RETURN(args.out_path, value(arg));
+    } else if (arg == "--label" || arg.starts_with("--label=")) {
+      std::string text;
+      if (arg == "--label") {
+        SOIQ_ASSIGN_OR_RETURN(text, value(arg));
+      } else {
+        text = std::string(arg.substr(8));
+      }
+      int label = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), label);
+      if (ec != std::errc() || end != text.data() + text.size() || label < 0) {
+        return invalid_argument("--label needs an integer >= 0, got '" + text + "'");
+      }
+      args.label = label;
+    } else if (arg.starts_with("-") && arg.size() > 1) {
+      return invalid_argument("unknown option '" + std::string(arg) + "'");
+    } else if (args.mask_path.empty()) {
+      args.mask_path = arg;
+    } else {
+      return invalid_argument("unexpected argument '" + std::string(arg) + "' (one MASK only)");
+    }
+  }
+  if (args.help) return args;
+  if (args.mask_path.empty()) return invalid_argument("missing MASK");
+  if (args.out_path.empty()) return invalid_argument("missing -o OUT");
+  return args;
+}
+
+Status fail(const Status& status) {
+  std::fprintf(stderr, "soiq mesh: %s\n", status.message().c_str());
+  return status;
+}
+
+}  // namespace
+
+int run_mesh_command(int argc, char** argv) {
+  const auto args = parse_args(argc, argv);
+  if (!args.ok()) {
+    std::fprintf(stderr, "soiq mesh: %s\n%s", args.status().message().c_str(), kUsage);
+    return kExitUsage;
+  }
+  if (args->help) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const auto image = read_image(args->mask_path);
+  if (!image.ok()) return exit_code(fail(image.status()));
+  const Mask mask = mask_from_image(*image, args->label);
+  const auto mesh = marching_cubes(mask);
+  if (!mesh.ok()) return exit_code(fail(mesh.status()));
+  if (mesh->triangles.empty()) {
+    const std::string which = args->label < 0 ? "nonzero voxels" : "voxels with label " + std::to_string(args->label);
+    return exit_code(fail(invalid_argument("'" + args->mask_path + "' has no " + which + "; nothing to mesh")));
+  }
+  const Status written = write_mesh(*mesh, args->out_path);
+  if (!written.ok()) return exit_code(fail(written));
+  std::printf("%zu triangles, %zu vertices, mesh volume %.3f mm3 -> %s\n", mesh->triangles.size(),
+              mesh->vertices_mm.size(), signed_volume_mm3(*mesh), args->out_path.c_str());
+  return 0;
+}
+
+}  // namespace soiq::cli
