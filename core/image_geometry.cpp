@@ -1,5 +1,6 @@
 #include "core/image_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -57,6 +58,24 @@ Status check_grid_size(const ImageGeometry& g, int64_t max_voxels) {
         "grid of %.3g voxels (%s) exceeds the limit of %.3g voxels; use a coarser spacing or a smaller region", n,
         describe(g).c_str(), double(max_voxels));
     return resource_exhausted(buf);
+  }
+  return ok_status();
+}
+
+Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b) {
+  if (a.dims != b.dims) return invalid_argument("grids differ in size: " + describe(a) + " vs " + describe(b));
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(a.spacing_mm[i] - b.spacing_mm[i]) > 1e-6 * std::max(a.spacing_mm[i], b.spacing_mm[i])) {
+      return invalid_argument("grids differ in spacing: " + describe(a) + " vs " + describe(b));
+    }
+    if (std::abs(a.origin_mm[i] - b.origin_mm[i]) > 1e-4) {
+      return invalid_argument("grids differ in origin by " + std::to_string(norm(a.origin_mm - b.origin_mm)) + " mm");
+    }
+    for (int j = 0; j < 3; ++j) {
+      if (std::abs(a.direction[i][j] - b.direction[i][j]) > 1e-5) {
+        return invalid_argument("grids differ in orientation (direction matrices)");
+      }
+    }
   }
   return ok_status();
 }

@@ -41,6 +41,11 @@ Status check_grid_size(const ImageGeometry& g, int64_t max_voxels);
 // The default ceiling for grids soiq materialises (1e9 voxels = 1 GB as uint8).
 inline constexpr int64_t kDefaultMaxVoxels = 1'000'000'000;
 
+// OK when a and b sample the same voxel centres: equal dims, and origin, spacing and direction equal
+// to within what file formats keep (NIfTI stores its geometry in float32): 1e-4 mm for the origin,
+// 1e-6 relative for the spacing, 1e-5 for direction cosines. INVALID_ARGUMENT saying what differs.
+Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b);
+
 // "107x107x107 voxels of 1x1x1 mm"
 std::string describe(const ImageGeometry& g);
 

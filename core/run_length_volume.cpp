@@ -104,9 +104,8 @@ int64_t intersect_runs(const Run* a, const Run* a_end, const Run* b, const Run* 
 }  // namespace
 
 Result<VolumeComparison> compare(const RunLengthVolume& a, const RunLengthVolume& b) {
-  if (!(a.geometry == b.geometry)) {
-    return invalid_argument("cannot compare volumes on different grids (" + describe(a.geometry) + " vs " +
-                            describe(b.geometry) + ")");
+  if (Status same = check_same_grid(a.geometry, b.geometry); !same.ok()) {
+    return invalid_argument("cannot compare volumes on different grids: " + same.message());
   }
   VolumeComparison c;
   c.count_a = voxel_count(a);

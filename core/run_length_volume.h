@@ -53,7 +53,7 @@ struct VolumeComparison {
   double iou() const;              // |A∩B| / |A∪B|; 1 when both are empty
   double dice() const;             // 2|A∩B| / (|A|+|B|); 1 when both are empty
 };
-// INVALID_ARGUMENT when the grids differ. O(runs).
+// INVALID_ARGUMENT when the grids differ (check_same_grid). O(runs).
 Result<VolumeComparison> compare(const RunLengthVolume& a, const RunLengthVolume& b);
 
 }  // namespace soiq

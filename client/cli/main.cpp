@@ -3,6 +3,7 @@
 #include <cstring>
 #include <string>
 
+#include "client/cli/compare_command.h"
 #include "client/cli/convert_command.h"
 #include "client/cli/mesh_command.h"
 
@@ -17,6 +18,8 @@ constexpr const char* kHelp =
     "      surface model -> volume model (the 1D scanline method); prints one summary line\n"
     "  soiq mesh MASK -o OUT.{stl,vtk,vtp,ply,obj} [--label N]\n"
     "      mask -> surface model (marching cubes at 0.5, LPS mm, outward normals)\n"
+    "  soiq compare MASK_A MASK_B [--label-a N] [--label-b N]\n"
+    "      overlap of two masks on one grid: IoU, Dice, differing voxels\n"
     "\n"
     "Exit codes: 0 ok, 1 other, 2 invalid argument or usage, 3 not found, 4 failed precondition,\n"
     "5 resource exhausted.\n";
@@ -30,6 +33,7 @@ int main(int argc, char** argv) {
   }
   const std::string command = argv[1];
   if (command == "convert") return soiq::cli::run_convert_command(argc - 1, argv + 1);
+  if (command == "compare") return soiq::cli::run_compare_command(argc - 1, argv + 1);
   if (command == "mesh") return soiq::cli::run_mesh_command(argc - 1, argv + 1);
   std::fprintf(stderr, "soiq: unknown command '%s' (try 'soiq help')\n", command.c_str());
   return 2;
