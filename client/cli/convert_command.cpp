@@ -95,7 +95,18 @@ Result<ConvertArgs> parse(int argc, char** argv) {
   }
   if (a.mesh.empty()) return invalid_argument("missing MESH");
   if (a.out.empty()) return invalid_argument("missing -o OUT");
-  if (!a.reference.empty() && a.spacing_given) return invalid_argument("give either --reference or --spacing, not both");
+  // Refuse an unwritable format before any work is done, not after.
+  const bool known_format = [&] {
+    for (const char* ext : {".nii.gz", ".nii", ".nrrd", ".mha"}) {
+      const std::string e = ext;
+      if (a.out.size() > e.size() && a.out.compare(a.out.size() - e.size(), e.size(), e) == 0) return true;
+    }
+    return false;
+  }();
+  if (!known_format)
+    return invalid_argument("output '" + a.out + "' has an unknown extension; use .nii.gz, .nii, .nrrd or .mha");
+  if (!a.reference.empty() && a.spacing_given)
+    return invalid_argument("give either --reference or --spacing, not both");
   return a;
 }
 

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# `soiq convert` end to end on real files: lossless round trips through every mesh format, and each
+# bad input answered with its exit code and one readable line.
+# Usage: convert_test.sh SOIQ_BINARY TEST_DATA_DIR
+set -uo pipefail
+soiq=$1
+data=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect CODE PHRASE -- command...: exit code and a phrase of the single stderr line.
+expect() {
+  local code=$1 phrase=$2
+  shift 3
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  [ "$got" -eq "$code" ] || fail "'$*' exited $got, expected $code: $(cat "$tmp/err")"
+  grep -q -- "$phrase" "$tmp/err" || fail "'$*' stderr lacks '$phrase': $(cat "$tmp/err")"
+}
+
+# Lossless round trip: mask -> soiq mesh -> soiq convert --reference mask -> identical.
+for mask in "pyradiomics/brain1_label.nrrd" "sts/STS_002/CT_mask.nii.gz" "ibsi_digital_phantom/mask.nii.gz"; do
+  for fmt in vtp stl ply obj vtk; do
+    "$soiq" mesh "$data/$mask" -o "$tmp/s.$fmt" >/dev/null || fail "soiq mesh $mask -> $fmt"
+    for out in nii.gz nrrd mha; do
+      "$soiq" convert "$tmp/s.$fmt" --reference "$data/$mask" -o "$tmp/back.$out" >/dev/null || fail "convert $mask $fmt -> $out"
+      result=$("$soiq" compare "$data/$mask" "$tmp/back.$out")
+      case "$result" in identical:*) ;; *) fail "$mask via $fmt/$out: $result" ;; esac
+    done
+  done
+done
+
+# A grid around the mesh: the summary line reports voxels, volume, defects and time.
+"$soiq" mesh "$data/sts/STS_002/PET_mask.nii.gz" -o "$tmp/pet.stl" >/dev/null
+line=$("$soiq" convert "$tmp/pet.stl" --spacing 1 --margin 3 -o "$tmp/pet_1mm.nii.gz" --threads 2)
+echo "$line" | grep -qE '^[0-9]+ voxels inside, [0-9.]+ mm3 on .* 0 boundary edges.* ms -> ' || fail "summary line: $line"
+
+# An open mesh: plain mode names --robust (exit 4); robust mode gives a result.
+cat >"$tmp/open.stl" <<'STL'
+solid open
+facet normal 0 0 1
+outer loop
+vertex 0 0 0
+vertex 10 0 0
+vertex 0 10 0
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex 0 0 0
+vertex 0 10 0
+vertex 0 0 10
+endloop
+endfacet
+endsolid open
+STL
+expect 4 "--robust" -- "$soiq" convert "$tmp/open.stl" --spacing 1 -o "$tmp/o.nii.gz"
+"$soiq" convert "$tmp/open.stl" --spacing 1 --robust -o "$tmp/o.nii.gz" >/dev/null || fail "robust mode on an open mesh"
+
+expect 3 "not" -- "$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz"
+expect 3 "missing_ref" -- "$soiq" convert "$tmp/pet.stl" --reference "$tmp/missing_ref.nii.gz" -o "$tmp/x.nii.gz"
+expect 5 "exceeds the limit" -- "$soiq" convert "$tmp/pet.stl" --spacing 0.001 -o "$tmp/x.nii.gz"
+expect 2 "unknown option" -- "$soiq" convert "$tmp/pet.stl" --bogus -o "$tmp/x.nii.gz"
+expect 2 "missing -o" -- "$soiq" convert "$tmp/pet.stl"
+expect 2 "--spacing" -- "$soiq" convert "$tmp/pet.stl" --spacing -1 -o "$tmp/x.nii.gz"
+: >"$tmp/empty.stl"
+expect 2 "empty.stl" -- "$soiq" convert "$tmp/empty.stl" --spacing 1 -o "$tmp/x.nii.gz"
+expect 2 "extension" -- "$soiq" convert "$tmp/pet.stl" --spacing 1 -o "$tmp/x.png"
+
+# Stderr of a failure is one line.
+"$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz" 2>"$tmp/err"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "error output is not one line: $(cat "$tmp/err")"
+
+if [ "$failures" -eq 0 ]; then echo "convert_test: all passed"; else echo "convert_test: $failures failed"; exit 1; fi
