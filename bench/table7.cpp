@@ -18,7 +18,7 @@ int run_table7(const CliArgs& args) {
     return 2;
   }
   std::printf(
-      "UV spheres, radius 20 mm, 1 mm grid with a 2-voxel margin; median ms, 1 thread pinned; "
+      "UV spheres, radius 20 mm, 0.5 mm grid with a 2-voxel margin; median ms, 1 thread pinned; "
       "1d up to %d runs, 3d and vtk-enclosed 1 run\n\n",
       *runs);
   std::printf(
@@ -26,7 +26,7 @@ int run_table7(const CliArgs& args) {
       "vtk-enclosed differing |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int64_t triangles : {500, 2000, 8000, 32000, 128000}) {
     const TriangleMesh mesh = uv_sphere_with_triangles({0.3, -0.2, 0.1}, 20, triangles);
-    const Result<ImageGeometry> grid = grid_around(mesh, {1, 1, 1}, 2);
+    const Result<ImageGeometry> grid = grid_around(mesh, {0.5, 0.5, 0.5}, 2);
     if (!grid.ok()) {
       std::fprintf(stderr, "table7: %s\n", grid.status().to_string().c_str());
       return 1;
