@@ -19,7 +19,7 @@ struct EdgeUses {
   std::vector<int64_t> uses;
 };
 
-EdgeUses edge_uses(const TriangleMesh& mesh, const std::vector<bool>& usable) {
+EdgeUses edge_uses(const TriangleMesh& mesh, const std::vector<uint8_t>& usable) {
   const size_t nv = mesh.vertices_mm.size();
   EdgeUses g;
   g.start.assign(nv + 1, 0);
@@ -41,8 +41,19 @@ EdgeUses edge_uses(const TriangleMesh& mesh, const std::vector<bool>& usable) {
     }
   }
   for (size_t v = 0; v < nv; ++v) {
-    auto first = g.uses.begin() + g.start[v], last = g.uses.begin() + g.start[v + 1];
-    if (last - first > 1) std::sort(first, last);
+    int64_t* first = g.uses.data() + g.start[v];
+    int64_t* last = g.uses.data() + g.start[v + 1];
+    if (last - first > 16) {
+      std::sort(first, last);
+      continue;
+    }
+    // Most vertices have a handful of edges: an insertion sort without std::sort's set-up.
+    for (int64_t* i = first + 1; i < last; ++i) {
+      const int64_t key = *i;
+      int64_t* j = i;
+      for (; j > first && *(j - 1) > key; --j) *j = *(j - 1);
+      *j = key;
+    }
   }
   return g;
 }
@@ -56,14 +67,14 @@ MeshDefects mesh_defects(const TriangleMesh& mesh) {
     d.nonfinite_vertices += !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
   }
   // Triangles that reference missing vertices cannot take part in the edge analysis.
-  std::vector<bool> usable(mesh.triangles.size(), true);
+  std::vector<uint8_t> usable(mesh.triangles.size(), 1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     bool in_range = true;
     for (int c = 0; c < 3; ++c) in_range = in_range && tri[c] >= 0 && tri[c] < nv;
     if (!in_range) {
       ++d.bad_indices;
-      usable[t] = false;
+      usable[t] = 0;
       continue;
     }
     const Vec3& a = mesh.vertices_mm[size_t(tri[0])];

@@ -129,8 +129,9 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
 LineRuns scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1, bool drop_unbalanced) {
   const auto& tris = *p.triangles;
   std::vector<LineCrossingAt> crossings;
-  // A closed surface crosses most lines it reaches at least twice.
-  crossings.reserve(size_t(2 * p.ny * (k1 - k0)));
+  // Enough for a closed surface crossing each line it reaches a few times, so growth (a copy of
+  // every crossing) is rare.
+  crossings.reserve(size_t(std::max<int64_t>(4 * p.ny * (k1 - k0), int64_t(tris.size()) / 2)));
   auto visit = [&](size_t t) {
     if (buckets.k_last[t] < k0 || buckets.k_first[t] >= k1) return;
     triangle_crossings(p, tris[t], std::max<int64_t>(buckets.k_first[t], k0),
