@@ -18,8 +18,10 @@
 #include <cstring>
 #include <limits>
 
+#include "core/io/check_ply_structure.h"
 #include "core/io/file_extension.h"
 #include "core/io/header_text.h"
+#include "core/io/legacy_vtk_geometry.h"
 #include "core/io/read_file_bytes.h"
 #include "core/io/vtk_messages.h"
 
@@ -174,9 +176,25 @@ Result<TriangleMesh> read_mesh(const std::string& path, bool ras) {
   if (size == 0) return invalid_argument("mesh file '" + path + "' is empty");
   if (ext == ".stl") SOIQ_RETURN_IF_ERROR(check_stl_size(path, size));
   if (ext == ".obj") SOIQ_RETURN_IF_ERROR(check_obj_indices(path));
+  if (ext == ".ply") {
+    SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "mesh"));
+    SOIQ_RETURN_IF_ERROR(check_ply_structure(bytes, path));
+  }
+
+  std::string vtk_geometry;
+  if (ext == ".vtk") {
+    SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "mesh"));
+    SOIQ_ASSIGN_OR_RETURN(vtk_geometry, legacy_vtk_geometry(bytes, path));
+  }
 
   VtkMessages messages;
   vtkSmartPointer<vtkAlgorithm> reader = make_reader(ext, path);
+  if (ext == ".vtk") {
+    // Parse only the checked geometry, from memory (see legacy_vtk_geometry.h).
+    auto* legacy = static_cast<vtkPolyDataReader*>(reader.Get());
+    legacy->ReadFromInputStringOn();
+    legacy->SetInputString(vtk_geometry.data(), int(vtk_geometry.size()));
+  }
   reader->Update();
   vtkPolyData* poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (messages.has_error() || poly == nullptr) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -158,6 +159,27 @@ TEST(ReadMesh, PlyFaceIndexOutOfRangeIsInvalidArgument) {
   EXPECT_NE(mesh.status().message().find("out of range"), std::string::npos) << mesh.status().message();
 }
 
+TEST(ReadMesh, AsciiLegacyVtk51WithAttributesIsRead) {
+  const auto mesh = read_mesh(write_bytes("tetra51.vtk",
+                                          "# vtk DataFile Version 5.1\ntetra\nASCII\nDATASET POLYDATA\n"
+                                          "POINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\nMETADATA\nINFORMATION 0\n\n"
+                                          "POLYGONS 5 12\nOFFSETS vtktypeint64\n0 3 6 9 12\n"
+                                          "CONNECTIVITY vtktypeint64\n0 2 1 0 1 3 0 3 2 1 2 3\n"
+                                          "POINT_DATA 4\nSCALARS s float 1\nLOOKUP_TABLE default\n1 2 3 4\n"));
+  ASSERT_TRUE(mesh.ok()) << mesh.status().to_string();
+  EXPECT_EQ(mesh->triangles.size(), 4u);
+  EXPECT_TRUE(mesh_defects(*mesh).closed());
+}
+
+TEST(ReadMesh, LegacyVtkCellIndexOutOfRangeIsInvalidArgument) {
+  const auto mesh = read_mesh(write_bytes("oob.vtk",
+                                          "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n"
+                                          "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 9\n"));
+  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(mesh.status().message().find("point index 9 is out of range"), std::string::npos)
+      << mesh.status().message();
+}
+
 TEST(ReadMesh, GarbagePlyVtkAndVtpAreInvalidArgument) {
   for (const char* name : {"garbage.ply", "garbage.vtk", "garbage.vtp"}) {
     const auto mesh = read_mesh(write_bytes(name, "this is not a mesh file\n\x01\x02\x03"));
@@ -185,6 +207,54 @@ TEST(ReadMesh, MissingFileIsNotFound) {
     EXPECT_NE(mesh.status().message().find("does not exist"), std::string::npos);
   }
 }
+
+}  // namespace
+}  // namespace soiq
+
+namespace soiq {
+namespace {
+
+class ReadMeshHostile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ReadMeshHostile, TruncatedFilesFailCleanlyOrReadButNeverCrash) {
+  const std::string full = testing_io::scratch_path("whole" + GetParam());
+  ASSERT_TRUE(write_mesh(testing_io::awkward_box(), full).ok());
+  std::ifstream in(full, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (size_t cut = 1; cut < bytes.size(); cut += std::max<size_t>(1, bytes.size() / 37)) {
+    const auto mesh = read_mesh(write_bytes("cut" + GetParam(), bytes.substr(0, cut)));
+    if (!mesh.ok()) {
+      EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument) << cut << ": " << mesh.status().to_string();
+    } else {
+      // A reader may stop early and still hold whole triangles; their indices must be valid.
+      EXPECT_EQ(mesh_defects(*mesh).bad_indices, 0) << cut;
+    }
+  }
+}
+
+TEST_P(ReadMeshHostile, FlippedBytesFailCleanlyOrReadButNeverCrash) {
+  const std::string full = testing_io::scratch_path("flip_src" + GetParam());
+  ASSERT_TRUE(write_mesh(testing_io::awkward_box(), full).ok());
+  std::ifstream in(full, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  uint32_t state = 12345;  // fixed LCG: the same corruptions on every run
+  for (int round = 0; round < 40; ++round) {
+    std::string bad = bytes;
+    for (int k = 0; k < 4; ++k) {
+      state = state * 1664525u + 1013904223u;
+      bad[state % bad.size()] = char(state >> 24);
+    }
+    const auto mesh = read_mesh(write_bytes("flip" + GetParam(), bad));
+    if (!mesh.ok()) {
+      EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument) << round << ": " << mesh.status().to_string();
+    } else {
+      EXPECT_EQ(mesh_defects(*mesh).bad_indices, 0) << round;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ReadMeshHostile, ::testing::Values(".stl", ".obj", ".ply", ".vtk", ".vtp"),
+                         [](const auto& info) { return info.param.substr(1); });
 
 }  // namespace
 }  // namespace soiq
