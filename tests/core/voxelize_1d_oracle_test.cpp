@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <random>
 #include <string>
 
@@ -19,6 +20,9 @@ struct Case {
   ImageGeometry grid;
   FillRule rule = FillRule::kNonZero;
 };
+
+// GoogleTest prints parameters in test listings: the name, not 232 bytes of hex.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 ImageGeometry grid(int64_t nx, int64_t ny, int64_t nz, Vec3 spacing = {1, 1, 1}, Vec3 origin = {0, 0, 0}) {
   ImageGeometry g;
