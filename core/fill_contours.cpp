@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/exact_predicates.h"
 #include "core/line_fill.h"
 
 namespace soiq {
@@ -13,7 +14,7 @@ namespace {
 // An endpoint with y == j counts as below the line, so of two edges meeting at a vertex on the
 // line exactly one crosses it when the contour passes through, and neither or both when it only
 // touches: the parity stays right without an epsilon.
-void edge_crossings(const Vec3& p, const Vec3& q, int64_t k, int64_t ny, std::vector<LineCrossingAt>& out) {
+void edge_crossings(const Vec3& p, const Vec3& q, int64_t k, int64_t nx, int64_t ny, std::vector<LineCrossingAt>& out) {
   if (p[1] == q[1]) return;  // parallel to the rows: never crosses a perturbed line
   const bool up = q[1] > p[1];
   const Vec3& lo = up ? p : q;
@@ -22,13 +23,22 @@ void edge_crossings(const Vec3& p, const Vec3& q, int64_t k, int64_t ny, std::ve
   const int64_t j_first = std::max<int64_t>(0, int64_t(std::ceil(lo[1])));
   const int64_t j_last = std::min<int64_t>(ny - 1, int64_t(std::ceil(hi[1])) - 1);
   const double slope = (hi[0] - lo[0]) / (hi[1] - lo[1]);
+  constexpr double kEps = 1.1102230246251565e-16;
   for (int64_t j = j_first; j <= j_last; ++j) {
     // From the lower endpoint, whatever the edge's direction: both contours sharing an edge (a
     // keyhole) get the same x.
-    const double x = lo[0] + (double(j) - lo[1]) * slope;
+    const double t = (double(j) - lo[1]) * slope;
+    const double x = lo[0] + t;
+    // Near a voxel centre, decide the side exactly: the crossing is at or before centre m iff
+    // (m, j) is on or right of the upward edge lo -> hi.
+    int64_t centre = clamped_ceil(x, nx);
+    const double m = std::nearbyint(x);
+    if (std::abs(x - m) <= 8 * kEps * (std::abs(lo[0]) + std::abs(t) + 1)) {
+      centre = clamped_ceil(orient2d_sign(lo[0], lo[1], hi[0], hi[1], m, double(j)) <= 0 ? m : m + 1, nx);
+    }
     // Counter-clockwise contours (seen from +k) have their interior on the left: an edge going
     // down (-y) is met first along +x, so it is the entering one.
-    out.push_back({j + ny * k, {x, up ? -1 : +1}});
+    out.push_back({j + ny * k, {centre, up ? -1 : +1}});
   }
 }
 
@@ -74,7 +84,8 @@ Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, co
       continue;
     }
     const int64_t k = int64_t(k_round);
-    for (size_t i = 0; i < u.size(); ++i) edge_crossings(u[i], u[(i + 1) % u.size()], k, geometry.dims[1], crossings);
+    for (size_t i = 0; i < u.size(); ++i)
+      edge_crossings(u[i], u[(i + 1) % u.size()], k, geometry.dims[0], geometry.dims[1], crossings);
   }
   LineRuns lines = fill_lines(crossings, geometry.dims[1] * geometry.dims[2], geometry.dims[0], rule, false);
   out.volume.geometry = geometry;

@@ -5,16 +5,15 @@
 
 namespace soiq {
 
-namespace {
-
-// A voxel centre i is inside from the first integer >= x on: ceil(x), clamped to [-1, nx+1]
-// before the conversion so far-away crossings cannot overflow.
-int64_t first_centre_at_or_after(double x, int64_t nx) {
+int64_t clamped_ceil(double x, int64_t nx) {
+  // Clamped before the conversion so far-away crossings cannot overflow.
   const double c = std::ceil(x);
-  if (c < -1.0) return -1;
+  if (!(c >= -1.0)) return -1;
   if (c > double(nx + 1)) return nx + 1;
   return int64_t(c);
 }
+
+namespace {
 
 void append_run(int64_t begin, int64_t end, int64_t nx, int64_t line_first_run, std::vector<Run>& runs) {
   begin = std::max<int64_t>(begin, 0);
@@ -27,16 +26,17 @@ void append_run(int64_t begin, int64_t end, int64_t nx, int64_t line_first_run, 
   runs.push_back({int32_t(begin), int32_t(end)});
 }
 
-void sort_by_x(LineCrossing* first, LineCrossing* last) {
+void sort_by_centre(LineCrossing* first, LineCrossing* last) {
   // Lines cross a surface a handful of times: insertion sort beats std::sort here.
   if (last - first > 32) {
-    std::sort(first, last, [](const LineCrossing& a, const LineCrossing& b) { return a.x < b.x; });
+    std::sort(first, last,
+              [](const LineCrossing& a, const LineCrossing& b) { return a.first_centre < b.first_centre; });
     return;
   }
   for (LineCrossing* i = first + 1; i < last; ++i) {
     const LineCrossing v = *i;
     LineCrossing* j = i;
-    for (; j > first && (j - 1)->x > v.x; --j) *j = *(j - 1);
+    for (; j > first && (j - 1)->first_centre > v.first_centre; --j) *j = *(j - 1);
     *j = v;
   }
 }
@@ -45,18 +45,19 @@ void sort_by_x(LineCrossing* first, LineCrossing* last) {
 
 bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rule, int64_t line_first_run,
                std::vector<Run>& runs) {
-  sort_by_x(first, last);
+  sort_by_centre(first, last);
   int32_t winding = 0;
   bool inside = false;
   int64_t begin = 0;
-  // Crossings at the same x may come in any order: a momentary flip there yields an empty or a
-  // touching run, which append_run drops or merges, so the result does not depend on the order.
+  // Crossings with the same first centre may come in any order: a momentary flip between them
+  // yields an empty or a touching run, which append_run drops or merges, so the result does not
+  // depend on the order.
   for (LineCrossing* c = first; c < last; ++c) {
     winding = rule == FillRule::kNonZero ? winding + c->sign : winding ^ 1;
     const bool now = winding != 0;
     if (now == inside) continue;
     inside = now;
-    const int64_t edge = first_centre_at_or_after(c->x, nx);
+    const int64_t edge = c->first_centre;
     if (now) {
       begin = edge;
     } else {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "core/exact_predicates.h"
 #include "core/line_fill.h"
 #include "core/parallel_for.h"
 #include "core/three_axis_vote.h"
@@ -23,13 +24,14 @@ struct ScanProblem {
   FillRule rule = FillRule::kNonZero;
 };
 
-// One edge of a triangle's (y,z) projection, set up so that the two triangles sharing it compute
-// bit-identical edge functions of opposite sign: the function is always evaluated from the
-// lexicographically smaller endpoint and then multiplied by `flip`. That, and the symbolic
-// perturbation of the sample point to (j + e, k + e^2), is the whole watertightness argument:
-// no sample point is on an edge, and each edge puts it on exactly one side for both triangles.
+// One edge of a triangle's (y,z) projection. Its edge function at a lattice point P = (j,k) is
+// orient2d(lo, hi, P) of the lexicographically ordered endpoints, times `flip` for the triangle's
+// direction, so the two triangles sharing the edge see exactly opposite values. Its sign is exact
+// (core/exact_predicates), and an exact zero takes the sign of the symbolic perturbation of P to
+// (j + e, k + e^2): no lattice point is ever on an edge, and every edge puts it on exactly one side
+// for both triangles. That is the whole watertightness argument, with no epsilon.
 struct ProjectedEdge {
-  double lo_y, lo_z, dy, dz;
+  double lo_y, lo_z, hi_y, hi_z, dy, dz;
   int flip;      // +1 when the triangle runs lo -> hi, -1 when hi -> lo
   int tie_sign;  // the perturbed sign when the exact value is 0, already multiplied by flip
 
@@ -42,15 +44,30 @@ struct ProjectedEdge {
     }
     lo_y = ay;
     lo_z = az;
+    hi_y = by;
+    hi_z = bz;
     dy = by - ay;
     dz = bz - az;
     // E(P + (e, e^2)) = E(P) - dz*e + dy*e^2; lo < hi makes dy > 0 whenever dz == 0.
     const int canonical_tie = dz != 0 ? (dz > 0 ? -1 : 1) : 1;
     tie_sign = canonical_tie * flip;
   }
-  // The edge function at (py, pz), oriented as the triangle runs.
-  double value(double py, double pz) const { return flip * (dy * (pz - lo_z) - dz * (py - lo_y)); }
-  static int sign_of(double v, int tie) { return v > 0 ? 1 : (v < 0 ? -1 : tie); }
+
+  struct Value {
+    double value;  // the edge function in double, oriented as the triangle runs
+    double error;  // a bound on |value - exact value|
+    int sign;      // the exact perturbed sign: never 0
+  };
+
+  Value at(double py, double pz) const {
+    // A lattice point on an endpoint (every marching-cubes vertex on a row line) is an exact zero:
+    // decided without arithmetic.
+    if ((py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
+    const double t1 = dy * (pz - lo_z), t2 = dz * (py - lo_y);
+    const double error = orient2d_error_bound(t1, t2);
+    const int exact = orient2d_sign_filtered(t1 - t2, error, lo_y, lo_z, hi_y, hi_z, py, pz);
+    return {flip * (t1 - t2), error, exact != 0 ? flip * exact : tie_sign};
+  }
 };
 
 // The lattice slices each triangle reaches, and the triangle indices sorted by their first slice
@@ -99,6 +116,41 @@ SliceBuckets bucket_by_slice(const ScanProblem& p, bool sort, int threads) {
   return b;
 }
 
+// The first voxel centre at or after the crossing of line (j,k) with the plane of triangle abc
+// (index space, vertices v[0..2]); `x` is the interpolated crossing, `tolerance` a bound on its
+// error, `normal_x_sign` the exact sign of the normal's x component. When x is within tolerance
+// of an integer, the side of that integer is decided exactly by orient3d: the half-open rule
+// (a centre exactly on an entering crossing is inside) then holds to the last bit.
+int64_t first_centre(const double (&v)[3][3], double x, double tolerance, int normal_x_sign, int64_t j, int64_t k,
+                     int64_t nx) {
+  const double nearest = std::nearbyint(x);
+  if (std::abs(x - nearest) > tolerance) return clamped_ceil(x, nx);
+  // Smallest integer m with x_exact <= m, by bisection over the integers that tolerance admits
+  // (one or two predicates in practice). n . ((m,j,k) - a) = n_x (m - x_exact).
+  auto at_or_after = [&](double m) {
+    const double q[3] = {m, double(j), double(k)};
+    return orient3d_sign(v[0], v[1], v[2], q) * normal_x_sign >= 0;
+  };
+  double lo = std::max(std::floor(x - tolerance) - 1, -2.0);           // x_exact > lo
+  double hi = std::min(std::ceil(x + tolerance) + 1, double(nx + 2));  // x_exact <= hi
+  // Should the bound ever be too tight, widen to the whole line rather than guess.
+  if (at_or_after(lo)) {
+    if (lo <= -2 || at_or_after(-2.0)) return -1;
+    hi = lo;
+    lo = -2;
+  }
+  if (!at_or_after(hi)) {
+    if (hi >= double(nx + 2) || !at_or_after(double(nx + 2))) return nx + 1;
+    lo = hi;
+    hi = double(nx + 2);
+  }
+  while (hi - lo > 1) {
+    const double mid = std::floor((lo + hi) / 2);
+    (at_or_after(mid) ? hi : lo) = mid;
+  }
+  return clamped_ceil(hi, nx);
+}
+
 // Appends the crossings of triangle t with the row lines of slices [k_lo, k_hi].
 void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi, int64_t k0,
                         std::vector<LineCrossingAt>& out) {
@@ -110,18 +162,45 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   const ProjectedEdge ab(p.y[a], p.z[a], p.y[b], p.z[b]);
   const ProjectedEdge bc(p.y[b], p.z[b], p.y[c], p.z[c]);
   const ProjectedEdge ca(p.y[c], p.z[c], p.y[a], p.z[a]);
+  const double v[3][3] = {{p.x[a], p.y[a], p.z[a]}, {p.x[b], p.y[b], p.z[b]}, {p.x[c], p.y[c], p.z[c]}};
+  constexpr double kEps = 1.1102230246251565e-16;
   for (int64_t k = k_lo; k <= k_hi; ++k) {
     const double pz = double(k);
     for (int64_t j = j_lo; j <= j_hi; ++j) {
       const double py = double(j);
-      const double w_c = ab.value(py, pz), w_a = bc.value(py, pz), w_b = ca.value(py, pz);
-      const int s = ProjectedEdge::sign_of(w_c, ab.tie_sign);
-      if (ProjectedEdge::sign_of(w_a, bc.tie_sign) != s || ProjectedEdge::sign_of(w_b, ca.tie_sign) != s) continue;
-      // Barycentric interpolation with the edge functions as weights: two triangles sharing an
-      // edge give the same x on it, and a line through a vertex gets exactly that vertex's x.
-      const double x = (w_a * p.x[a] + w_b * p.x[b] + w_c * p.x[c]) / (w_a + w_b + w_c);
+      const ProjectedEdge::Value e_c = ab.at(py, pz);
+      const ProjectedEdge::Value e_a = bc.at(py, pz);
+      if (e_a.sign != e_c.sign) continue;
+      const ProjectedEdge::Value e_b = ca.at(py, pz);
+      if (e_b.sign != e_c.sign) continue;
+      // Barycentric interpolation with the edge functions as weights, written as the heaviest
+      // vertex plus weighted differences, so a line through a vertex (the other weights exactly
+      // 0) gets exactly that vertex's x.
+      const double w[3] = {e_a.value, e_b.value, e_c.value};
+      const double err[3] = {e_a.error, e_b.error, e_c.error};
+      const double sum = w[0] + w[1] + w[2];
+      const int base = (std::abs(w[0]) >= std::abs(w[1]) && std::abs(w[0]) >= std::abs(w[2]))
+                           ? 0
+                           : (std::abs(w[1]) >= std::abs(w[2]) ? 1 : 2);
+      const int o1 = (base + 1) % 3, o2 = (base + 2) % 3;
+      const double d1 = v[o1][0] - v[base][0], d2 = v[o2][0] - v[base][0];
+      const double numerator = w[o1] * d1 + w[o2] * d2;
+      const double x = v[base][0] + numerator / sum;
+      // A bound on x's error from the weights' bounds and the few roundings in between (generous:
+      // it only decides when the exact orient3d test is consulted).
+      const double sum_error = err[0] + err[1] + err[2] + 4 * kEps * (std::abs(w[0]) + std::abs(w[1]) + std::abs(w[2]));
+      double tolerance = HUGE_VAL;
+      if (std::abs(sum) > 2 * sum_error) {
+        const double num_error =
+            err[o1] * std::abs(d1) + err[o2] * std::abs(d2) + 4 * kEps * (std::abs(w[o1] * d1) + std::abs(w[o2] * d2));
+        const double ratio = std::abs(numerator / sum);
+        tolerance =
+            2 * (num_error + ratio * sum_error) / (std::abs(sum) - sum_error) + 8 * kEps * (std::abs(x) + ratio + 1);
+      }
       // All weights positive: counter-clockwise in (y,z), normal along +x, so the line leaves.
-      out.push_back({j + p.ny * (k - k0), {x, s > 0 ? -1 : 1}});
+      const int normal_x_sign = e_c.sign;
+      out.push_back({j + p.ny * (k - k0),
+                     {first_centre(v, x, tolerance, normal_x_sign, j, k, p.nx), normal_x_sign > 0 ? -1 : 1}});
     }
   }
 }
