@@ -92,10 +92,7 @@ int exact_orient2d(double a1, double a2, double b1, double b2, double p1, double
 
 }  // namespace
 
-int orient2d_sign_filtered(double value, double error_bound, double a1, double a2, double b1, double b2, double p1,
-                           double p2) {
-  if (value > error_bound) return 1;
-  if (value < -error_bound) return -1;
+int orient2d_sign_exact(double a1, double a2, double b1, double b2, double p1, double p2) {
   return exact_orient2d(a1, a2, b1, b2, p1, p2);
 }
 

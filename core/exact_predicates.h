@@ -14,10 +14,18 @@ namespace soiq {
 // directed line a -> b in the plane of coordinates (1, 2).
 int orient2d_sign(double a1, double a2, double b1, double b2, double p1, double p2);
 
-// The same with the double evaluation and its error bound supplied by a caller that already has
-// them (the hot loop of the 1D method computes the value for interpolation anyway).
-int orient2d_sign_filtered(double value, double error_bound, double a1, double a2, double b1, double b2, double p1,
-                           double p2);
+// The exact sign alone, without the filter.
+int orient2d_sign_exact(double a1, double a2, double b1, double b2, double p1, double p2);
+
+// The same as orient2d_sign with the double evaluation and its error bound supplied by a caller
+// that already has them (the hot loop of the 1D method computes the value for interpolation
+// anyway). Inline: the filter is the hot path, the exact evaluation the rare one.
+inline int orient2d_sign_filtered(double value, double error_bound, double a1, double a2, double b1, double b2,
+                                  double p1, double p2) {
+  if (value > error_bound) return 1;
+  if (value < -error_bound) return -1;
+  return orient2d_sign_exact(a1, a2, b1, b2, p1, p2);
+}
 
 // The error bound of the double evaluation of orient2d from its two products t1 - t2.
 inline double orient2d_error_bound(double t1, double t2) {

@@ -60,59 +60,63 @@ struct ProjectedEdge {
   };
 
   Value at(double py, double pz) const {
-    // A lattice point on an endpoint (every marching-cubes vertex on a row line) is an exact zero:
-    // decided without arithmetic.
-    if ((py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
     const double t1 = dy * (pz - lo_z), t2 = dz * (py - lo_y);
+    const double value = t1 - t2;
     const double error = orient2d_error_bound(t1, t2);
-    const int exact = orient2d_sign_filtered(t1 - t2, error, lo_y, lo_z, hi_y, hi_z, py, pz);
-    return {flip * (t1 - t2), error, exact != 0 ? flip * exact : tie_sign};
+    if (value > error) return {flip * value, error, flip};
+    if (value < -error) return {flip * value, error, -flip};
+    // Near or at zero. A lattice point on an endpoint (every marching-cubes vertex on a row line)
+    // is an exact zero without arithmetic; anything else asks the exact predicate.
+    if ((py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
+    const int exact = orient2d_sign_exact(lo_y, lo_z, hi_y, hi_z, py, pz);
+    return {flip * value, error, exact != 0 ? flip * exact : tie_sign};
   }
 };
 
-// The lattice slices each triangle reaches, and the triangle indices sorted by their first slice
-// (a counting sort): a slab [k0, k1) visits only the buckets that can reach it, so no slab ever
-// scans every triangle. With a single slab the sort is skipped: index order is as good.
-struct SliceBuckets {
-  std::vector<int32_t> k_first, k_last;  // per triangle, clamped to the grid; first > last = none
-  std::vector<int64_t> start;            // nz + 1 (empty when not bucketed)
-  std::vector<int32_t> order;
-  int64_t max_span = 0;
+// The slabs of slices that threads fill independently: slab s is [k_begin(s), k_begin(s+1)).
+struct Slabs {
+  int64_t count = 1;
+  int64_t nz = 0;
+  int64_t k_begin(int64_t s) const { return nz * s / count; }
+  int64_t of_slice(int64_t k) const { return ((k + 1) * count - 1) / nz; }  // inverse of k_begin
 };
 
-SliceBuckets bucket_by_slice(const ScanProblem& p, bool sort, int threads) {
+// The lattice slices each triangle reaches, and, with several slabs, the triangles each slab must
+// visit: built in parallel, one list per (worker, slab), so no slab ever scans every triangle and
+// no serial sort stands in front of the threads. The order of triangles in a slab is irrelevant:
+// crossings are grouped by line and sorted afterwards.
+struct SlabTriangles {
+  std::vector<int32_t> k_first, k_last;                  // per triangle, clamped; first > last = none
+  std::vector<std::vector<std::vector<int32_t>>> lists;  // [worker][slab]; empty with one slab
+};
+
+SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int threads) {
   const auto& tris = *p.triangles;
-  SliceBuckets b;
+  SlabTriangles b;
   b.k_first.resize(tris.size());
   b.k_last.resize(tris.size());
+  const int workers = slabs.count > 1 ? std::max(threads, 1) : 1;
+  if (slabs.count > 1) b.lists.assign(size_t(workers), std::vector<std::vector<int32_t>>(size_t(slabs.count)));
   const double last_slice = double(p.nz - 1);
-  std::atomic<int64_t> max_span_all{0};
-  parallel_for(int64_t(tris.size()), threads, [&](int64_t t_begin, int64_t t_end) {
-    int64_t max_span = 0;
-    for (size_t t = size_t(t_begin); t < size_t(t_end); ++t) {
+  auto work = [&](int w) {
+    const size_t begin = tris.size() * size_t(w) / size_t(workers), end = tris.size() * size_t(w + 1) / size_t(workers);
+    for (size_t t = begin; t < end; ++t) {
       const double z0 = p.z[size_t(tris[t][0])], z1 = p.z[size_t(tris[t][1])], z2 = p.z[size_t(tris[t][2])];
       const double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
       const double hi = std::min(std::floor(std::max({z0, z1, z2})), last_slice);
       const bool any = lo <= hi;
       b.k_first[t] = any ? int32_t(lo) : 1;
       b.k_last[t] = any ? int32_t(hi) : 0;
-      if (any) max_span = std::max<int64_t>(max_span, b.k_last[t] - b.k_first[t]);
+      if (!any || slabs.count == 1) continue;
+      for (int64_t s = slabs.of_slice(int64_t(lo)); s <= slabs.of_slice(int64_t(hi)); ++s) {
+        b.lists[size_t(w)][size_t(s)].push_back(int32_t(t));
+      }
     }
-    for (int64_t seen = max_span_all.load(); seen < max_span && !max_span_all.compare_exchange_weak(seen, max_span);) {
-    }
-  });
-  b.max_span = max_span_all.load();
-  if (!sort) return b;
-  b.start.assign(size_t(p.nz + 1), 0);
-  for (size_t t = 0; t < tris.size(); ++t) {
-    if (b.k_first[t] <= b.k_last[t]) ++b.start[size_t(b.k_first[t]) + 1];
-  }
-  for (int64_t k = 0; k < p.nz; ++k) b.start[size_t(k + 1)] += b.start[size_t(k)];
-  b.order.resize(size_t(b.start[size_t(p.nz)]));
-  std::vector<int64_t> fill(b.start.begin(), b.start.end() - 1);
-  for (size_t t = 0; t < tris.size(); ++t) {
-    if (b.k_first[t] <= b.k_last[t]) b.order[size_t(fill[size_t(b.k_first[t])]++)] = int32_t(t);
-  }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (auto& t : pool) t.join();
   return b;
 }
 
@@ -205,24 +209,23 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   }
 }
 
-LineRuns scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0, int64_t k1, bool drop_unbalanced) {
+LineRuns scan_slab(const ScanProblem& p, const SlabTriangles& slab_triangles, int64_t slab, int64_t k0, int64_t k1,
+                   bool drop_unbalanced) {
   const auto& tris = *p.triangles;
   std::vector<LineCrossingAt> crossings;
   // Enough for a closed surface crossing each line it reaches a few times, so growth (a copy of
   // every crossing) is rare.
   crossings.reserve(size_t(std::max<int64_t>(4 * p.ny * (k1 - k0), int64_t(tris.size()) / 2)));
   auto visit = [&](size_t t) {
-    if (buckets.k_last[t] < k0 || buckets.k_first[t] >= k1) return;
-    triangle_crossings(p, tris[t], std::max<int64_t>(buckets.k_first[t], k0),
-                       std::min<int64_t>(buckets.k_last[t], k1 - 1), k0, crossings);
+    if (slab_triangles.k_last[t] < k0 || slab_triangles.k_first[t] >= k1) return;
+    triangle_crossings(p, tris[t], std::max<int64_t>(slab_triangles.k_first[t], k0),
+                       std::min<int64_t>(slab_triangles.k_last[t], k1 - 1), k0, crossings);
   };
-  if (buckets.start.empty()) {
+  if (slab_triangles.lists.empty()) {
     for (size_t t = 0; t < tris.size(); ++t) visit(t);
   } else {
-    for (int64_t kb = std::max<int64_t>(0, k0 - buckets.max_span); kb < k1; ++kb) {
-      for (int64_t o = buckets.start[size_t(kb)]; o < buckets.start[size_t(kb + 1)]; ++o) {
-        visit(size_t(buckets.order[size_t(o)]));
-      }
+    for (const auto& worker_lists : slab_triangles.lists) {
+      for (int32_t t : worker_lists[size_t(slab)]) visit(size_t(t));
     }
   }
   return fill_lines(crossings, p.ny * (k1 - k0), p.nx, p.rule, drop_unbalanced);
@@ -231,35 +234,51 @@ LineRuns scan_slab(const ScanProblem& p, const SliceBuckets& buckets, int64_t k0
 // Scans every row line of the grid, slabs of slices in parallel, and concatenates the slabs in
 // slice order, so the result does not depend on the thread count.
 LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
-  const int64_t slab_count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 8));
-  const SliceBuckets buckets = bucket_by_slice(p, slab_count > 1, threads);
-  std::vector<LineRuns> slabs(static_cast<size_t>(slab_count));
-  auto slab_k = [&](int64_t s) { return p.nz * s / slab_count; };
+  Slabs slabs;
+  slabs.nz = p.nz;
+  // A few slabs per thread so a slab heavy with surface does not leave the other threads idle.
+  slabs.count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 4));
+  const SlabTriangles slab_triangles = triangles_by_slab(p, slabs, threads);
+  std::vector<LineRuns> results(static_cast<size_t>(slabs.count));
   std::atomic<int64_t> next{0};
   auto work = [&] {
-    for (int64_t s; (s = next.fetch_add(1)) < slab_count;) {
-      slabs[size_t(s)] = scan_slab(p, buckets, slab_k(s), slab_k(s + 1), drop_unbalanced);
+    for (int64_t s; (s = next.fetch_add(1)) < slabs.count;) {
+      results[size_t(s)] = scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced);
     }
   };
-  if (threads <= 1 || slab_count == 1) {
+  if (slabs.count == 1) {
     work();
-  } else {
+    return std::move(results[0]);
+  }
+  {
     std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
     for (auto& t : pool) t.join();
   }
+  // Concatenate in slice order; each slab copies its own part in parallel.
+  std::vector<int64_t> run_base(size_t(slabs.count + 1), 0);
   LineRuns out;
-  out.line_start.reserve(size_t(p.ny * p.nz + 1));
-  size_t total_runs = 0;
-  for (const auto& s : slabs) total_runs += s.runs.size();
-  out.runs.reserve(total_runs);
-  for (const auto& s : slabs) {
-    const int64_t base = int64_t(out.runs.size());
-    for (size_t l = 0; l + 1 < s.line_start.size(); ++l) out.line_start.push_back(base + s.line_start[l]);
-    out.runs.insert(out.runs.end(), s.runs.begin(), s.runs.end());
-    out.unbalanced_lines += s.unbalanced_lines;
+  for (int64_t s = 0; s < slabs.count; ++s) {
+    run_base[size_t(s + 1)] = run_base[size_t(s)] + int64_t(results[size_t(s)].runs.size());
+    out.unbalanced_lines += results[size_t(s)].unbalanced_lines;
   }
-  out.line_start.push_back(int64_t(out.runs.size()));
+  out.runs.resize(size_t(run_base.back()));
+  out.line_start.resize(size_t(p.ny * p.nz + 1));
+  parallel_for(
+      slabs.count, threads,
+      [&](int64_t first, int64_t last) {
+        for (int64_t s = first; s < last; ++s) {
+          const LineRuns& r = results[size_t(s)];
+          const int64_t line0 = p.ny * slabs.k_begin(s);
+          for (size_t l = 0; l + 1 < r.line_start.size(); ++l) {
+            out.line_start[size_t(line0) + l] = run_base[size_t(s)] + r.line_start[l];
+          }
+          std::copy(r.runs.begin(), r.runs.end(), out.runs.begin() + run_base[size_t(s)]);
+        }
+      },
+      1);
+  out.line_start.back() = run_base.back();
   return out;
 }
 
