@@ -4,6 +4,7 @@
 //   soiq-bench table5  --models DIR [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench table7  [--runs N] [--pin CPU]
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
+//   soiq-bench cpu-probe [--runs N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
 #include <cstdio>
@@ -11,6 +12,7 @@
 
 #include "bench/cli_args.h"
 #include "bench/convert_bench.h"
+#include "bench/cpu_probe.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
 #include "bench/table5.h"
@@ -25,7 +27,8 @@ int usage() {
                "                  [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n"
                "       soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n"
                "       soiq-bench table7 [--runs N] [--pin CPU]\n"
-               "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n");
+               "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
+               "       soiq-bench cpu-probe [--runs N]\n");
   return 2;
 }
 
@@ -47,5 +50,6 @@ int main(int argc, char** argv) {
   if (command == "table5") return run_table5(*args);
   if (command == "table7") return run_table7(*args);
   if (command == "scaling") return run_scaling(*args);
+  if (command == "cpu-probe") return run_cpu_probe(*args);
   return usage();
 }

@@ -28,7 +28,7 @@ Result<MethodRun> run_method(Method method, const TriangleMesh& mesh, const Mask
 std::string time_cell(const Result<MethodRun>& r) {
   if (!r.ok()) return "n/a";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.1f", r->timed.median_ms);
+  std::snprintf(buf, sizeof buf, "%.1f", r->timed.min_ms);
   return buf;
 }
 

@@ -19,7 +19,8 @@ struct MethodRun {
 Result<MethodRun> run_method(Method method, const TriangleMesh& mesh, const Mask& reference, int threads, int runs,
                              int pin_cpu);
 
-// "12.3" (median ms) or "n/a"; the table's time cell.
+// "12.3" (best of the runs, ms) or "n/a"; the table's time cell. The best rather than the
+// median: on a shared virtual machine the noise only ever adds time.
 std::string time_cell(const Result<MethodRun>& r);
 // "1.000000 (0)": IoU against the reference and differing voxels, or "n/a".
 std::string agreement_cell(const Result<MethodRun>& r);

@@ -18,7 +18,7 @@ int run_scaling(const CliArgs& args) {
     std::fprintf(stderr, "usage: soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n");
     return 2;
   }
-  std::printf("UV spheres, radius 40 mm, 2-voxel margin; median ms of up to %d runs (dense uint8 mask included)\n\n",
+  std::printf("UV spheres, radius 40 mm, 2-voxel margin; best ms of up to %d runs (dense uint8 mask included)\n\n",
               *runs);
   std::printf(
       "| triangles | spacing mm | grid | inside | 1d ms | 1d x%d ms | vtk-stencil ms | vtk-stencil differing |\n"

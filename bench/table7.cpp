@@ -18,7 +18,7 @@ int run_table7(const CliArgs& args) {
     return 2;
   }
   std::printf(
-      "UV spheres, radius 20 mm, 0.5 mm grid with a 2-voxel margin; median ms, 1 thread pinned; "
+      "UV spheres, radius 20 mm, 0.5 mm grid with a 2-voxel margin; best ms, 1 thread pinned; "
       "1d up to %d runs, 3d and vtk-enclosed 1 run\n\n",
       *runs);
   std::printf(
