@@ -16,17 +16,20 @@
 //   "crossings at x <= i, +1 entering, -1 leaving" of DESIGN.md step 4: a centre exactly on an
 //   entering crossing is inside, one on a leaving crossing is not.
 //   A triangle is crossed iff the point (j, k) perturbed symbolically to (j + e, k + e^2), e -> 0+,
-//   lies strictly inside its (y, z) projection (edge functions evaluated in a canonical endpoint
-//   order, long double); its crossing x is its plane at the unperturbed (j, k), compared with i as
-//   computed. By DESIGN.md step 4 these are the voxels of voxelize_1d, ties included; the two
-//   can disagree only within ~1e-15 (relative) of a tie, where double and long double round apart.
+//   lies strictly inside its (y, z) projection; its crossing x is its plane at the unperturbed
+//   (j, k), and counts iff x > i strictly. Both are exact with respect to the index-space doubles
+//   (signs of 2x2 and 3x3 determinants: a floating-point filter with a proven error bound, GMP
+//   rationals where it cannot decide), so by DESIGN.md step 4 these are the voxels of voxelize_1d,
+//   ties included, with no tolerance.
 // Errors
 //   INVALID_ARGUMENT invalid geometry, no triangles, non-finite vertices, indices out of range.
 //   RESOURCE_EXHAUSTED grid over kDefaultMaxVoxels.
 // Cost
 //   O(voxels x candidate triangles per line): triangles are bucketed by the integer (j, k) points
-//   of their (y, z) bounding box, then every voxel re-tests every candidate of its line. Memory
-//   O(T x lines per triangle + nx + runs). Single-threaded; thread-safe.
+//   of their (y, z) bounding box, then every voxel re-tests every candidate of its line. A test
+//   the filter cannot decide (|value| within ~1e-15 relative of 0) costs ~1 us in rationals; ties
+//   on a lattice of 2^-8 below 2^16 (meshes snapped to voxel centres) are exact in double and
+//   stay cheap. Memory O(T x lines per triangle + nx + runs). Single-threaded; thread-safe.
 // Caveats
 //   Closedness is not checked: on an open mesh the result is the ray-ahead sum, which need not
 //   match any other method.
