@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/method_run.h"
-#include "bench/simgen.h"
+#include "bench/simulated_models.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
 #include "core/mesh_defects.h"
