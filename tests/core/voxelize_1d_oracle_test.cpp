@@ -163,5 +163,50 @@ TEST_P(Voxelize1DOracle, ThreadsAndRobustModeChangeNothing) {
 INSTANTIATE_TEST_SUITE_P(Shapes, Voxelize1DOracle, ::testing::ValuesIn(cases()),
                          [](const auto& info) { return info.param.name; });
 
+// A tetrahedron v0..v3 as an outward-oriented mesh.
+TriangleMesh tetrahedron(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
+  TriangleMesh m;
+  m.vertices_mm = {v0, v1, v2, v3};
+  m.triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  orient_outward(m);
+  return m;
+}
+
+// Ties that double arithmetic gets wrong. Each tetrahedron has an edge through the voxel centre
+// q = (4,4,4) exactly (endpoints q + a d and q - b d with dyadic a, b, d), and a face whose plane
+// also contains q. Evaluated in double, the edge function at q is a difference of two differently
+// rounded products of the same exact value: often a tiny nonzero number of either sign, where the
+// exact value is 0 and the tie rule must decide. Both methods must give the oracle's voxels.
+TEST(Voxelize1DOracleTies, EdgesAndFacesExactlyThroughAVoxelCentre) {
+  const ImageGeometry g = grid(9, 9, 9);
+  const Vec3 q{4, 4, 4};
+  std::mt19937_64 rng(5);
+  auto dyadic = [&](int bits) {  // a multiple of 2^-30 in (-2^(bits-30), 2^(bits-30))
+    return std::ldexp(double(std::uniform_int_distribution<int64_t>(-(int64_t(1) << bits), int64_t(1) << bits)(rng)),
+                      -30);
+  };
+  int rounding_would_lie = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec3 d{dyadic(31), dyadic(31), dyadic(31)};
+    const double a = 1 + std::abs(dyadic(29)), b = 1 + std::abs(dyadic(29));
+    const Vec3 v0 = q + a * d, v1 = q - b * d;
+    const Vec3 v2 = q + Vec3{dyadic(31), dyadic(31), dyadic(31)};
+    const Vec3 v3 = q + Vec3{dyadic(31), dyadic(31), dyadic(31)};
+    const TriangleMesh m = tetrahedron(v0, v1, v2, v3);
+    if (mesh_defects(m).degenerate_triangles > 0) continue;
+    // How plain double arithmetic would see the edge v0-v1 at (j, k) = (4, 4).
+    const double naive = (v1[1] - v0[1]) * (q[2] - v0[2]) - (v1[2] - v0[2]) * (q[1] - v0[1]);
+    rounding_would_lie += naive != 0;
+    auto ours = voxelize_1d(m, g);
+    ASSERT_TRUE(ours.ok()) << ours.status().to_string();
+    auto oracle = voxelize_3d_raycast(m, g);
+    ASSERT_TRUE(oracle.ok());
+    auto cmp = compare(ours->volume, *oracle);
+    ASSERT_TRUE(cmp.ok());
+    ASSERT_EQ(cmp->only_a + cmp->only_b, 0) << "tetrahedron " << trial;
+  }
+  EXPECT_GT(rounding_would_lie, 30);  // the exact path was needed, not just taken
+}
+
 }  // namespace
 }  // namespace soiq
