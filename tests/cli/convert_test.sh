@@ -59,6 +59,26 @@ STL
 expect 4 "--robust" -- "$soiq" convert "$tmp/open.stl" --spacing 1 -o "$tmp/o.nii.gz"
 "$soiq" convert "$tmp/open.stl" --spacing 1 --robust -o "$tmp/o.nii.gz" >/dev/null || fail "robust mode on an open mesh"
 
+# Inverted orientation (a tetrahedron written inside out): fixed on reading, said so, same voxels.
+tet() {  # $1: 1 for outward, 0 for inward
+  local a="0 0 0" b="9 0 0" c="0 9 0" d="0 0 9"
+  echo "solid t"
+  if [ "$1" = 1 ]; then faces=("$a|$c|$b" "$a|$b|$d" "$b|$c|$d" "$a|$d|$c"); else faces=("$a|$b|$c" "$a|$d|$b" "$b|$d|$c" "$a|$c|$d"); fi
+  for f in "${faces[@]}"; do
+    IFS='|' read -r p q r <<<"$f"
+    printf 'facet normal 0 0 0\nouter loop\nvertex %s\nvertex %s\nvertex %s\nendloop\nendfacet\n' "$p" "$q" "$r"
+  done
+  echo "endsolid t"
+}
+tet 1 >"$tmp/out.stl"
+tet 0 >"$tmp/in.stl"
+out_line=$("$soiq" convert "$tmp/out.stl" --spacing 0.5 -o "$tmp/out.nii.gz")
+in_line=$("$soiq" convert "$tmp/in.stl" --spacing 0.5 -o "$tmp/in.nii.gz")
+echo "$in_line" | grep -q "orientation flipped to outward" || fail "inverted mesh not reported: $in_line"
+echo "$out_line" | grep -q "orientation flipped" && fail "outward mesh reported as flipped: $out_line"
+[ "${out_line%% voxels*}" = "${in_line%% voxels*}" ] || fail "inverted mesh gives other voxels: $out_line / $in_line"
+case "$("$soiq" compare "$tmp/out.nii.gz" "$tmp/in.nii.gz")" in identical:*) ;; *) fail "inverted mesh mask differs" ;; esac
+
 expect 3 "not" -- "$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz"
 expect 3 "missing_ref" -- "$soiq" convert "$tmp/pet.stl" --reference "$tmp/missing_ref.nii.gz" -o "$tmp/x.nii.gz"
 expect 5 "exceeds the limit" -- "$soiq" convert "$tmp/pet.stl" --spacing 0.001 -o "$tmp/x.nii.gz"
