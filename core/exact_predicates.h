@@ -24,6 +24,8 @@ inline int orient2d_sign_filtered(double value, double error_bound, double a1, d
                                   double p1, double p2) {
   if (value > error_bound) return 1;
   if (value < -error_bound) return -1;
+  // Both products exactly zero (a factor was a difference of equal doubles): an exact zero.
+  if (error_bound == 0) return 0;
   return orient2d_sign_exact(a1, a2, b1, b2, p1, p2);
 }
 

@@ -163,6 +163,10 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   const int64_t j_lo = int64_t(std::max(std::ceil(ymin), 0.0));
   const int64_t j_hi = int64_t(std::min(std::floor(ymax), double(p.ny - 1)));
   if (j_lo > j_hi) return;
+  // A triangle whose (y,z) projection has zero area (edge-on to the rows: every face of a
+  // marching-cubes surface parallel to x) contains no perturbed lattice point: skip it before any
+  // lattice work. The area is the exact orient2d of its projected vertices.
+  if (orient2d_sign(p.y[a], p.z[a], p.y[b], p.z[b], p.y[c], p.z[c]) == 0) return;
   const ProjectedEdge ab(p.y[a], p.z[a], p.y[b], p.z[b]);
   const ProjectedEdge bc(p.y[b], p.z[b], p.y[c], p.z[c]);
   const ProjectedEdge ca(p.y[c], p.z[c], p.y[a], p.z[a]);
