@@ -3,6 +3,7 @@
 // one CPU), and compare its mask with a reference mask.
 
 #include <string>
+#include <vector>
 
 #include "bench/conversion.h"
 #include "bench/mask_agreement.h"
@@ -18,6 +19,18 @@ struct MethodRun {
 // `pin_cpu` < 0: never pin. The error names the method.
 Result<MethodRun> run_method(Method method, const TriangleMesh& mesh, const Mask& reference, int threads, int runs,
                              int pin_cpu);
+
+// The same for several methods on one mesh, timed in rounds (one run of each per round, in order),
+// so that on a shared machine every method sees the same conditions. Single-thread methods are
+// pinned to `pin_cpu` during their runs. A method's failure is its own cell's error. A method
+// stops taking part once its runs have used `budget_ms` (slow peers on big grids).
+struct MethodSpec {
+  Method method;
+  int threads = 1;
+};
+std::vector<Result<MethodRun>> run_methods_interleaved(const std::vector<MethodSpec>& specs, const TriangleMesh& mesh,
+                                                       const Mask& reference, int runs, int pin_cpu,
+                                                       double budget_ms = 20000);
 
 // "12.3" (best of the runs, ms) or "n/a"; the table's time cell. The best rather than the
 // median: on a shared virtual machine the noise only ever adds time.

@@ -68,15 +68,14 @@ int run_table5(const CliArgs& args) {
       row.check_ms = std::min(row.check_ms, ms);
       if (!d.closed()) std::fprintf(stderr, "table5: %s is not closed\n", model.name.c_str());
     }
-    for (const Column& c : columns) {
-      if (!method_available(c.method)) {
-        row.cells.push_back(unimplemented("not built"));
-        continue;
-      }
-      row.cells.push_back(run_method(c.method, *mesh, v1, c.threads, *runs, *pin));
-      if (!row.cells.back().ok()) {
-        std::fprintf(stderr, "table5: %s %s: %s\n", model.name.c_str(), c.title.c_str(),
-                     row.cells.back().status().to_string().c_str());
+    std::vector<MethodSpec> specs;
+    for (const Column& c : columns) specs.push_back({c.method, c.threads});
+    row.cells = run_methods_interleaved(specs, *mesh, v1, *runs, *pin);
+    for (size_t c = 0; c < columns.size(); ++c) {
+      if (!method_available(columns[c].method)) row.cells[c] = unimplemented("not built");
+      if (!row.cells[c].ok()) {
+        std::fprintf(stderr, "table5: %s %s: %s\n", model.name.c_str(), columns[c].title.c_str(),
+                     row.cells[c].status().to_string().c_str());
       }
     }
     std::fprintf(stderr, "table5: %s done\n", model.name.c_str());
@@ -84,7 +83,9 @@ int run_table5(const CliArgs& args) {
   }
 
   std::printf(
-      "Conversion time, best ms of %d runs (grid from SMn_V1, mesh SMn_S1 = marching cubes of V1). \"check\" is the\n"
+      "Conversion time, best ms of %d runs taken in rounds, one run of every method per round, so that all methods "
+      "see\n"
+      "the same machine (grid from SMn_V1, mesh SMn_S1 = marching cubes of V1). \"check\" is the\n"
       "mesh defect check (closedness, orientation) done once when a mesh is loaded; the speed-ups compare 1d on one\n"
       "thread with the peers on one thread, and 1d on %d threads with 1d on one.\n\n",
       *runs, *threads);
