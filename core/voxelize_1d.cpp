@@ -59,15 +59,20 @@ struct ProjectedEdge {
     int sign;      // the exact perturbed sign: never 0
   };
 
-  Value at(double py, double pz) const {
-    const double t1 = dy * (pz - lo_z), t2 = dz * (py - lo_y);
+  // The part of the edge function that depends on the slice only: computed once per row.
+  double slice_term(double pz) const { return dy * (pz - lo_z); }
+
+  // The edge function at (py, pz), given t1 = slice_term(pz).
+  Value at(double t1, double py, double pz) const {
+    const double t2 = dz * (py - lo_y);
     const double value = t1 - t2;
     const double error = orient2d_error_bound(t1, t2);
     if (value > error) return {flip * value, error, flip};
     if (value < -error) return {flip * value, error, -flip};
-    // Near or at zero. A lattice point on an endpoint (every marching-cubes vertex on a row line)
-    // is an exact zero without arithmetic; anything else asks the exact predicate.
-    if ((py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
+    // Near or at zero. Both products exactly 0, or the lattice point on an endpoint (every
+    // marching-cubes vertex on a row line), is an exact zero without arithmetic; anything else
+    // asks the exact predicate.
+    if (error == 0 || (py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
     const int exact = orient2d_sign_exact(lo_y, lo_z, hi_y, hi_z, py, pz);
     return {flip * value, error, exact != 0 ? flip * exact : tie_sign};
   }
@@ -174,12 +179,13 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   constexpr double kEps = 1.1102230246251565e-16;
   for (int64_t k = k_lo; k <= k_hi; ++k) {
     const double pz = double(k);
+    const double t_ab = ab.slice_term(pz), t_bc = bc.slice_term(pz), t_ca = ca.slice_term(pz);
     for (int64_t j = j_lo; j <= j_hi; ++j) {
       const double py = double(j);
-      const ProjectedEdge::Value e_c = ab.at(py, pz);
-      const ProjectedEdge::Value e_a = bc.at(py, pz);
+      const ProjectedEdge::Value e_c = ab.at(t_ab, py, pz);
+      const ProjectedEdge::Value e_a = bc.at(t_bc, py, pz);
       if (e_a.sign != e_c.sign) continue;
-      const ProjectedEdge::Value e_b = ca.at(py, pz);
+      const ProjectedEdge::Value e_b = ca.at(t_ca, py, pz);
       if (e_b.sign != e_c.sign) continue;
       // Barycentric interpolation with the edge functions as weights, written as the heaviest
       // vertex plus weighted differences, so a line through a vertex (the other weights exactly
