@@ -8,6 +8,8 @@
 // Exact for finite inputs whose intermediate products neither overflow nor underflow (any
 // coordinates in millimetres or voxel indices qualify). Thread-safe; no allocation on the fast path.
 
+#include <cmath>
+
 namespace soiq {
 
 // Sign (-1, 0, +1) of (b1 - a1)(p2 - a2) - (b2 - a2)(p1 - a1): +1 when p lies to the left of the
@@ -33,7 +35,7 @@ inline int orient2d_sign_filtered(double value, double error_bound, double a1, d
 inline double orient2d_error_bound(double t1, double t2) {
   constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
   constexpr double kBound = (3.0 + 16.0 * kEps) * kEps;
-  return kBound * ((t1 < 0 ? -t1 : t1) + (t2 < 0 ? -t2 : t2));
+  return kBound * (std::fabs(t1) + std::fabs(t2));
 }
 
 // Sign of the triple product ((b - a) x (c - a)) . (d - a), i.e. det[b-a; c-a; d-a]: +1 when d is
