@@ -1,0 +1,92 @@
+#include "core/surface_shape.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "core/convex_hull.h"
+#include "core/mesh_defects.h"
+#include "core/point_set_diameter.h"
+
+namespace soiq {
+
+Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes) {
+  if (mesh.triangles.empty()) return invalid_argument("surface shape of a mesh without triangles is undefined");
+  for (const auto& row : box_axes) {
+    for (const double x : row) {
+      if (!std::isfinite(x)) return invalid_argument("bounding-box axes are not finite");
+    }
+  }
+  const size_t nv = mesh.vertices_mm.size();
+  std::vector<char> used(nv, 0);
+  double area = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const int32_t v : mesh.triangles[t]) {
+      if (v < 0 || size_t(v) >= nv) {
+        return invalid_argument("triangle " + std::to_string(t) + " has vertex index " + std::to_string(v) +
+                                " outside [0, " + std::to_string(nv) + ")");
+      }
+      used[size_t(v)] = 1;
+    }
+    const auto& tri = mesh.triangles[t];
+    const Vec3& a = mesh.vertices_mm[size_t(tri[0])];
+    area += norm(cross(mesh.vertices_mm[size_t(tri[1])] - a, mesh.vertices_mm[size_t(tri[2])] - a)) / 2;
+  }
+  std::vector<Vec3> points;
+  points.reserve(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    const Vec3& p = mesh.vertices_mm[v];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      return invalid_argument("mesh vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+    points.push_back(p);
+  }
+  const double volume = signed_volume_mm3(mesh);
+  if (!(volume > 0)) {
+    return invalid_argument("mesh encloses volume " + std::to_string(volume) +
+                            " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
+  }
+
+  SurfaceShape out;
+  out.mesh_volume_mm3 = volume;
+  out.surface_area_mm2 = area;
+  out.surface_volume_ratio = area / volume;
+  constexpr double kPi = std::numbers::pi;
+  const double sphere_area = std::cbrt(36 * kPi * volume * volume);  // area of the sphere of volume V
+  out.compactness_1 = volume / (std::sqrt(kPi) * std::pow(area, 1.5));
+  out.compactness_2 = 36 * kPi * volume * volume / (area * area * area);
+  out.spherical_disproportion = area / sphere_area;
+  out.sphericity = sphere_area / area;
+  out.asphericity = area / sphere_area - 1;  // (A^3 / (36 pi V^2))^(1/3) - 1
+
+  SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(points));
+  // The farthest pair of a set is a pair of its hull's vertices.
+  std::vector<Vec3> hull_points;
+  hull_points.reserve(hull.vertex_indices.size());
+  for (const int64_t v : hull.vertex_indices) hull_points.push_back(points[size_t(v)]);
+  out.maximum_3d_diameter_mm = point_set_diameter(hull_points);
+  out.convex_hull_volume_mm3 = hull.volume_mm3;
+  out.convex_hull_area_mm2 = hull.area_mm2;
+  out.volume_density_convex_hull = volume / hull.volume_mm3;
+  out.area_density_convex_hull = area / hull.area_mm2;
+
+  // Extents along the box axes (the columns of box_axes).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  for (const Vec3& p : points) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
+      lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
+    }
+  }
+  const Vec3 e = hi - lo;
+  out.volume_density_aabb = volume / (e[0] * e[1] * e[2]);
+  out.area_density_aabb = area / (2 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]));
+  return out;
+}
+
+}  // namespace soiq
