@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
 #include "core/grid_around.h"
 #include "core/io/read_image.h"
@@ -30,29 +31,6 @@ struct ConvertArgs {
   int threads = 1;
 };
 
-Result<double> parse_number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0') return invalid_argument(what + " must be a number, got '" + text + "'");
-  return v;
-}
-
-Result<Vec3> parse_spacing(const std::string& text) {
-  std::vector<std::string> parts;
-  size_t from = 0;
-  for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1) {
-    parts.push_back(text.substr(from, comma - from));
-  }
-  parts.push_back(text.substr(from));
-  if (parts.size() != 1 && parts.size() != 3) return invalid_argument("--spacing takes S or SX,SY,SZ (mm)");
-  Vec3 s{};
-  for (int a = 0; a < 3; ++a) {
-    SOIQ_ASSIGN_OR_RETURN(s[a], parse_number(parts[parts.size() == 1 ? 0 : a], "--spacing"));
-    if (!(s[a] > 0)) return invalid_argument("--spacing must be > 0 mm");
-  }
-  return s;
-}
-
 Result<ConvertArgs> parse(int argc, char** argv) {
   ConvertArgs a;
   for (int i = 1; i < argc; ++i) {
@@ -71,14 +49,10 @@ Result<ConvertArgs> parse(int argc, char** argv) {
       a.spacing_given = true;
     } else if (arg == "--margin") {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--margin"));
-      SOIQ_ASSIGN_OR_RETURN(double m, parse_number(text, "--margin"));
-      if (m < 0 || m > 1e6 || m != int(m)) return invalid_argument("--margin must be a whole number of voxels >= 0");
-      a.margin = int(m);
+      SOIQ_ASSIGN_OR_RETURN(a.margin, parse_int(text, "--margin", 0, 1000000));
     } else if (arg == "--threads") {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--threads"));
-      SOIQ_ASSIGN_OR_RETURN(double t, parse_number(text, "--threads"));
-      if (t < 1 || t > 1024 || t != int(t)) return invalid_argument("--threads must be a whole number from 1 to 1024");
-      a.threads = int(t);
+      SOIQ_ASSIGN_OR_RETURN(a.threads, parse_int(text, "--threads", 1, 1024));
     } else if (arg == "--robust") {
       a.robust = true;
     } else if (arg == "--even-odd") {
@@ -96,13 +70,8 @@ Result<ConvertArgs> parse(int argc, char** argv) {
   if (a.mesh.empty()) return invalid_argument("missing MESH");
   if (a.out.empty()) return invalid_argument("missing -o OUT");
   // Refuse an unwritable format before any work is done, not after.
-  const bool known_format = [&] {
-    for (const char* ext : {".nii.gz", ".nii", ".nrrd", ".mha"}) {
-      const std::string e = ext;
-      if (a.out.size() > e.size() && a.out.compare(a.out.size() - e.size(), e.size(), e) == 0) return true;
-    }
-    return false;
-  }();
+  const bool known_format =
+      ends_with(a.out, ".nii.gz") || ends_with(a.out, ".nii") || ends_with(a.out, ".nrrd") || ends_with(a.out, ".mha");
   if (!known_format)
     return invalid_argument("output '" + a.out + "' has an unknown extension; use .nii.gz, .nii, .nrrd or .mha");
   if (!a.reference.empty() && a.spacing_given)

@@ -1,0 +1,53 @@
+#include "client/cli/cli_args.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+namespace soiq::cli {
+
+Result<double> parse_number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v)) {
+    return invalid_argument(what + " must be a number, got '" + text + "'");
+  }
+  return v;
+}
+
+Result<int> parse_int(const std::string& text, const std::string& what, int lo, int hi) {
+  SOIQ_ASSIGN_OR_RETURN(double v, parse_number(text, what));
+  if (v < lo || v > hi || v != std::floor(v)) {
+    return invalid_argument(what + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+  }
+  return int(v);
+}
+
+Result<Vec3> parse_spacing(const std::string& text) {
+  std::vector<std::string> parts;
+  size_t from = 0;
+  for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1) {
+    parts.push_back(text.substr(from, comma - from));
+  }
+  parts.push_back(text.substr(from));
+  if (parts.size() != 1 && parts.size() != 3) return invalid_argument("--spacing takes S or SX,SY,SZ (mm)");
+  Vec3 s{};
+  for (int a = 0; a < 3; ++a) {
+    SOIQ_ASSIGN_OR_RETURN(s[a], parse_number(parts[parts.size() == 1 ? 0 : a], "--spacing"));
+    if (!(s[a] > 0)) return invalid_argument("--spacing must be > 0 mm");
+  }
+  return s;
+}
+
+bool ends_with(const std::string& path, const std::string& suffix) {
+  return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool is_mesh_path(const std::string& path) {
+  for (const char* ext : {".stl", ".obj", ".ply", ".vtk", ".vtp", ".STL", ".OBJ", ".PLY", ".VTK", ".VTP"}) {
+    if (ends_with(path, ext)) return true;
+  }
+  return false;
+}
+
+}  // namespace soiq::cli
