@@ -1,0 +1,183 @@
+#include "core/regions.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/distance_transform.h"
+
+namespace soiq {
+namespace {
+
+// Inclusive index bounds of the inside voxels; `empty` when there are none.
+struct IndexBox {
+  std::array<int64_t, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+  bool empty = true;
+  std::array<int64_t, 3> dims() const { return {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1}; }
+};
+
+IndexBox bounding_box(const RunLengthVolume& v) {
+  IndexBox b;
+  const int64_t ny = v.geometry.dims[1];
+  for (int64_t l = 0; l < v.line_count(); ++l) {
+    const int64_t first = v.line_start[size_t(l)], last = v.line_start[size_t(l) + 1];
+    if (first == last) continue;
+    const std::array<int64_t, 3> lo{v.runs[size_t(first)].begin, l % ny, l / ny};
+    const std::array<int64_t, 3> hi{v.runs[size_t(last) - 1].end - 1, l % ny, l / ny};
+    for (int a = 0; a < 3; ++a) {
+      b.lo[size_t(a)] = b.empty ? lo[size_t(a)] : std::min(b.lo[size_t(a)], lo[size_t(a)]);
+      b.hi[size_t(a)] = b.empty ? hi[size_t(a)] : std::max(b.hi[size_t(a)], hi[size_t(a)]);
+    }
+    b.empty = false;
+  }
+  return b;
+}
+
+Status check_structure(const RunLengthVolume& v) {
+  SOIQ_RETURN_IF_ERROR(validate_geometry(v.geometry));
+  const std::string bad = "structure's run table does not match its grid (" + describe(v.geometry) + ")";
+  if (int64_t(v.line_start.size()) != v.line_count() + 1 || v.line_start.back() != int64_t(v.runs.size())) {
+    return invalid_argument(bad);
+  }
+  for (const Run& run : v.runs) {
+    if (run.begin < 0 || run.begin >= run.end || run.end > v.geometry.dims[0]) return invalid_argument(bad);
+  }
+  return ok_status();
+}
+
+const char* kind_word(RegionKind kind) {
+  switch (kind) {
+    case RegionKind::kInside:
+      return "inside";
+    case RegionKind::kShell:
+      return "shell";
+    case RegionKind::kCore:
+      return "core";
+  }
+  return "?";
+}
+
+}  // namespace
+
+Result<RegionSpec> parse_region(std::string_view text) {
+  const std::string accepted = "; expected inside, shell:R or core:R with R in mm > 0 (e.g. shell:5)";
+  if (text == "inside") return RegionSpec{RegionKind::kInside, 0};
+  RegionSpec spec;
+  std::string_view number;
+  if (text.starts_with("shell:")) {
+    spec.kind = RegionKind::kShell;
+    number = text.substr(6);
+  } else if (text.starts_with("core:")) {
+    spec.kind = RegionKind::kCore;
+    number = text.substr(5);
+  } else {
+    return invalid_argument("unknown region '" + std::string(text) + "'" + accepted);
+  }
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), spec.radius_mm);
+  if (ec != std::errc() || end != number.data() + number.size() || !std::isfinite(spec.radius_mm) ||
+      !(spec.radius_mm > 0)) {
+    return invalid_argument("region '" + std::string(text) + "' has no valid radius" + accepted);
+  }
+  return spec;
+}
+
+std::string region_name(const RegionSpec& spec) {
+  if (spec.kind == RegionKind::kInside) return "inside";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s:%g", kind_word(spec.kind), spec.radius_mm);
+  return buf;
+}
+
+Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpec& spec, const RegionOptions& options) {
+  SOIQ_RETURN_IF_ERROR(check_structure(structure));
+  if (spec.kind == RegionKind::kInside) return structure;
+  const double r = spec.radius_mm;
+  if (!std::isfinite(r) || !(r > 0)) {
+    return invalid_argument(std::string(kind_word(spec.kind)) + " radius must be a finite number of mm > 0, got " +
+                            std::to_string(r));
+  }
+  const ImageGeometry& g = structure.geometry;
+  const IndexBox inside_box = bounding_box(structure);
+  if (inside_box.empty) return empty_volume(g);
+
+  // Every voxel within r mm of an inside voxel (shell), and every outside voxel within r mm of an
+  // inside one (core), lies in the inside box grown by ceil(r / spacing) along each axis. The factor
+  // covers the tie tolerance.
+  IndexBox box = inside_box;
+  for (int a = 0; a < 3; ++a) {
+    const double grow = std::ceil(r / g.spacing_mm[size_t(a)] * (1 + 1e-9));
+    const int64_t n = g.dims[size_t(a)];
+    const int64_t margin = grow >= double(n) ? n : int64_t(grow);
+    box.lo[size_t(a)] = std::max<int64_t>(0, box.lo[size_t(a)] - margin);
+    box.hi[size_t(a)] = std::min<int64_t>(n - 1, box.hi[size_t(a)] + margin);
+  }
+  const std::array<int64_t, 3> bd = box.dims();
+  if (double(bd[0]) * double(bd[1]) * double(bd[2]) > double(options.max_box_voxels)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%s: the structure's bounding box grown by %g mm has %lldx%lldx%lld voxels, over the limit of %lld; "
+                  "use a smaller radius or a coarser grid",
+                  region_name(spec).c_str(), r, (long long)bd[0], (long long)bd[1], (long long)bd[2],
+                  (long long)options.max_box_voxels);
+    return resource_exhausted(buf);
+  }
+
+  // Dense inside flags of the box.
+  const int64_t ny = g.dims[1];
+  std::vector<uint8_t> inside(size_t(bd[0] * bd[1] * bd[2]), 0);
+  for (int64_t k = box.lo[2]; k <= box.hi[2]; ++k) {
+    for (int64_t j = box.lo[1]; j <= box.hi[1]; ++j) {
+      const int64_t l = j + ny * k;
+      uint8_t* row = inside.data() + bd[0] * ((j - box.lo[1]) + bd[1] * (k - box.lo[2]));
+      for (int64_t r_i = structure.line_start[size_t(l)]; r_i < structure.line_start[size_t(l) + 1]; ++r_i) {
+        const Run& run = structure.runs[size_t(r_i)];
+        std::fill(row + (run.begin - box.lo[0]), row + (run.end - box.lo[0]), uint8_t(1));
+      }
+    }
+  }
+
+  // Shell: distances to the inside voxels; core: to the outside ones.
+  const bool is_shell = spec.kind == RegionKind::kShell;
+  std::vector<uint8_t> outside;
+  if (!is_shell) {
+    outside.resize(inside.size());
+    for (size_t n = 0; n < inside.size(); ++n) outside[n] = uint8_t(inside[n] ^ 1);
+  }
+  SOIQ_ASSIGN_OR_RETURN(
+      const std::vector<double> d2,
+      squared_distance_transform(is_shell ? inside : outside, bd, g.spacing_mm, std::max(options.threads, 1)));
+  outside = {};
+
+  // The tie tolerance: d2 is a sum of at most three rounded squares, r*r one rounded square.
+  const double r2 = r * r * (1 + 1e-12);
+  RunLengthVolume out;
+  out.geometry = g;
+  out.line_start.resize(size_t(structure.line_count()) + 1);
+  for (int64_t l = 0; l < structure.line_count(); ++l) {
+    out.line_start[size_t(l)] = int64_t(out.runs.size());
+    const int64_t j = l % ny, k = l / ny;
+    if (j < box.lo[1] || j > box.hi[1] || k < box.lo[2] || k > box.hi[2]) continue;
+    const size_t row = size_t(bd[0] * ((j - box.lo[1]) + bd[1] * (k - box.lo[2])));
+    int64_t begin = -1;
+    for (int64_t i = 0; i <= bd[0]; ++i) {
+      bool selected = false;
+      if (i < bd[0]) {
+        const bool in = inside[row + size_t(i)] != 0;
+        const double d = d2[row + size_t(i)];
+        selected = is_shell ? (!in && d <= r2) : (in && d > r2);
+      }
+      if (selected && begin < 0) begin = i;
+      if (!selected && begin >= 0) {
+        out.runs.push_back({int32_t(begin + box.lo[0]), int32_t(i + box.lo[0])});
+        begin = -1;
+      }
+    }
+  }
+  out.line_start.back() = int64_t(out.runs.size());
+  return out;
+}
+
+}  // namespace soiq
