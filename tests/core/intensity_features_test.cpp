@@ -1,0 +1,95 @@
+// Intensity statistics against the IBSI-1 digital phantom (REFERENCE_VALUES.md) and hand counts.
+#include "core/intensity_features.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/io/read_image.h"
+#include "core/resample.h"
+
+namespace soiq {
+namespace {
+
+IntensityFeatures phantom_features() {
+  const std::string dir = std::string(SOIQ_TEST_DATA_DIR) + "/ibsi_digital_phantom/";
+  auto image = read_image(dir + "phantom.nii.gz");
+  auto mask = read_image(dir + "mask.nii.gz");
+  EXPECT_TRUE(image.ok() && mask.ok());
+  if (!image.ok() || !mask.ok()) return {};
+  const RunLengthVolume region = from_mask(mask_from_image(*mask));
+  auto samples = resample(*image, region, Interpolation::kNearest);
+  EXPECT_TRUE(samples.ok()) << samples.status().to_string();
+  if (!samples.ok()) return {};
+  EXPECT_TRUE(samples->same_grid);
+  auto f = intensity_features(samples->values);
+  EXPECT_TRUE(f.ok()) << f.status().to_string();
+  return f.ok() ? *f : IntensityFeatures{};
+}
+
+// IBSI publishes 3 significant digits: a value matches when it rounds to the published one, i.e.
+// lies within half a unit of its last digit (`half_unit`).
+TEST(IntensityFeatures, IbsiDigitalPhantomMatchesConsensusValues) {
+  const IntensityFeatures f = phantom_features();
+  EXPECT_EQ(f.voxel_count, 74);  // 592 mm³ / 8 mm³
+  EXPECT_NEAR(f.mean, 2.15, 0.005);
+  EXPECT_NEAR(f.variance, 3.05, 0.005);
+  EXPECT_NEAR(f.standard_deviation, std::sqrt(f.variance), 1e-12);
+  EXPECT_NEAR(f.skewness, 1.08, 0.005);
+  EXPECT_NEAR(f.excess_kurtosis, -0.355, 0.0005);
+  EXPECT_NEAR(f.mean_absolute_deviation, 1.55, 0.005);
+  EXPECT_NEAR(f.energy, 567, 0.5);
+  EXPECT_NEAR(f.root_mean_square, 2.77, 0.005);
+  // Order statistics of integer data are exact.
+  EXPECT_EQ(f.median, 1);
+  EXPECT_EQ(f.minimum, 1);
+  EXPECT_EQ(f.p10, 1);
+  EXPECT_EQ(f.p90, 4);
+  EXPECT_EQ(f.maximum, 6);
+  EXPECT_EQ(f.interquartile_range, 3);
+  EXPECT_EQ(f.range, 5);
+}
+
+TEST(IntensityFeatures, HandCountOfFourValues) {
+  auto f = intensity_features({4, 1, 3, 2});
+  ASSERT_TRUE(f.ok());
+  EXPECT_DOUBLE_EQ(f->mean, 2.5);
+  EXPECT_DOUBLE_EQ(f->variance, 1.25);                // (2.25 + 0.25 + 0.25 + 2.25) / 4
+  EXPECT_DOUBLE_EQ(f->skewness, 0.0);                 // symmetric
+  EXPECT_DOUBLE_EQ(f->excess_kurtosis, 1.64 - 3.0);   // m4 = (5.0625*2 + 0.0625*2)/4 = 2.5625; /1.5625
+  EXPECT_DOUBLE_EQ(f->median, 2.5);                   // rank 1.5
+  EXPECT_DOUBLE_EQ(f->p10, 1.3);                      // rank 0.3
+  EXPECT_DOUBLE_EQ(f->p90, 3.7);                      // rank 2.7
+  EXPECT_DOUBLE_EQ(f->interquartile_range, 1.5);      // 3.25 - 1.75
+  EXPECT_DOUBLE_EQ(f->mean_absolute_deviation, 1.0);  // (1.5 + 0.5 + 0.5 + 1.5) / 4
+  EXPECT_DOUBLE_EQ(f->energy, 30.0);
+  EXPECT_DOUBLE_EQ(f->root_mean_square, std::sqrt(7.5));
+}
+
+TEST(IntensityFeatures, ConstantRegionHasZeroSkewnessAndKurtosis) {
+  auto f = intensity_features({7, 7, 7});
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f->variance, 0);
+  EXPECT_EQ(f->skewness, 0);
+  EXPECT_EQ(f->excess_kurtosis, 0);
+  EXPECT_EQ(f->range, 0);
+}
+
+TEST(IntensityFeatures, NoValuesIsInvalidArgument) {
+  auto f = intensity_features({});
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(f.status().message().find("no intensity values"), std::string::npos) << f.status().message();
+}
+
+TEST(IntensityFeatures, NanValueIsInvalidArgument) {
+  auto f = intensity_features({1, std::numeric_limits<double>::quiet_NaN()});
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(f.status().message().find("NaN"), std::string::npos) << f.status().message();
+}
+
+}  // namespace
+}  // namespace soiq
