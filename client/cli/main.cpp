@@ -5,6 +5,7 @@
 
 #include "client/cli/compare_command.h"
 #include "client/cli/convert_command.h"
+#include "client/cli/features_command.h"
 #include "client/cli/mesh_command.h"
 
 namespace {
@@ -18,6 +19,10 @@ constexpr const char* kHelp =
     "      surface model -> volume model (the 1D scanline method); prints one summary line\n"
     "  soiq mesh MASK -o OUT.{stl,vtk,vtp,ply,obj} [--label N]\n"
     "      mask -> surface model (marching cubes at 0.5, LPS mm, outward normals)\n"
+    "  soiq features INPUT [--label N] [--reference IMAGE | --spacing S] [--image [NAME=]IMAGE]...\n"
+    "               [--region inside|shell:R|core:R]... [--features LIST] [--format table|json|csv]\n"
+    "               [--interpolation nearest|linear] [--ibsi] [--robust] [--ras] [--threads N]\n"
+    "      shape and intensity features of a structure (a surface model or a mask)\n"
     "  soiq compare MASK_A MASK_B [--label-a N] [--label-b N]\n"
     "      overlap of two masks on one grid: IoU, Dice, differing voxels\n"
     "\n"
@@ -33,6 +38,7 @@ int main(int argc, char** argv) {
   }
   const std::string command = argv[1];
   if (command == "convert") return soiq::cli::run_convert_command(argc - 1, argv + 1);
+  if (command == "features") return soiq::cli::run_features_command(argc - 1, argv + 1);
   if (command == "compare") return soiq::cli::run_compare_command(argc - 1, argv + 1);
   if (command == "mesh") return soiq::cli::run_mesh_command(argc - 1, argv + 1);
   std::fprintf(stderr, "soiq: unknown command '%s' (try 'soiq help')\n", command.c_str());

@@ -1,0 +1,263 @@
+#include "client/cli/features_command.h"
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "client/cli/cli_args.h"
+#include "client/cli/exit_code.h"
+#include "core/grid_around.h"
+#include "core/io/read_image.h"
+#include "core/io/read_mesh.h"
+#include "core/structure_features.h"
+#include "core/voxelize_1d.h"
+
+namespace soiq::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: soiq features INPUT [--label N] [--reference IMAGE | --spacing S|SX,SY,SZ] [--image [NAME=]IMAGE]...\n"
+    "                     [--region inside|shell:R|core:R]... [--features LIST] [--format table|json|csv]\n"
+    "                     [--interpolation nearest|linear] [--ibsi] [--robust] [--ras] [--threads N]";
+
+struct FeaturesArgs {
+  std::string input, reference;
+  int label = -1;
+  Vec3 spacing_mm{1, 1, 1};
+  bool spacing_given = false;
+  std::vector<std::pair<std::string, std::string>> images;  // name, path
+  std::vector<RegionSpec> regions;
+  std::vector<std::string> names;
+  std::string format = "table";
+  Interpolation interpolation = Interpolation::kNearest;
+  bool ibsi = false, robust = false, ras = false;
+  int threads = 1;
+};
+
+// "PET=pet.nii.gz" or "pet.nii.gz" (named after the file, without directories and extensions).
+std::pair<std::string, std::string> named_image(const std::string& text) {
+  const size_t eq = text.find('=');
+  if (eq != std::string::npos && eq > 0) return {text.substr(0, eq), text.substr(eq + 1)};
+  std::string name = text.substr(text.find_last_of('/') == std::string::npos ? 0 : text.find_last_of('/') + 1);
+  name = name.substr(0, name.find('.'));
+  return {name, text};
+}
+
+Result<FeaturesArgs> parse(int argc, char** argv) {
+  FeaturesArgs a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* flag) -> Result<std::string> {
+      if (i + 1 >= argc) return invalid_argument(std::string(flag) + " needs a value");
+      return std::string(argv[++i]);
+    };
+    if (arg == "--label") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--label"));
+      SOIQ_ASSIGN_OR_RETURN(a.label, parse_int(text, "--label", 0, 1 << 30));
+    } else if (arg == "--reference") {
+      SOIQ_ASSIGN_OR_RETURN(a.reference, value("--reference"));
+    } else if (arg == "--spacing") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--spacing"));
+      SOIQ_ASSIGN_OR_RETURN(a.spacing_mm, parse_spacing(text));
+      a.spacing_given = true;
+    } else if (arg == "--image") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--image"));
+      a.images.push_back(named_image(text));
+    } else if (arg == "--region") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--region"));
+      SOIQ_ASSIGN_OR_RETURN(RegionSpec r, parse_region(text));
+      a.regions.push_back(r);
+    } else if (arg == "--features") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--features"));
+      size_t from = 0;
+      for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1) {
+        if (comma > from) a.names.push_back(text.substr(from, comma - from));
+      }
+      if (from < text.size()) a.names.push_back(text.substr(from));
+    } else if (arg == "--format") {
+      SOIQ_ASSIGN_OR_RETURN(a.format, value("--format"));
+      if (a.format != "table" && a.format != "json" && a.format != "csv") {
+        return invalid_argument("--format must be table, json or csv");
+      }
+    } else if (arg == "--interpolation") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--interpolation"));
+      if (text != "nearest" && text != "linear") return invalid_argument("--interpolation must be nearest or linear");
+      a.interpolation = text == "linear" ? Interpolation::kLinear : Interpolation::kNearest;
+    } else if (arg == "--threads") {
+      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--threads"));
+      SOIQ_ASSIGN_OR_RETURN(a.threads, parse_int(text, "--threads", 1, 1024));
+    } else if (arg == "--ibsi") {
+      a.ibsi = true;
+    } else if (arg == "--robust") {
+      a.robust = true;
+    } else if (arg == "--ras") {
+      a.ras = true;
+    } else if (!arg.empty() && arg[0] == '-') {
+      return invalid_argument("unknown option '" + arg + "'");
+    } else if (a.input.empty()) {
+      a.input = arg;
+    } else {
+      return invalid_argument("unexpected argument '" + arg + "'");
+    }
+  }
+  if (a.input.empty()) return invalid_argument("missing INPUT (a surface model or a mask)");
+  if (!a.reference.empty() && a.spacing_given)
+    return invalid_argument("give either --reference or --spacing, not both");
+  if (a.regions.empty()) a.regions.push_back(RegionSpec{});
+  return a;
+}
+
+// The structure: a surface model converted by the 1D method, or a mask read as it is.
+Result<StructureInput> load_structure(const FeaturesArgs& a) {
+  StructureInput s;
+  if (!is_mesh_path(a.input)) {
+    SOIQ_ASSIGN_OR_RETURN(Image image, read_image(a.input));
+    s.volume = from_mask(mask_from_image(image, a.label));
+    return s;
+  }
+  SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, read_mesh(a.input, a.ras));
+  orient_outward(mesh);
+  ImageGeometry grid;
+  if (!a.reference.empty()) {
+    SOIQ_ASSIGN_OR_RETURN(Image reference, read_image(a.reference));
+    grid = reference.geometry;
+  } else {
+    SOIQ_ASSIGN_OR_RETURN(grid, grid_around(mesh, a.spacing_mm, 2));
+  }
+  VoxelizeOptions options;
+  options.robust = a.robust;
+  options.threads = a.threads;
+  options.name = a.input.c_str();
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, voxelize_1d(mesh, grid, options));
+  s.volume = std::move(v.volume);
+  s.surface = std::move(mesh);
+  return s;
+}
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  const std::string s = buf;
+  return (s == "nan" || s == "-nan" || s == "inf" || s == "-inf") ? "null" : s;
+}
+
+std::string value_text(const std::vector<double>& v, const char* open, const char* sep, const char* close) {
+  if (v.size() == 1) return number(v[0]);
+  std::string out = open;
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + number(v[i]);
+  return out + close;
+}
+
+void print_json(const FeatureReport& r) {
+  std::string out = "{";
+  bool first = true;
+  auto key = [&](const std::string& k) {
+    out += (first ? "\"" : ", \"") + k + "\": ";
+    first = false;
+  };
+  for (const Feature& f : r.features) {
+    if (!f.region.empty()) continue;
+    key(f.name);
+    out += value_text(f.value, "[", ", ", "]");
+  }
+  // Intensity features nest under their region, then their image.
+  std::map<std::string, std::map<std::string, std::vector<const Feature*>>> nested;
+  std::vector<std::string> region_order;
+  for (const Feature& f : r.features) {
+    if (f.region.empty()) continue;
+    if (!nested.count(f.region)) region_order.push_back(f.region);
+    nested[f.region][f.image].push_back(&f);
+  }
+  if (!nested.empty()) {
+    key("intensity");
+    out += "{";
+    for (size_t ri = 0; ri < region_order.size(); ++ri) {
+      out += (ri ? ", \"" : "\"") + region_order[ri] + "\": {";
+      size_t ii = 0;
+      for (const auto& [image, features] : nested[region_order[ri]]) {
+        out += (ii++ ? ", \"" : "\"") + image + "\": {";
+        for (size_t fi = 0; fi < features.size(); ++fi) {
+          out += (fi ? ", \"" : "\"") + features[fi]->name + "\": " + value_text(features[fi]->value, "[", ", ", "]");
+        }
+        out += "}";
+      }
+      out += "}";
+    }
+    out += "}";
+  }
+  key("timings_ms");
+  out += "{";
+  for (size_t i = 0; i < r.timings_ms.size(); ++i) {
+    out += (i ? ", \"" : "\"") + r.timings_ms[i].first + "\": " + number(r.timings_ms[i].second);
+  }
+  out += "}}";
+  std::puts(out.c_str());
+}
+
+void print_csv(const FeatureReport& r) {
+  std::puts("region,image,feature,value");
+  for (const Feature& f : r.features) {
+    std::printf("%s,%s,%s,%s\n", f.region.c_str(), f.image.c_str(), f.name.c_str(),
+                value_text(f.value, "", ";", "").c_str());
+  }
+}
+
+void print_table(const FeatureReport& r) {
+  std::string block = "-";
+  for (const Feature& f : r.features) {
+    const std::string here = f.region.empty() ? "shape" : f.region + " / " + f.image;
+    if (here != block) {
+      std::printf("%s[%s]\n", block == "-" ? "" : "\n", here.c_str());
+      block = here;
+    }
+    std::printf("  %-32s %s\n", f.name.c_str(), value_text(f.value, "(", ", ", ")").c_str());
+  }
+  std::printf("\n[timings, ms]\n");
+  for (const auto& [part, ms] : r.timings_ms) std::printf("  %-32s %.2f\n", part.c_str(), ms);
+}
+
+Status features(const FeaturesArgs& a) {
+  SOIQ_ASSIGN_OR_RETURN(StructureInput structure, load_structure(a));
+  std::vector<std::unique_ptr<Image>> images;
+  FeatureRequest request;
+  for (const auto& [name, path] : a.images) {
+    SOIQ_ASSIGN_OR_RETURN(Image image, read_image(path));
+    images.push_back(std::make_unique<Image>(std::move(image)));
+    request.images.push_back({name, images.back().get()});
+  }
+  request.names = a.names;
+  request.regions = a.regions;
+  request.interpolation = a.interpolation;
+  request.covariance = a.ibsi ? CovarianceDivisor::kNMinus1 : CovarianceDivisor::kN;
+  request.threads = a.threads;
+  SOIQ_ASSIGN_OR_RETURN(FeatureReport report, structure_features(structure, request));
+  if (a.format == "json") {
+    print_json(report);
+  } else if (a.format == "csv") {
+    print_csv(report);
+  } else {
+    print_table(report);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+int run_features_command(int argc, char** argv) {
+  Result<FeaturesArgs> args = parse(argc, argv);
+  if (!args.ok()) {
+    std::fprintf(stderr, "soiq features: %s\n%s\n", args.status().message().c_str(), kUsage);
+    return exit_code(args.status());
+  }
+  const Status s = features(*args);
+  if (!s.ok()) {
+    std::fprintf(stderr, "soiq features: %s\n", s.message().c_str());
+    return exit_code(s);
+  }
+  return 0;
+}
+
+}  // namespace soiq::cli

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# `soiq features` end to end: the IBSI phantom's published values through the command line, a real
+# STS tumour with PET uptake inside and around it, every output format, and each bad input answered
+# with its exit code and one readable line.
+# Usage: features_test.sh SOIQ_BINARY TEST_DATA_DIR
+set -uo pipefail
+soiq=$1
+data=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect CODE PHRASE -- command...: exit code and a phrase of the single stderr line.
+expect() {
+  local code=$1 phrase=$2
+  shift 3
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  [ "$got" -eq "$code" ] || fail "'$*' exited $got, expected $code: $(cat "$tmp/err")"
+  grep -q -- "$phrase" "$tmp/err" || fail "'$*' stderr lacks '$phrase': $(cat "$tmp/err")"
+}
+
+# within NAME VALUE REF TOL: |VALUE - REF| <= TOL
+within() {
+  awk -v v="$2" -v r="$3" -v t="$4" 'BEGIN { d = v - r; if (d < 0) d = -d; exit !(d <= t) }' ||
+    fail "$1 = $2, expected $3 +- $4"
+}
+
+phantom="$data/ibsi_digital_phantom"
+"$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --ibsi --format csv >"$tmp/ibsi.csv" ||
+  fail "features of the IBSI phantom"
+get() { awk -F, -v r="$1" -v n="$2" '$1 == r && $3 == n { print $4 }' "$tmp/ibsi.csv"; }
+# IBSI reference values and tolerances (REFERENCE_VALUES.md).
+within mesh_volume_mm3 "$(get "" mesh_volume_mm3)" 556 4
+within surface_area_mm2 "$(get "" surface_area_mm2)" 388 3
+within sphericity "$(get "" sphericity)" 0.843 0.005
+within major_axis_length_mm "$(get "" major_axis_length_mm)" 11.4 0.1
+within mean "$(get inside mean)" 2.15 0.005
+within p90 "$(get inside p90)" 4 0.0001
+within energy "$(get inside energy)" 567 0.5
+
+# A real tumour (STS_002, its CT mask) with the patient's PET: uptake inside and in a 5 mm shell.
+sts="$data/sts/STS_002"
+json=$("$soiq" features "$sts/CT_mask.nii.gz" --image "PET=$sts/PET_image.nii.gz" --region inside --region shell:5 \
+  --features voxel_volume_mm3,sphericity,mean --format json) || fail "features of STS_002"
+echo "$json" | grep -qE '^\{"voxel_volume_mm3": [0-9.]+, "sphericity": 0\.[0-9]+, "intensity": \{"inside": \{"PET": \{"mean": [0-9.]+\}\}, "shell:5": \{"PET": \{"mean": [0-9.]+\}\}\}, "timings_ms": \{' ||
+  fail "json shape: $json"
+
+# A surface model: converted on the mask's grid, its own surface values and the mask surface's.
+"$soiq" mesh "$sts/PET_mask.nii.gz" -o "$tmp/pet.vtp" >/dev/null || fail "soiq mesh"
+"$soiq" features "$tmp/pet.vtp" --reference "$sts/PET_mask.nii.gz" --features mesh_volume_mm3,mask_mesh_volume_mm3 \
+  --format csv >"$tmp/s.csv" || fail "features of a surface model"
+[ "$(grep -c mesh_volume_mm3 "$tmp/s.csv")" -eq 2 ] || fail "surface and mask surface values: $(cat "$tmp/s.csv")"
+
+expect 2 "unknown feature 'bogus'" -- "$soiq" features "$phantom/mask.nii.gz" --features bogus
+expect 2 "need an image" -- "$soiq" features "$phantom/mask.nii.gz" --features mean
+expect 2 "radius" -- "$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --region shell:0
+expect 2 "accepted\|inside" -- "$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --region around
+expect 2 "empty" -- "$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --region core:40
+expect 2 "frame of reference" -- "$soiq" features "$phantom/mask.nii.gz" --image "$sts/PET_image.nii.gz" --features mean
+expect 3 "not" -- "$soiq" features "$tmp/missing.nii.gz"
+expect 2 "--format" -- "$soiq" features "$phantom/mask.nii.gz" --format xml
+
+if [ "$failures" -eq 0 ]; then echo "features_test: all passed"; else echo "features_test: $failures failed"; exit 1; fi
