@@ -5,6 +5,7 @@
 //   soiq-bench table7  [--runs N] [--pin CPU]
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench cpu-probe [--runs N]
+//   soiq-bench features --models DIR [--sts DIR] [--runs N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "bench/cli_args.h"
 #include "bench/convert_bench.h"
 #include "bench/cpu_probe.h"
+#include "bench/features_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
 #include "bench/table5.h"
@@ -28,7 +30,8 @@ int usage() {
                "       soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n"
                "       soiq-bench table7 [--runs N] [--pin CPU]\n"
                "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
-               "       soiq-bench cpu-probe [--runs N]\n");
+               "       soiq-bench cpu-probe [--runs N]\n"
+               "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n");
   return 2;
 }
 
@@ -40,7 +43,8 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   const auto args = parse_cli_args(
       argc, argv, 2,
-      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models"}, {"--json"});
+      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models", "--sts"},
+      {"--json"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
     return 2;
@@ -51,5 +55,6 @@ int main(int argc, char** argv) {
   if (command == "table7") return run_table7(*args);
   if (command == "scaling") return run_scaling(*args);
   if (command == "cpu-probe") return run_cpu_probe(*args);
+  if (command == "features") return run_features_bench(*args);
   return usage();
 }

@@ -1,0 +1,183 @@
+#include "bench/features_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/simulated_models.h"
+#include "core/io/read_image.h"
+#include "core/io/read_mesh.h"
+#include "core/structure_features.h"
+#include "core/voxelize_1d.h"
+
+namespace soiq::bench {
+
+namespace {
+
+struct Row {
+  std::string name;
+  size_t triangles = 0;  // of the stored surface; 0 for a mask
+  int64_t voxels = 0;
+  std::optional<double> conversion_ms;
+  std::map<std::string, double> part_ms;  // best per part
+  double features_ms = 0;                 // best total of structure_features
+  size_t feature_count = 0;
+};
+
+// Folds "resample PET inside" and the like into the part's kind, so rows share columns.
+std::string part_kind(const std::string& part) {
+  for (const char* kind : {"resample", "intensity", "region"}) {
+    if (part.rfind(kind, 0) == 0) return kind;
+  }
+  return part;
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Status measure(Row& row, const StructureInput& input, const FeatureRequest& request, int runs) {
+  row.voxels = voxel_count(input.volume);
+  row.features_ms = 1e300;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SOIQ_ASSIGN_OR_RETURN(FeatureReport report, structure_features(input, request));
+    row.features_ms = std::min(row.features_ms, ms_since(t0));
+    row.feature_count = report.features.size();
+    std::map<std::string, double> sums;
+    for (const auto& [part, ms] : report.timings_ms) sums[part_kind(part)] += ms;
+    for (const auto& [kind, ms] : sums) {
+      row.part_ms[kind] = row.part_ms.count(kind) ? std::min(row.part_ms[kind], ms) : ms;
+    }
+  }
+  return ok_status();
+}
+
+// A smooth synthetic intensity on the grid (a ramp plus a ripple), so intensity features have
+// something to compute on the simulated models.
+Image ramp_image(const ImageGeometry& g) {
+  Image image;
+  image.geometry = g;
+  image.voxels.resize(size_t(g.voxel_count()));
+  size_t n = 0;
+  for (int64_t k = 0; k < g.dims[2]; ++k)
+    for (int64_t j = 0; j < g.dims[1]; ++j)
+      for (int64_t i = 0; i < g.dims[0]; ++i) image.voxels[n++] = float(i + 2 * j + 3 * k + ((i * j) % 7));
+  return image;
+}
+
+Status simulated_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
+  for (const SimModel& model : simulated_models()) {
+    const std::string base = dir + "/" + model.name;
+    if (!std::filesystem::exists(base + "_S1.vtp")) continue;
+    SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, read_mesh(base + "_S1.vtp"));
+    SOIQ_ASSIGN_OR_RETURN(Image v1, read_image(base + "_V1.nii.gz"));
+    Row row;
+    row.name = model.name;
+    row.triangles = mesh.triangles.size();
+    VoxelizeOptions options;
+    options.known_defects = mesh_defects(mesh);  // the defect check belongs to loading the mesh
+    std::optional<Voxelization> v;
+    double best = 1e300;
+    for (int r = 0; r < runs; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(mesh, v1.geometry, options));
+      best = std::min(best, ms_since(t0));
+      v = std::move(out);
+    }
+    row.conversion_ms = best;
+    const Image ramp = ramp_image(v1.geometry);
+    FeatureRequest request;
+    request.images = {{"ramp", &ramp}};
+    request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};
+    SOIQ_RETURN_IF_ERROR(measure(row, StructureInput{std::move(v->volume), std::move(mesh)}, request, runs));
+    rows.push_back(std::move(row));
+    std::fprintf(stderr, "features: %s done\n", model.name.c_str());
+  }
+  return ok_status();
+}
+
+Status sts_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
+  std::vector<std::string> patients;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (std::filesystem::exists(entry.path() / "CT_mask.nii.gz")) patients.push_back(entry.path().filename());
+  }
+  std::sort(patients.begin(), patients.end());
+  for (const std::string& patient : patients) {
+    const std::string base = dir + "/" + patient;
+    SOIQ_ASSIGN_OR_RETURN(Image mask, read_image(base + "/CT_mask.nii.gz"));
+    std::optional<Image> pet;
+    if (std::filesystem::exists(base + "/PET_image.nii.gz")) {
+      SOIQ_ASSIGN_OR_RETURN(Image image, read_image(base + "/PET_image.nii.gz"));
+      pet = std::move(image);
+    }
+    Row row;
+    row.name = patient + " CT mask" + (pet ? " + PET" : "");
+    FeatureRequest request;
+    if (pet) {
+      request.images = {{"PET", &*pet}};
+      request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 5}};
+    }
+    SOIQ_RETURN_IF_ERROR(measure(row, StructureInput{from_mask(mask_from_image(mask)), std::nullopt}, request, runs));
+    rows.push_back(std::move(row));
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+int run_features_bench(const CliArgs& args) {
+  const std::string models = args.get("--models", "");
+  const std::string sts = args.get("--sts", "");
+  const Result<int> runs = args.get_int("--runs", 3);
+  if ((models.empty() && sts.empty()) || !runs.ok() || *runs < 1) {
+    std::fprintf(stderr, "usage: soiq-bench features --models DIR [--sts DIR] [--runs N]\n");
+    return 2;
+  }
+  std::vector<Row> rows;
+  Status s = models.empty() ? ok_status() : simulated_rows(models, *runs, rows);
+  if (s.ok() && !sts.empty()) s = sts_rows(sts, *runs, rows);
+  if (!s.ok()) {
+    std::fprintf(stderr, "soiq-bench features: %s\n", s.to_string().c_str());
+    return 1;
+  }
+  const std::vector<std::pair<std::string, std::string>> columns = {{"volume shape", "volume"},
+                                                                    {"mask surface (marching cubes)", "marching cubes"},
+                                                                    {"surface shape", "stored surface"},
+                                                                    {"mask surface shape", "mask surface"},
+                                                                    {"2d diameters", "2D diameters"},
+                                                                    {"region", "regions"},
+                                                                    {"resample", "resample"},
+                                                                    {"intensity", "intensity"}};
+  std::printf("Best ms of %d runs per part; \"features\" is the whole structure_features call (all features).\n\n",
+              *runs);
+  std::printf("| structure | triangles | voxels | conversion ms | features ms | features |");
+  for (const auto& c : columns) std::printf(" %s ms |", c.second.c_str());
+  std::printf("\n|---|---:|---:|---:|---:|---:|");
+  for (size_t c = 0; c < columns.size(); ++c) std::printf("---:|");
+  std::printf("\n");
+  for (const Row& r : rows) {
+    char conversion[32] = "-";
+    if (r.conversion_ms) std::snprintf(conversion, sizeof conversion, "%.1f", *r.conversion_ms);
+    std::printf("| %s | %s | %lld | %s | %.1f | %zu |", r.name.c_str(),
+                r.triangles ? std::to_string(r.triangles).c_str() : "-", (long long)r.voxels, conversion, r.features_ms,
+                r.feature_count);
+    for (const auto& c : columns) {
+      const auto it = r.part_ms.find(c.first);
+      if (it == r.part_ms.end()) {
+        std::printf(" - |");
+      } else {
+        std::printf(" %.1f |", it->second);
+      }
+    }
+    std::printf("\n");
+  }
+  return 0;
+}
+
+}  // namespace soiq::bench
