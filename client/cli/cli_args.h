@@ -1,8 +1,10 @@
 #pragma once
 // Parsing helpers shared by the `soiq` commands: one message style for every bad argument.
 
+#include <cstdio>
 #include <string>
 
+#include "client/cli/exit_code.h"
 #include "core/status.h"
 #include "core/vec3.h"
 
@@ -22,5 +24,22 @@ bool is_mesh_path(const std::string& path);
 
 // True when `path` ends with `suffix`.
 bool ends_with(const std::string& path, const std::string& suffix);
+
+// Runs command `name`: parsed arguments (or the parse error), then `act`. Any error is one line on
+// stderr, "soiq NAME: message" (with a pointer to the usage after a parse error), and the exit code
+// comes from exit_code(): the one place a command's outcome becomes a process status.
+template <typename Args, typename Act>
+int run_command(const char* name, const Result<Args>& args, Act&& act) {
+  if (!args.ok()) {
+    std::fprintf(stderr, "soiq %s: %s (usage: soiq help)\n", name, args.status().message().c_str());
+    return exit_code(args.status());
+  }
+  const Status s = act(*args);
+  if (!s.ok()) {
+    std::fprintf(stderr, "soiq %s: %s\n", name, s.message().c_str());
+    return exit_code(s);
+  }
+  return 0;
+}
 
 }  // namespace soiq::cli

@@ -1,9 +1,9 @@
 #include "client/cli/compare_command.h"
 
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
+#include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
 #include "core/io/read_image.h"
 #include "core/run_length_volume.h"
@@ -11,8 +11,6 @@
 namespace soiq::cli {
 
 namespace {
-
-constexpr const char* kUsage = "usage: soiq compare MASK_A MASK_B [--label-a N] [--label-b N]";
 
 Result<RunLengthVolume> load(const std::string& path, int label) {
   SOIQ_ASSIGN_OR_RETURN(Image image, read_image(path));
@@ -31,37 +29,36 @@ Status compare_files(const std::string& a_path, const std::string& b_path, int l
 
 }  // namespace
 
-int run_compare_command(int argc, char** argv) {
+namespace {
+
+struct CompareArgs {
   std::string files[2];
   int labels[2] = {-1, -1};
+};
+
+Result<CompareArgs> parse(int argc, char** argv) {
+  CompareArgs a;
   int n_files = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if ((arg == "--label-a" || arg == "--label-b") && i + 1 < argc) {
-      char* end = nullptr;
-      const long v = std::strtol(argv[++i], &end, 10);
-      if (*end != '\0' || v < 0 || v > 1000000) {
-        std::fprintf(stderr, "soiq compare: %s must be a label number >= 0\n%s\n", arg.c_str(), kUsage);
-        return 2;
-      }
-      labels[arg == "--label-a" ? 0 : 1] = int(v);
+      SOIQ_ASSIGN_OR_RETURN(a.labels[arg == "--label-a" ? 0 : 1], parse_int(argv[++i], arg, 0, 1 << 30));
     } else if (!arg.empty() && arg[0] != '-' && n_files < 2) {
-      files[n_files++] = arg;
+      a.files[n_files++] = arg;
     } else {
-      std::fprintf(stderr, "soiq compare: unexpected argument '%s'\n%s\n", arg.c_str(), kUsage);
-      return 2;
+      return invalid_argument("unexpected argument '" + arg + "'");
     }
   }
-  if (n_files != 2) {
-    std::fprintf(stderr, "soiq compare: needs two masks\n%s\n", kUsage);
-    return 2;
-  }
-  const Status s = compare_files(files[0], files[1], labels[0], labels[1]);
-  if (!s.ok()) {
-    std::fprintf(stderr, "soiq compare: %s\n", s.message().c_str());
-    return exit_code(s);
-  }
-  return 0;
+  if (n_files != 2) return invalid_argument("needs two masks: soiq compare MASK_A MASK_B");
+  return a;
+}
+
+}  // namespace
+
+int run_compare_command(int argc, char** argv) {
+  return run_command("compare", parse(argc, argv), [](const CompareArgs& a) {
+    return compare_files(a.files[0], a.files[1], a.labels[0], a.labels[1]);
+  });
 }
 
 }  // namespace soiq::cli

@@ -18,10 +18,6 @@ namespace soiq::cli {
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: soiq convert MESH -o OUT.{nii.gz,nii,nrrd,mha} [--reference IMAGE | --spacing S|SX,SY,SZ "
-    "[--margin VOXELS]] [--robust] [--even-odd] [--threads N] [--ras]";
-
 struct ConvertArgs {
   std::string mesh, out, reference;
   Vec3 spacing_mm{1, 1, 1};
@@ -108,18 +104,6 @@ Status convert(const ConvertArgs& a) {
 
 }  // namespace
 
-int run_convert_command(int argc, char** argv) {
-  Result<ConvertArgs> args = parse(argc, argv);
-  if (!args.ok()) {
-    std::fprintf(stderr, "soiq convert: %s\n%s\n", args.status().message().c_str(), kUsage);
-    return exit_code(args.status());
-  }
-  const Status s = convert(*args);
-  if (!s.ok()) {
-    std::fprintf(stderr, "soiq convert: %s\n", s.message().c_str());
-    return exit_code(s);
-  }
-  return 0;
-}
+int run_convert_command(int argc, char** argv) { return run_command("convert", parse(argc, argv), convert); }
 
 }  // namespace soiq::cli

@@ -18,11 +18,6 @@ namespace soiq::cli {
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: soiq features INPUT [--label N] [--reference IMAGE | --spacing S|SX,SY,SZ] [--image [NAME=]IMAGE]...\n"
-    "                     [--region inside|shell:R|core:R]... [--features LIST] [--format table|json|csv]\n"
-    "                     [--interpolation nearest|linear] [--ibsi] [--robust] [--ras] [--threads N]";
-
 struct FeaturesArgs {
   std::string input, reference;
   int label = -1;
@@ -246,18 +241,6 @@ Status features(const FeaturesArgs& a) {
 
 }  // namespace
 
-int run_features_command(int argc, char** argv) {
-  Result<FeaturesArgs> args = parse(argc, argv);
-  if (!args.ok()) {
-    std::fprintf(stderr, "soiq features: %s\n%s\n", args.status().message().c_str(), kUsage);
-    return exit_code(args.status());
-  }
-  const Status s = features(*args);
-  if (!s.ok()) {
-    std::fprintf(stderr, "soiq features: %s\n", s.message().c_str());
-    return exit_code(s);
-  }
-  return 0;
-}
+int run_features_command(int argc, char** argv) { return run_command("features", parse(argc, argv), features); }
 
 }  // namespace soiq::cli

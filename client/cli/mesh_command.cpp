@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
@@ -62,37 +63,28 @@ Result<MeshArgs> parse_args(int argc, char** argv) {
   return args;
 }
 
-Status fail(const Status& status) {
-  std::fprintf(stderr, "soiq mesh: %s\n", status.message().c_str());
-  return status;
-}
-
 }  // namespace
+
+Status mesh(const MeshArgs& args) {
+  SOIQ_ASSIGN_OR_RETURN(const Image image, read_image(args.mask_path));
+  SOIQ_ASSIGN_OR_RETURN(const TriangleMesh surface, marching_cubes(mask_from_image(image, args.label)));
+  if (surface.triangles.empty()) {
+    const std::string which = args.label < 0 ? "nonzero voxels" : "voxels with label " + std::to_string(args.label);
+    return invalid_argument("'" + args.mask_path + "' has no " + which + "; nothing to mesh");
+  }
+  SOIQ_RETURN_IF_ERROR(write_mesh(surface, args.out_path));
+  std::printf("%zu triangles, %zu vertices, mesh volume %.3f mm3 -> %s\n", surface.triangles.size(),
+              surface.vertices_mm.size(), signed_volume_mm3(surface), args.out_path.c_str());
+  return ok_status();
+}
 
 int run_mesh_command(int argc, char** argv) {
   const auto args = parse_args(argc, argv);
-  if (!args.ok()) {
-    std::fprintf(stderr, "soiq mesh: %s\n%s", args.status().message().c_str(), kUsage);
-    return kExitUsage;
-  }
-  if (args->help) {
+  if (args.ok() && args->help) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const auto image = read_image(args->mask_path);
-  if (!image.ok()) return exit_code(fail(image.status()));
-  const Mask mask = mask_from_image(*image, args->label);
-  const auto mesh = marching_cubes(mask);
-  if (!mesh.ok()) return exit_code(fail(mesh.status()));
-  if (mesh->triangles.empty()) {
-    const std::string which = args->label < 0 ? "nonzero voxels" : "voxels with label " + std::to_string(args->label);
-    return exit_code(fail(invalid_argument("'" + args->mask_path + "' has no " + which + "; nothing to mesh")));
-  }
-  const Status written = write_mesh(*mesh, args->out_path);
-  if (!written.ok()) return exit_code(fail(written));
-  std::printf("%zu triangles, %zu vertices, mesh volume %.3f mm3 -> %s\n", mesh->triangles.size(),
-              mesh->vertices_mm.size(), signed_volume_mm3(*mesh), args->out_path.c_str());
-  return 0;
+  return run_command("mesh", args, mesh);
 }
 
 }  // namespace soiq::cli

@@ -2,23 +2,9 @@
 # `soiq convert` end to end on real files: lossless round trips through every mesh format, and each
 # bad input answered with its exit code and one readable line.
 # Usage: convert_test.sh SOIQ_BINARY TEST_DATA_DIR
-set -uo pipefail
 soiq=$1
 data=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect CODE PHRASE -- command...: exit code and a phrase of the single stderr line.
-expect() {
-  local code=$1 phrase=$2
-  shift 3
-  "$@" >"$tmp/out" 2>"$tmp/err"
-  local got=$?
-  [ "$got" -eq "$code" ] || fail "'$*' exited $got, expected $code: $(cat "$tmp/err")"
-  grep -q -- "$phrase" "$tmp/err" || fail "'$*' stderr lacks '$phrase': $(cat "$tmp/err")"
-}
+source "$(dirname "$0")/lib.sh"
 
 # Lossless round trip: mask -> soiq mesh -> soiq convert --reference mask -> identical.
 for mask in "pyradiomics/brain1_label.nrrd" "sts/STS_002/CT_mask.nii.gz" "ibsi_digital_phantom/mask.nii.gz"; do
@@ -93,4 +79,4 @@ expect 2 "extension" -- "$soiq" convert "$tmp/pet.stl" --spacing 1 -o "$tmp/x.pn
 "$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz" 2>"$tmp/err"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "error output is not one line: $(cat "$tmp/err")"
 
-if [ "$failures" -eq 0 ]; then echo "convert_test: all passed"; else echo "convert_test: $failures failed"; exit 1; fi
+finish convert_test

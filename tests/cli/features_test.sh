@@ -3,29 +3,9 @@
 # STS tumour with PET uptake inside and around it, every output format, and each bad input answered
 # with its exit code and one readable line.
 # Usage: features_test.sh SOIQ_BINARY TEST_DATA_DIR
-set -uo pipefail
 soiq=$1
 data=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect CODE PHRASE -- command...: exit code and a phrase of the single stderr line.
-expect() {
-  local code=$1 phrase=$2
-  shift 3
-  "$@" >"$tmp/out" 2>"$tmp/err"
-  local got=$?
-  [ "$got" -eq "$code" ] || fail "'$*' exited $got, expected $code: $(cat "$tmp/err")"
-  grep -q -- "$phrase" "$tmp/err" || fail "'$*' stderr lacks '$phrase': $(cat "$tmp/err")"
-}
-
-# within NAME VALUE REF TOL: |VALUE - REF| <= TOL
-within() {
-  awk -v v="$2" -v r="$3" -v t="$4" 'BEGIN { d = v - r; if (d < 0) d = -d; exit !(d <= t) }' ||
-    fail "$1 = $2, expected $3 +- $4"
-}
+source "$(dirname "$0")/lib.sh"
 
 phantom="$data/ibsi_digital_phantom"
 "$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --ibsi --format csv >"$tmp/ibsi.csv" ||
@@ -62,4 +42,4 @@ expect 2 "frame of reference" -- "$soiq" features "$phantom/mask.nii.gz" --image
 expect 3 "not" -- "$soiq" features "$tmp/missing.nii.gz"
 expect 2 "--format" -- "$soiq" features "$phantom/mask.nii.gz" --format xml
 
-if [ "$failures" -eq 0 ]; then echo "features_test: all passed"; else echo "features_test: $failures failed"; exit 1; fi
+finish features_test
