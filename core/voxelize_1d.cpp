@@ -24,57 +24,45 @@ struct ScanProblem {
   FillRule rule = FillRule::kNonZero;
 };
 
-// One edge of a triangle's (y,z) projection. Its edge function at a lattice point P = (j,k) is
-// orient2d(lo, hi, P) of the lexicographically ordered endpoints, times `flip` for the triangle's
-// direction, so the two triangles sharing the edge see exactly opposite values. Its sign is exact
-// (core/exact_predicates), and an exact zero takes the sign of the symbolic perturbation of P to
-// (j + e, k + e^2): no lattice point is ever on an edge, and every edge puts it on exactly one side
-// for both triangles. That is the whole watertightness argument, with no epsilon.
+// One directed edge a -> b of a triangle's (y,z) projection. Its edge function at a lattice point
+// P = (j,k) is orient2d(a, b, P); its sign is exact (core/exact_predicates), so the two triangles
+// sharing the edge (which run it in opposite directions) always see opposite signs, and an exact
+// zero takes the sign of the symbolic perturbation of P to (j + e, k + e^2). No lattice point is
+// ever on an edge, and every edge puts it on exactly one side for both triangles: that is the whole
+// watertightness argument, with no epsilon.
 struct ProjectedEdge {
-  double lo_y, lo_z, hi_y, hi_z, dy, dz;
-  int flip;      // +1 when the triangle runs lo -> hi, -1 when hi -> lo
-  int tie_sign;  // the perturbed sign when the exact value is 0, already multiplied by flip
+  double a_y, a_z, b_y, b_z, dy, dz;
+  int tie_sign;  // the perturbed sign where the exact value is 0; 0 for a zero-length edge
 
-  ProjectedEdge(double ay, double az, double by, double bz) {
-    flip = 1;
-    if (by < ay || (by == ay && bz < az)) {
-      std::swap(ay, by);
-      std::swap(az, bz);
-      flip = -1;
-    }
-    lo_y = ay;
-    lo_z = az;
-    hi_y = by;
-    hi_z = bz;
+  ProjectedEdge(double ay, double az, double by, double bz) : a_y(ay), a_z(az), b_y(by), b_z(bz) {
     dy = by - ay;
     dz = bz - az;
-    // E(P + (e, e^2)) = E(P) - dz*e + dy*e^2; lo < hi makes dy > 0 whenever dz == 0.
-    const int canonical_tie = dz != 0 ? (dz > 0 ? -1 : 1) : 1;
-    tie_sign = canonical_tie * flip;
+    // E(P + (e, e^2)) = E(P) - dz*e + dy*e^2.
+    tie_sign = dz != 0 ? (dz > 0 ? -1 : 1) : (dy > 0) - (dy < 0);
   }
 
   struct Value {
-    double value;  // the edge function in double, oriented as the triangle runs
+    double value;  // the edge function in double
     double error;  // a bound on |value - exact value|
     int sign;      // the exact perturbed sign: never 0
   };
 
   // The part of the edge function that depends on the slice only: computed once per row.
-  double slice_term(double pz) const { return dy * (pz - lo_z); }
+  double slice_term(double pz) const { return dy * (pz - a_z); }
 
   // The edge function at (py, pz), given t1 = slice_term(pz).
   Value at(double t1, double py, double pz) const {
-    const double t2 = dz * (py - lo_y);
+    const double t2 = dz * (py - a_y);
     const double value = t1 - t2;
     const double error = orient2d_error_bound(t1, t2);
-    if (value > error) return {flip * value, error, flip};
-    if (value < -error) return {flip * value, error, -flip};
+    if (value > error) return {value, error, 1};
+    if (value < -error) return {value, error, -1};
     // Near or at zero. Both products exactly 0, or the lattice point on an endpoint (every
     // marching-cubes vertex on a row line), is an exact zero without arithmetic; anything else
     // asks the exact predicate.
-    if (error == 0 || (py == lo_y && pz == lo_z) || (py == hi_y && pz == hi_z)) return {0.0, 0.0, tie_sign};
-    const int exact = orient2d_sign_exact(lo_y, lo_z, hi_y, hi_z, py, pz);
-    return {flip * value, error, exact != 0 ? flip * exact : tie_sign};
+    if (error == 0 || (py == a_y && pz == a_z) || (py == b_y && pz == b_z)) return {0.0, 0.0, tie_sign};
+    const int exact = orient2d_sign_exact(a_y, a_z, b_y, b_z, py, pz);
+    return {value, error, exact != 0 ? exact : tie_sign};
   }
 };
 
