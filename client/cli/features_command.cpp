@@ -8,28 +8,24 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
-#include "core/grid_around.h"
+#include "client/cli/mesh_on_grid.h"
 #include "core/io/read_image.h"
-#include "core/io/read_mesh.h"
 #include "core/structure_features.h"
-#include "core/voxelize_1d.h"
 
 namespace soiq::cli {
 
 namespace {
 
 struct FeaturesArgs {
-  std::string input, reference;
+  std::string input;
   int label = -1;
-  Vec3 spacing_mm{1, 1, 1};
-  bool spacing_given = false;
+  MeshGridOptions grid;
   std::vector<std::pair<std::string, std::string>> images;  // name, path
   std::vector<RegionSpec> regions;
   std::vector<std::string> names;
   std::string format = "table";
   Interpolation interpolation = Interpolation::kNearest;
-  bool ibsi = false, robust = false, ras = false;
-  int threads = 1;
+  bool ibsi = false;
 };
 
 // "PET=pet.nii.gz" or "pet.nii.gz" (named after the file, without directories and extensions).
@@ -49,15 +45,11 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
       if (i + 1 >= argc) return invalid_argument(std::string(flag) + " needs a value");
       return std::string(argv[++i]);
     };
+    SOIQ_ASSIGN_OR_RETURN(const bool shared, parse_mesh_grid_option(argc, argv, i, a.grid));
+    if (shared) continue;
     if (arg == "--label") {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--label"));
       SOIQ_ASSIGN_OR_RETURN(a.label, parse_int(text, "--label", 0, 1 << 30));
-    } else if (arg == "--reference") {
-      SOIQ_ASSIGN_OR_RETURN(a.reference, value("--reference"));
-    } else if (arg == "--spacing") {
-      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--spacing"));
-      SOIQ_ASSIGN_OR_RETURN(a.spacing_mm, parse_spacing(text));
-      a.spacing_given = true;
     } else if (arg == "--image") {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--image"));
       a.images.push_back(named_image(text));
@@ -81,15 +73,8 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--interpolation"));
       if (text != "nearest" && text != "linear") return invalid_argument("--interpolation must be nearest or linear");
       a.interpolation = text == "linear" ? Interpolation::kLinear : Interpolation::kNearest;
-    } else if (arg == "--threads") {
-      SOIQ_ASSIGN_OR_RETURN(std::string text, value("--threads"));
-      SOIQ_ASSIGN_OR_RETURN(a.threads, parse_int(text, "--threads", 1, 1024));
     } else if (arg == "--ibsi") {
       a.ibsi = true;
-    } else if (arg == "--robust") {
-      a.robust = true;
-    } else if (arg == "--ras") {
-      a.ras = true;
     } else if (!arg.empty() && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
     } else if (a.input.empty()) {
@@ -99,8 +84,7 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
     }
   }
   if (a.input.empty()) return invalid_argument("missing INPUT (a surface model or a mask)");
-  if (!a.reference.empty() && a.spacing_given)
-    return invalid_argument("give either --reference or --spacing, not both");
+  SOIQ_RETURN_IF_ERROR(check_mesh_grid_options(a.grid));
   if (a.regions.empty()) a.regions.push_back(RegionSpec{});
   return a;
 }
@@ -113,22 +97,9 @@ Result<StructureInput> load_structure(const FeaturesArgs& a) {
     s.volume = from_mask(mask_from_image(image, a.label));
     return s;
   }
-  SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, read_mesh(a.input, a.ras));
-  orient_outward(mesh);
-  ImageGeometry grid;
-  if (!a.reference.empty()) {
-    SOIQ_ASSIGN_OR_RETURN(Image reference, read_image(a.reference));
-    grid = reference.geometry;
-  } else {
-    SOIQ_ASSIGN_OR_RETURN(grid, grid_around(mesh, a.spacing_mm, 2));
-  }
-  VoxelizeOptions options;
-  options.robust = a.robust;
-  options.threads = a.threads;
-  options.name = a.input.c_str();
-  SOIQ_ASSIGN_OR_RETURN(Voxelization v, voxelize_1d(mesh, grid, options));
-  s.volume = std::move(v.volume);
-  s.surface = std::move(mesh);
+  SOIQ_ASSIGN_OR_RETURN(MeshOnGrid m, convert_mesh_file(a.input, a.grid));
+  s.volume = std::move(m.voxels.volume);
+  s.surface = std::move(m.mesh);
   return s;
 }
 
@@ -227,7 +198,7 @@ Status features(const FeaturesArgs& a) {
   request.regions = a.regions;
   request.interpolation = a.interpolation;
   request.covariance = a.ibsi ? CovarianceDivisor::kNMinus1 : CovarianceDivisor::kN;
-  request.threads = a.threads;
+  request.threads = a.grid.threads;
   SOIQ_ASSIGN_OR_RETURN(FeatureReport report, structure_features(structure, request));
   if (a.format == "json") {
     print_json(report);
