@@ -13,18 +13,21 @@
 //   (j + e, k + e^2), e -> 0+, so a line through a shared edge or vertex is counted by exactly one
 //   of the triangles sharing it, with no epsilon: every line crosses a closed mesh an even number
 //   of times, whatever the grid alignment. A centre exactly on an entering crossing is inside, on a
-//   leaving crossing is not (runs are half-open).
+//   leaving crossing is not (runs are half-open). Every such decision is exact for the mesh's
+//   vertices as mapped into index space (geometry.physical_to_index): signs come from filtered
+//   predicates with an exact fallback (core/exact_predicates.h), never from rounding.
 // Errors
 //   INVALID_ARGUMENT   bad geometry, empty mesh, non-finite vertices, indices out of range.
 //   FAILED_PRECONDITION plain mode on a mesh that is not closed and consistently oriented
 //                      (message names robust mode).
 //   RESOURCE_EXHAUSTED  grid over options.max_voxels (checked before allocating).
 // Cost
-//   O(T + crossings + lines) per thread-slab, triangles bucketed by their first slice; memory
+//   O(T + crossings + lines): each slab of slices visits only the triangles listed for it; memory
 //   O(crossings + runs + lines). Robust mode materialises three dense votes: O(voxels).
 //   Thread-safe; results are identical for any thread count.
 // Caveats
 //   Robust mode treats a line whose crossings do not balance as voting "outside" everywhere.
+//   Exactness assumes products of index-space coordinates neither overflow nor underflow.
 
 #include <cstdint>
 #include <optional>
