@@ -1,0 +1,25 @@
+#pragma once
+// The stored form of an image series' voxels: float32 little-endian in i-fastest order, deflated.
+// The geometry lives in the series record (SeriesRecord::geometry), not in the blob; the sha256 is
+// over the geometry's canonical text (describe-independent: origin, spacing, dims, direction as
+// %.17g) and the raw voxel bytes, so the same image on another grid is a different image.
+//
+// decode_image(encode_image(img).blob, img.geometry) == img exactly.
+// Errors: DATA_LOSS for a truncated or corrupt blob or one whose size does not match the geometry.
+
+#include <string>
+
+#include "core/image.h"
+#include "core/status.h"
+
+namespace soiq::db {
+
+struct EncodedImage {
+  std::string blob;
+  std::string sha256;
+};
+
+Result<EncodedImage> encode_image(const Image& image);
+Result<Image> decode_image(const std::string& blob, const ImageGeometry& geometry);
+
+}  // namespace soiq::db

@@ -1,0 +1,189 @@
+#pragma once
+// The Store: everything soiqd keeps, behind one narrow interface (DESIGN.md "Storage"), so the
+// SQLite file of one machine can be swapped for a shared PostgreSQL database later. Records are
+// plain structs; blobs are already encoded (db/surface_blob.h, db/image_blob.h).
+//
+// Contract for every implementation
+//   - Every method that writes does so in one transaction: on error nothing of it is kept; on
+//     success it is durable (a killed server loses nothing that was acknowledged).
+//   - Errors are soiq::Status codes: NOT_FOUND for an unknown id (the message names it),
+//     INVALID_ARGUMENT for a bad filter or page token, DATA_LOSS for a corrupt record, UNAVAILABLE
+//     when the database is busy past its timeout, INTERNAL otherwise.
+//   - Safe to call from many threads at once.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image_geometry.h"
+#include "core/status.h"
+
+namespace soiq::db {
+
+struct PatientRecord {
+  std::string patient_id;
+  std::string sex;         // "M", "F", "O" or ""
+  std::string birth_date;  // YYYYMMDD or ""
+  int64_t study_count = 0;      // filled on reads
+  int64_t structure_count = 0;  // filled on reads
+};
+
+struct StudyRecord {
+  std::string study_uid;
+  std::string patient_id;
+  std::string study_date;  // YYYYMMDD or ""
+  std::string description;
+  std::string modality;  // the study's own modality, may be ""
+  // Given (DICOM Patient's Age) or, when absent, computed by the store from birth and study date.
+  std::optional<double> age_years;
+  int64_t structure_count = 0;  // filled on reads
+};
+
+struct SeriesRecord {
+  std::string series_uid;
+  std::string study_uid;
+  std::string modality;
+  ImageGeometry geometry;
+  std::string sha256;  // of the image blob
+};
+
+struct SurfaceInfo {
+  std::string sha256;  // of the canonical (uncompressed) encoding
+  int64_t vertex_count = 0;
+  int64_t triangle_count = 0;
+  double bounds_mm[6] = {0, 0, 0, 0, 0, 0};
+};
+
+struct StructureRecord {
+  int64_t id = 0;
+  std::string patient_id;
+  std::string study_uid;
+  std::string name;
+  std::string laterality;  // "L", "R" or ""
+  bool robust = false;
+  std::string created_at;  // ISO 8601 UTC, set by the store
+  SurfaceInfo surface;
+};
+
+// A new structure with its surface blob. The patient and study are inserted or updated (non-empty
+// fields of the given records overwrite stored ones); the blob is stored unless a blob with the
+// same sha256 is already there.
+struct NewStructure {
+  PatientRecord patient;
+  StudyRecord study;
+  std::string name;
+  std::string laterality;
+  bool robust = false;
+  SurfaceInfo surface;
+  std::string surface_blob;  // encoded (db/surface_blob.h)
+};
+
+struct AddedStructure {
+  StructureRecord structure;
+  bool surface_already_stored = false;
+};
+
+struct NewSeries {
+  PatientRecord patient;
+  StudyRecord study;
+  SeriesRecord series;      // sha256 filled by the caller from the blob
+  std::string image_blob;   // encoded (db/image_blob.h)
+};
+
+template <typename T>
+struct Page {
+  std::vector<T> items;
+  std::string next_page_token;  // "" on the last page
+};
+
+struct PageRequest {
+  int32_t page_size = 100;  // 1..1000
+  std::string page_token;
+};
+
+struct PatientFilter {
+  std::string patient_id_glob;
+  std::string sex;
+};
+
+struct StructureFilter {
+  std::string patient_id;
+  std::string study_uid;
+  std::string name_glob;  // case-insensitive
+  std::string laterality;
+};
+
+// Stage 1 of a query (DESIGN.md "Queries"): all on indexed columns. Empty strings and unset
+// optionals do not filter. Dates are inclusive YYYYMMDD strings.
+struct Stage1Filter {
+  std::string patient_id_glob;
+  std::string sex;
+  std::optional<double> min_age_years, max_age_years;
+  std::string birth_date_from, birth_date_to;
+  std::string study_date_from, study_date_to;
+  std::string modality;  // the study's modality or that of one of its series
+  std::string study_description_glob;
+  std::string structure_name_glob;  // case-insensitive
+  std::string laterality;
+};
+
+// One stage-1 hit: the structure with its patient and study, everything stage 2 needs to decide
+// what to compute.
+struct Candidate {
+  StructureRecord structure;
+  PatientRecord patient;
+  StudyRecord study;
+};
+
+// Feature cache. A cache key names one computation context: surface sha256, grid, conversion
+// options and feature-definition version (built by the server); an entry is one feature value in
+// that context, under a name that includes region and image ("mean|shell_3mm|<image sha>").
+struct CachedFeature {
+  std::string key;
+  std::string entry;
+  std::vector<double> value;
+};
+
+struct Counts {
+  int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
+};
+
+class Store {
+ public:
+  virtual ~Store() = default;
+
+  virtual Result<AddedStructure> add_structure(const NewStructure& s) = 0;
+  // Inserts or replaces the series (same uid) and its image blob. Returns true when replaced.
+  virtual Result<bool> put_series(const NewSeries& s) = 0;
+
+  virtual Result<PatientRecord> get_patient(const std::string& patient_id) = 0;
+  virtual Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) = 0;
+  virtual Result<StudyRecord> get_study(const std::string& study_uid) = 0;
+  virtual Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) = 0;
+  virtual Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) = 0;
+  virtual Result<SeriesRecord> get_series(const std::string& series_uid) = 0;
+  virtual Result<std::string> get_image_blob(const std::string& series_uid) = 0;
+  virtual Result<StructureRecord> get_structure(int64_t id) = 0;
+  virtual Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) = 0;
+  virtual Result<std::string> get_surface_blob(const std::string& sha256) = 0;
+
+  // Deletes and returns the number of structures deleted. Blobs and cached features nothing refers
+  // to any more go in the same transaction.
+  virtual Result<int64_t> delete_structure(int64_t id) = 0;
+  virtual Result<int64_t> delete_patient(const std::string& patient_id) = 0;
+
+  // Stage 1, ordered by structure id. More than `limit` candidates is RESOURCE_EXHAUSTED
+  // (the message gives the count and says to narrow the filter).
+  virtual Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) = 0;
+
+  // Every cached entry under each key (one round trip for many keys).
+  virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) = 0;
+  // Stores entries; `surface_sha256` ties them to the surface so they go with it.
+  virtual Status put_cached_features(const std::string& surface_sha256,
+                                     const std::vector<CachedFeature>& entries) = 0;
+
+  virtual Result<Counts> counts() = 0;
+};
+
+}  // namespace soiq::db

@@ -1,0 +1,33 @@
+#pragma once
+// The stored form of a surface model: canonical and compressed, so the same mesh uploaded twice
+// (in any file format) is stored once.
+//
+// Canonical encoding: a magic tag and version, vertex and triangle counts, then the vertices as
+// little-endian float64 LPS millimetres and the triangles as little-endian uint32 index triples,
+// exactly as the mesh holds them (no reordering: the uploaded mesh is what is stored). The sha256
+// is taken over these canonical bytes; the blob is the canonical bytes deflated (zlib).
+//
+// decode_surface(encode_surface(m).blob) == m exactly (bitwise coordinates, same indices).
+// Errors: decode_surface gives DATA_LOSS for a blob that is not a surface blob, is truncated, or
+// whose indices are out of range.
+
+#include <string>
+
+#include "core/status.h"
+#include "core/triangle_mesh.h"
+#include "db/store.h"
+
+namespace soiq::db {
+
+struct EncodedSurface {
+  std::string blob;  // compressed canonical bytes
+  SurfaceInfo info;  // sha256 (lower-case hex), counts and bounds
+};
+
+Result<EncodedSurface> encode_surface(const TriangleMesh& mesh);
+Result<TriangleMesh> decode_surface(const std::string& blob);
+
+// Lower-case hex sha256 of bytes (OpenSSL).
+std::string sha256_hex(const void* data, size_t size);
+
+}  // namespace soiq::db
