@@ -18,7 +18,8 @@
 // Output   IntensityFeatures. A constant region (m2 == 0) has skewness and excess kurtosis 0, as
 //          PyRadiomics returns, rather than 0/0.
 // Errors   INVALID_ARGUMENT  no values ("no intensity values"); a NaN or infinite value.
-// Cost     O(N log N) (one sort); moments in two passes over doubles. Thread-safe.
+// Cost     O(N) expected: the percentiles' order statistics by selection (nth_element), no
+//          sort; moments in two passes over doubles. Thread-safe.
 
 #include <cstdint>
 #include <vector>
@@ -34,7 +35,7 @@ struct IntensityFeatures {
   double mean_absolute_deviation = 0, energy = 0, root_mean_square = 0;
 };
 
-// Taken by value: the values are sorted in place.
+// Taken by value: the values are reordered in place (partitioned around the percentile ranks).
 Result<IntensityFeatures> intensity_features(std::vector<double> values);
 
 }  // namespace soiq

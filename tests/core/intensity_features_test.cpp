@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "core/io/read_image.h"
@@ -89,6 +91,35 @@ TEST(IntensityFeatures, NanValueIsInvalidArgument) {
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(f.status().message().find("NaN"), std::string::npos) << f.status().message();
+}
+
+// The percentiles come from selection, not a sort: on random lists of every small size (with many
+// ties) and a few large ones, each order statistic equals the one of a fully sorted copy exactly.
+TEST(IntensityFeatures, PercentilesBySelectionEqualThoseOfASortedCopy) {
+  std::mt19937_64 rng(7);
+  auto sorted_percentile = [](const std::vector<double>& s, double p) {
+    const double h = double(s.size() - 1) * p;
+    const size_t lo = size_t(std::floor(h)), hi = std::min(lo + 1, s.size() - 1);
+    return s[lo] + (h - double(lo)) * (s[hi] - s[lo]);
+  };
+  for (size_t n : {1, 2, 3, 4, 5, 6, 7, 9, 10, 11, 13, 20, 21, 99, 100, 101, 1000, 100003}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      std::vector<double> values(n);
+      std::uniform_int_distribution<int> small(-5, 5);
+      std::normal_distribution<double> wide(100, 30);
+      for (double& v : values) v = trial % 2 ? double(small(rng)) : wide(rng);
+      std::vector<double> sorted = values;
+      std::sort(sorted.begin(), sorted.end());
+      auto f = intensity_features(values);
+      ASSERT_TRUE(f.ok());
+      EXPECT_EQ(f->minimum, sorted.front());
+      EXPECT_EQ(f->maximum, sorted.back());
+      EXPECT_EQ(f->median, sorted_percentile(sorted, 0.5)) << n;
+      EXPECT_EQ(f->p10, sorted_percentile(sorted, 0.1)) << n;
+      EXPECT_EQ(f->p90, sorted_percentile(sorted, 0.9)) << n;
+      EXPECT_EQ(f->interquartile_range, sorted_percentile(sorted, 0.75) - sorted_percentile(sorted, 0.25)) << n;
+    }
+  }
 }
 
 }  // namespace
