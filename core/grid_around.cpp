@@ -22,6 +22,17 @@ Result<ImageGeometry> grid_around(const TriangleMesh& mesh, const Vec3& spacing_
       hi[a] = std::max(hi[a], p[a]);
     }
   }
+  return grid_around_box(lo, hi, spacing_mm, margin_voxels);
+}
+
+Result<ImageGeometry> grid_around_box(const Vec3& lo, const Vec3& hi, const Vec3& spacing_mm, int margin_voxels) {
+  if (margin_voxels < 0) return invalid_argument("margin must be >= 0 voxels");
+  for (int a = 0; a < 3; ++a) {
+    const double s = spacing_mm[a];
+    if (!(s > 0) || !std::isfinite(s)) return invalid_argument("spacing must be finite and > 0 mm");
+    if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || lo[a] > hi[a])
+      return invalid_argument("bounding box must be finite with min <= max");
+  }
   ImageGeometry g;
   g.spacing_mm = spacing_mm;
   for (int a = 0; a < 3; ++a) {

@@ -16,4 +16,9 @@ namespace soiq {
 
 Result<ImageGeometry> grid_around(const TriangleMesh& mesh, const Vec3& spacing_mm, int margin_voxels);
 
+// The same grid from the mesh's bounding box alone (lo, hi in mm), so a server can name the grid of
+// a stored surface (for its feature cache) without decoding the surface. INVALID_ARGUMENT for a box
+// that is not finite or has lo > hi, spacing <= 0, margin < 0.
+Result<ImageGeometry> grid_around_box(const Vec3& lo, const Vec3& hi, const Vec3& spacing_mm, int margin_voxels);
+
 }  // namespace soiq

@@ -1,0 +1,180 @@
+#include "server/feature_engine.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/structure_features.h"
+#include "db/image_blob.h"
+#include "db/surface_blob.h"
+
+namespace soiq::server {
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& s) {
+  return std::find(list.begin(), list.end(), s) != list.end();
+}
+
+bool is_intensity_only(const std::string& name) {
+  return contains(intensity_feature_names(), name) && !contains(shape_feature_names(), name);
+}
+
+}  // namespace
+
+std::string feature_entry(const std::string& name, const std::string& region, const std::string& image_sha,
+                          Interpolation interpolation) {
+  if (region.empty()) return name;
+  return name + "|" + region + "|" + image_sha + "|" + interpolation_name(interpolation);
+}
+
+Status complete_feature_ask(FeatureAsk& ask) {
+  if (ask.names.empty()) ask.names = shape_feature_names();
+  bool intensity = false;
+  for (const std::string& n : ask.names) {
+    const bool surface_variant = n.rfind("mask_", 0) == 0 && contains(shape_feature_names(), n.substr(5));
+    if (!contains(shape_feature_names(), n) && !contains(intensity_feature_names(), n) && !surface_variant) {
+      std::string known;
+      for (const auto& k : shape_feature_names()) known += (known.empty() ? "" : ", ") + k;
+      for (const auto& k : intensity_feature_names())
+        if (!contains(shape_feature_names(), k)) known += ", " + k;
+      return invalid_argument("unknown feature '" + n + "'; known features: " + known +
+                              " (and mask_<surface feature> for a stored surface's mask)");
+    }
+    intensity = intensity || is_intensity_only(n);
+  }
+  if (intensity && ask.images.empty())
+    return invalid_argument(
+        "intensity features need an image of the structure's study (a modality such as PT, "
+        "or a series uid)");
+  if (!intensity && !ask.images.empty())
+    return invalid_argument("images were given but no intensity feature was asked (e.g. mean, median, p90)");
+  if (ask.regions.empty()) ask.regions.push_back(RegionSpec{});
+  return ok_status();
+}
+
+FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, int64_t cache_budget_bytes)
+    : store_(store),
+      max_grid_voxels_(max_grid_voxels),
+      surfaces_(cache_budget_bytes / 2),
+      images_(cache_budget_bytes / 2) {}
+
+Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
+                                        const std::vector<db::SeriesRecord>& study_series,
+                                        const FeatureAsk& ask) const {
+  FeaturePlan p;
+  p.structure = structure;
+  double widest_shell = 0;
+  for (const RegionSpec& r : ask.regions) {
+    if (r.kind == RegionKind::kShell) widest_shell = std::max(widest_shell, r.radius_mm);
+  }
+  SOIQ_ASSIGN_OR_RETURN(p.grid, resolve_grid(ask.grid, structure, study_series, widest_shell, max_grid_voxels_));
+  for (const std::string& ref : ask.images) {
+    SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(ref, study_series, structure.study_uid));
+    p.images.push_back(std::move(s));
+  }
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a long chain of "literal" + string.
+  p.cache_key = "v";
+  for (const std::string& part : {std::to_string(kFeatureDefinitionVersion), structure.surface.sha256, p.grid.key,
+                                  std::string(ask.fill_rule == FillRule::kEvenOdd ? "evenodd" : "nonzero")}) {
+    p.cache_key += part;
+    p.cache_key += '|';
+  }
+  if (structure.robust) p.cache_key += "robust";
+  for (const std::string& n : ask.names) {
+    if (!is_intensity_only(n)) {
+      p.wants.push_back({feature_entry(n, "", "", ask.interpolation), n, "", ""});
+      continue;
+    }
+    for (const RegionSpec& r : ask.regions) {
+      for (size_t i = 0; i < ask.images.size(); ++i) {
+        const std::string region = region_name(r);
+        p.wants.push_back({feature_entry(n, region, p.images[i].sha256, ask.interpolation), n, region, ask.images[i]});
+      }
+    }
+  }
+  return p;
+}
+
+Result<std::shared_ptr<const TriangleMesh>> FeatureEngine::surface(const std::string& sha256) {
+  return surfaces_.get_or_load(
+      sha256,
+      [&]() -> Result<TriangleMesh> {
+        SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_surface_blob(sha256));
+        return db::decode_surface(blob);
+      },
+      [](const TriangleMesh& m) {
+        return int64_t(m.vertices_mm.size() * sizeof(Vec3) + m.triangles.size() * sizeof(m.triangles[0]));
+      });
+}
+
+Result<std::shared_ptr<const Image>> FeatureEngine::image(const db::SeriesRecord& series) {
+  return images_.get_or_load(
+      series.sha256,
+      [&]() -> Result<Image> {
+        SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_image_blob(series.series_uid));
+        return db::decode_image(blob, series.geometry);
+      },
+      [](const Image& img) { return int64_t(img.voxels.size() * sizeof(float)); });
+}
+
+Result<Voxelization> FeatureEngine::convert(const db::StructureRecord& structure, const ImageGeometry& geometry,
+                                            FillRule fill_rule) {
+  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
+  VoxelizeOptions options;
+  options.fill_rule = fill_rule;
+  options.robust = structure.robust;
+  options.max_voxels = max_grid_voxels_;
+  const std::string name = "structure " + std::to_string(structure.id);
+  options.name = name.c_str();
+  // A surface stored without robust mode was checked closed at upload: no need to count its
+  // defects again on every conversion (that costs as much as the conversion).
+  if (!structure.robust) options.known_defects = MeshDefects{};
+  return voxelize_1d(*mesh, geometry, options);
+}
+
+Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const FeatureAsk& ask,
+                                             const std::atomic<bool>* cancelled) {
+  auto check_cancel = [&]() -> Status {
+    if (cancelled && cancelled->load()) return Status(StatusCode::kCancelled, "cancelled");
+    return ok_status();
+  };
+  SOIQ_RETURN_IF_ERROR(check_cancel());
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(plan.structure, plan.grid.geometry, ask.fill_rule));
+  SOIQ_RETURN_IF_ERROR(check_cancel());
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
+
+  std::vector<std::shared_ptr<const Image>> images;
+  FeatureRequest request;
+  request.names = ask.names;
+  request.regions = ask.regions;
+  request.interpolation = ask.interpolation;
+  for (const db::SeriesRecord& s : plan.images) {
+    SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const Image> img, image(s));
+    images.push_back(img);
+    request.images.push_back(NamedImage{s.sha256, img.get()});
+  }
+  StructureInput input{std::move(v.volume), *mesh};
+  Result<FeatureReport> report = structure_features(input, request);
+  if (!report.ok()) {
+    return Status(report.status().code(),
+                  "structure " + std::to_string(plan.structure.id) + ": " + report.status().message());
+  }
+  FeatureValues values;
+  std::vector<db::CachedFeature> entries;
+  for (const Feature& f : report->features) {
+    const std::string entry = feature_entry(f.name, f.region, f.image, ask.interpolation);
+    values[entry] = f.value;
+    entries.push_back({plan.cache_key, entry, f.value});
+  }
+  for (const WantedValue& w : plan.wants) {
+    if (!values.count(w.entry))
+      return failed_precondition("structure " + std::to_string(plan.structure.id) + ": feature " + w.name +
+                                 (w.region.empty() ? "" : " on " + w.region + " of " + w.image) +
+                                 " is not available here (centre_of_mass_shift_mm needs an image on the "
+                                 "structure's own grid)");
+  }
+  SOIQ_RETURN_IF_ERROR(store_.put_cached_features(plan.structure.surface.sha256, entries));
+  return values;
+}
+
+}  // namespace soiq::server

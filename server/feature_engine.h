@@ -1,0 +1,103 @@
+#pragma once
+// Features of stored structures, computed on demand and cached (DESIGN.md "Queries": cached under
+// surface hash, geometry and feature-definition version). Used by ComputeFeatures for one structure
+// and by the query engine for many.
+//
+// A FeatureAsk says which features, on which regions and images, on which grid. plan() turns it
+// into what one structure needs (its grid, its images, its cache key and entries) without decoding
+// anything, so a query can look up the cache for all candidates in one round trip; compute() then
+// converts, measures and stores what was missing.
+//
+// Cache entries are "name" for shape features and "name|region|image sha256|interpolation" for
+// intensity features, under the key "v<definition version>|<surface sha256>|<grid key>|<fill>".
+// compute() caches every value the report gives, not only those asked.
+//
+// Errors: those of grid resolution (grid_choice.h), of finding an image (NOT_FOUND, naming the
+// study), of the conversion (RESOURCE_EXHAUSTED grid, DATA_LOSS blob) and of the features
+// (INVALID_ARGUMENT: empty region, image in another frame). CANCELLED when `cancelled` turns true.
+// Thread-safe: many workers call compute() at once.
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/fill_rule.h"
+#include "core/image.h"
+#include "core/regions.h"
+#include "core/resample.h"
+#include "core/status.h"
+#include "core/triangle_mesh.h"
+#include "core/voxelize_1d.h"
+#include "db/store.h"
+#include "server/grid_choice.h"
+#include "server/lru_cache.h"
+
+namespace soiq::server {
+
+// Bump when a feature's definition or its computation changes results: old cache entries are then
+// never read again.
+inline constexpr int kFeatureDefinitionVersion = 1;
+
+struct FeatureAsk {
+  std::vector<std::string> names;   // validated names (validate_feature_names)
+  std::vector<RegionSpec> regions;  // for intensity names; default inside
+  std::vector<std::string> images;  // series uid or modality, per structure's study
+  Interpolation interpolation = Interpolation::kNearest;
+  GridChoice grid;
+  FillRule fill_rule = FillRule::kNonZero;
+};
+
+// INVALID_ARGUMENT for an unknown name (listing the known ones), intensity names without an image,
+// images without an intensity name. Empty names: every shape feature.
+Status complete_feature_ask(FeatureAsk& ask);
+
+// One value a plan wants, with the names the client gave.
+struct WantedValue {
+  std::string entry;  // cache entry
+  std::string name, region, image;
+};
+
+struct FeaturePlan {
+  db::StructureRecord structure;
+  ResolvedGrid grid;
+  std::vector<db::SeriesRecord> images;  // one per FeatureAsk::images
+  std::string cache_key;
+  std::vector<WantedValue> wants;
+};
+
+using FeatureValues = std::map<std::string, std::vector<double>>;  // entry -> value
+
+class FeatureEngine {
+ public:
+  FeatureEngine(db::Store& store, int64_t max_grid_voxels, int64_t cache_budget_bytes = int64_t(2) << 30);
+
+  Result<FeaturePlan> plan(const db::StructureRecord& structure, const std::vector<db::SeriesRecord>& study_series,
+                           const FeatureAsk& ask) const;
+
+  // Computes the plan's features and stores them all in the feature cache.
+  Result<FeatureValues> compute(const FeaturePlan& plan, const FeatureAsk& ask,
+                                const std::atomic<bool>* cancelled = nullptr);
+
+  // The stored surface, decoded (cached).
+  Result<std::shared_ptr<const TriangleMesh>> surface(const std::string& sha256);
+  // The structure on a grid by the 1D method (robust when the structure was uploaded so).
+  Result<Voxelization> convert(const db::StructureRecord& structure, const ImageGeometry& geometry, FillRule fill_rule);
+
+  int64_t max_grid_voxels() const { return max_grid_voxels_; }
+
+ private:
+  Result<std::shared_ptr<const Image>> image(const db::SeriesRecord& series);
+
+  db::Store& store_;
+  const int64_t max_grid_voxels_;
+  LruCache<TriangleMesh> surfaces_;
+  LruCache<Image> images_;
+};
+
+// "name" or "name|region|sha|interpolation".
+std::string feature_entry(const std::string& name, const std::string& region, const std::string& image_sha,
+                          Interpolation interpolation);
+
+}  // namespace soiq::server

@@ -1,0 +1,48 @@
+#pragma once
+// Where a stored surface is converted (DESIGN.md "Coordinates and grids"): on a stored image
+// series' grid (named by uid, or by modality within the structure's study), or on an axis-aligned
+// grid around the surface at a spacing with a margin. Resolving needs no decoding: the axis-aligned
+// grid comes from the stored bounds (grid_around_box), so the feature cache can be consulted first.
+//
+// resolve_grid
+//   min_margin_mm  the axis-aligned grid's margin is grown so that shells this wide fit inside it
+//                  (a shell is clipped at the grid border, regions.h).
+//   max_voxels     a larger grid is RESOURCE_EXHAUSTED naming its size and the limit.
+//   Errors: NOT_FOUND for an unknown series or no series of that modality in the study;
+//   FAILED_PRECONDITION when the study has several series of that modality (name one by uid);
+//   INVALID_ARGUMENT for a bad spacing or margin.
+// The returned key names the grid for the feature cache: equal keys, equal grids.
+
+#include <string>
+#include <vector>
+
+#include "core/image_geometry.h"
+#include "core/status.h"
+#include "db/store.h"
+#include "soiq/v1/soiq.pb.h"
+
+namespace soiq::server {
+
+struct GridChoice {
+  enum class Kind { kAxisAligned, kSeriesUid, kSeriesModality } kind = Kind::kAxisAligned;
+  Vec3 spacing_mm{1, 1, 1};
+  int margin_voxels = 2;
+  std::string series;  // uid or modality
+};
+
+Result<GridChoice> grid_choice(const v1::GridSpec& spec);
+
+struct ResolvedGrid {
+  ImageGeometry geometry;
+  std::string key;
+};
+
+// A series of the study by uid or (case-insensitive) modality.
+Result<db::SeriesRecord> find_series(const std::string& ref, const std::vector<db::SeriesRecord>& study_series,
+                                     const std::string& study_uid);
+
+Result<ResolvedGrid> resolve_grid(const GridChoice& choice, const db::StructureRecord& structure,
+                                  const std::vector<db::SeriesRecord>& study_series, double min_margin_mm,
+                                  int64_t max_voxels);
+
+}  // namespace soiq::server

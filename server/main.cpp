@@ -1,0 +1,150 @@
+// soiqd: the soiq server. Opens (or creates) the SQLite store, serves soiq.v1.Soiq with the
+// standard health service and reflection, and shuts down gracefully on SIGTERM or SIGINT: it stops
+// accepting calls, gives calls in flight a few seconds to finish (queries are cancelled after
+// that), then closes the store (a WAL checkpoint).
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/security/server_credentials.h>
+#include <grpcpp/server.h>
+#include <grpcpp/server_builder.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "db/sqlite_store.h"
+#include "server/log.h"
+#include "server/server_config.h"
+#include "server/soiq_service.h"
+
+namespace {
+
+using soiq::Result;
+using soiq::Status;
+
+Result<std::string> read_file(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return soiq::invalid_argument(std::string("cannot read the ") + what + " file '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result<std::string> read_token(const std::string& path) {
+  SOIQ_ASSIGN_OR_RETURN(std::string token, read_file(path, "token"));
+  while (!token.empty() && (token.back() == '\n' || token.back() == '\r' || token.back() == ' ')) token.pop_back();
+  if (token.size() < 16)
+    return soiq::invalid_argument("the token in '" + path + "' is shorter than 16 characters; use a random one");
+  return token;
+}
+
+Result<std::shared_ptr<grpc::ServerCredentials>> credentials(const soiq::server::ServerConfig& c) {
+  if (c.tls_cert.empty()) return grpc::InsecureServerCredentials();
+  grpc::SslServerCredentialsOptions options;
+  SOIQ_ASSIGN_OR_RETURN(std::string cert, read_file(c.tls_cert, "TLS certificate"));
+  SOIQ_ASSIGN_OR_RETURN(std::string key, read_file(c.tls_key, "TLS key"));
+  options.pem_key_cert_pairs.push_back({key, cert});
+  return grpc::SslServerCredentials(options);
+}
+
+Status write_port_file(const std::string& path, int port) {
+  // Written whole, then renamed: a reader polling for the file never sees half of it.
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << port << "\n";
+    if (!out) return soiq::internal_error("cannot write the port file '" + path + "'");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) return soiq::internal_error("cannot write the port file '" + path + "': " + ec.message());
+  return soiq::ok_status();
+}
+
+int fail(const Status& s) {
+  std::fprintf(stderr, "soiqd: %s\n", s.to_string().c_str());
+  return s.code() == soiq::StatusCode::kInvalidArgument ? 2 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool help = false;
+  Result<soiq::server::ServerConfig> config = soiq::server::parse_server_config(argc, argv, help, std::getenv);
+  if (!config.ok()) {
+    std::fprintf(stderr, "soiqd: %s\n%s", config.status().message().c_str(), soiq::server::server_usage());
+    return 2;
+  }
+  if (help) {
+    std::fputs(soiq::server::server_usage(), stdout);
+    return 0;
+  }
+  const soiq::server::ServerConfig& c = *config;
+
+  // Signals are taken by a dedicated thread (sigwait), so block them before any thread starts.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  const std::filesystem::path db_dir = std::filesystem::path(c.db_path).parent_path();
+  std::error_code ec;
+  if (!db_dir.empty()) std::filesystem::create_directories(db_dir, ec);
+  soiq::db::SqliteOptions store_options;
+  store_options.read_connections = std::max(2, c.workers + 2);
+  Result<std::unique_ptr<soiq::db::SqliteStore>> store = soiq::db::SqliteStore::open(c.db_path, store_options);
+  if (!store.ok()) return fail(store.status());
+  std::string token;
+  if (!c.token_file.empty()) {
+    Result<std::string> t = read_token(c.token_file);
+    if (!t.ok()) return fail(t.status());
+    token = *t;
+  }
+  Result<std::shared_ptr<grpc::ServerCredentials>> creds = credentials(c);
+  if (!creds.ok()) return fail(creds.status());
+
+  soiq::server::SoiqService service(**store, c, token);
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(c.listen, *creds, &port);
+  builder.RegisterService(&service);
+  builder.SetMaxReceiveMessageSize(8 << 20);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0)
+    return fail(soiq::Status(soiq::StatusCode::kUnavailable,
+                             "cannot listen on " + c.listen + " (address in use or not local?)"));
+  if (!c.port_file.empty()) {
+    const Status s = write_port_file(c.port_file, port);
+    if (!s.ok()) return fail(s);
+  }
+  soiq::server::log_event("info", {{"event", "listening"},
+                                   {"address", c.listen},
+                                   {"port", std::to_string(port)},
+                                   {"db", c.db_path},
+                                   {"tls", c.tls_cert.empty() ? "off" : "on"},
+                                   {"auth", token.empty() ? "off" : "bearer"},
+                                   {"workers", std::to_string(c.workers)}});
+
+  std::thread waiter([&] {
+    int sig = 0;
+    sigwait(&signals, &sig);
+    soiq::server::log_event("info", {{"event", "shutdown"}, {"signal", sig == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    server->GetHealthCheckService()->Shutdown();
+    // Calls in flight get 10 s; after that they are cancelled (queries notice and stop).
+    server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  });
+  server->Wait();
+  waiter.join();
+  server.reset();
+  store->reset();  // closes the database: WAL checkpoint
+  soiq::server::log_event("info", {{"event", "stopped"}});
+  return 0;
+}

@@ -1,0 +1,26 @@
+#pragma once
+// Conversions between the store's records (db/store.h) and the API's messages (soiq.proto), in
+// one place so every handler speaks the same dialect.
+
+#include "core/image_geometry.h"
+#include "core/status.h"
+#include "db/store.h"
+#include "soiq/v1/soiq.pb.h"
+
+namespace soiq::server {
+
+v1::Patient to_proto(const db::PatientRecord& r);
+v1::Study to_proto(const db::StudyRecord& r);
+v1::Series to_proto(const db::SeriesRecord& r);
+v1::Structure to_proto(const db::StructureRecord& r);
+v1::ImageGeometry to_proto(const ImageGeometry& g);
+
+// Validates what a client sent: DICOM-like sex (M, F, O or empty), dates (YYYYMMDD or empty),
+// laterality (L, R or empty), non-empty ids. INVALID_ARGUMENT naming the field otherwise.
+Result<db::PatientRecord> from_proto(const v1::Patient& p);
+Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patient_id);
+Status check_laterality(const std::string& laterality);
+Status check_date(const std::string& date, const char* field);
+Status check_sex(const std::string& sex, const char* field);
+
+}  // namespace soiq::server

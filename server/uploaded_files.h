@@ -1,0 +1,32 @@
+#pragma once
+// Uploaded bytes -> core objects, and core objects -> bytes for download, through the same
+// readers and writers as the offline CLI (core/io), so an upload is checked exactly as a local
+// file would be.
+//
+// parse_surface: `format` is stl, obj, ply, vtk or vtp; `ras` flips x and y into LPS. The mesh is
+// validated (no triangles, NaN vertices, bad indices: INVALID_ARGUMENT naming `name`), and a closed
+// mesh is turned to face outward. An open or inconsistently oriented surface is FAILED_PRECONDITION
+// unless `robust` (its conversions then use the three-axis vote).
+// parse_image: `format` is nii, nii.gz, nrrd or mha; INVALID_ARGUMENT for a malformed file.
+// surface_bytes: the mesh in `format` (stl default), flipped to RAS when asked.
+
+#include <string>
+
+#include "core/image.h"
+#include "core/mesh_defects.h"
+#include "core/status.h"
+#include "core/triangle_mesh.h"
+
+namespace soiq::server {
+
+struct ParsedSurface {
+  TriangleMesh mesh;
+  MeshDefects defects;
+};
+
+Result<ParsedSurface> parse_surface(const std::string& bytes, const std::string& format, bool ras, bool robust,
+                                    const std::string& name);
+Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name);
+Result<std::string> surface_bytes(const TriangleMesh& mesh, const std::string& format, bool ras);
+
+}  // namespace soiq::server
