@@ -51,6 +51,27 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
                             " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
   }
 
+  SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(points));
+  // The farthest pair of a set is a pair of its hull's vertices.
+  std::vector<Vec3> hull_points;
+  hull_points.reserve(hull.vertex_indices.size());
+  for (const int64_t v : hull.vertex_indices) hull_points.push_back(points[size_t(v)]);
+  const double diameter = point_set_diameter(hull_points);
+
+  // Extents along the box axes (the columns of box_axes).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  for (const Vec3& p : points) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
+      lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
+    }
+  }
+  return surface_shape_from_measures(volume, area, hull, diameter, hi - lo);
+}
+
+SurfaceShape surface_shape_from_measures(double volume, double area, const ConvexHull& hull, double diameter_mm,
+                                         const Vec3& e) {
   SurfaceShape out;
   out.mesh_volume_mm3 = volume;
   out.surface_area_mm2 = area;
@@ -62,28 +83,11 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   out.spherical_disproportion = area / sphere_area;
   out.sphericity = sphere_area / area;
   out.asphericity = area / sphere_area - 1;  // (A^3 / (36 pi V^2))^(1/3) - 1
-
-  SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(points));
-  // The farthest pair of a set is a pair of its hull's vertices.
-  std::vector<Vec3> hull_points;
-  hull_points.reserve(hull.vertex_indices.size());
-  for (const int64_t v : hull.vertex_indices) hull_points.push_back(points[size_t(v)]);
-  out.maximum_3d_diameter_mm = point_set_diameter(hull_points);
+  out.maximum_3d_diameter_mm = diameter_mm;
   out.convex_hull_volume_mm3 = hull.volume_mm3;
   out.convex_hull_area_mm2 = hull.area_mm2;
   out.volume_density_convex_hull = volume / hull.volume_mm3;
   out.area_density_convex_hull = area / hull.area_mm2;
-
-  // Extents along the box axes (the columns of box_axes).
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-  for (const Vec3& p : points) {
-    for (int c = 0; c < 3; ++c) {
-      const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
-      lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
-    }
-  }
-  const Vec3 e = hi - lo;
   out.volume_density_aabb = volume / (e[0] * e[1] * e[2]);
   out.area_density_aabb = area / (2 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]));
   return out;

@@ -32,6 +32,7 @@
 //          depends on the origin and the ratios are meaningless. The 2D diameters need the grid:
 //          maximum_2d_diameters.h.
 
+#include "core/convex_hull.h"
 #include "core/status.h"
 #include "core/triangle_mesh.h"
 #include "core/vec3.h"
@@ -57,5 +58,11 @@ struct SurfaceShape {
 };
 
 Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes = identity3());
+
+// The ratios and densities above from the measures they are made of: mesh volume V (> 0), area A,
+// the vertices' convex hull, their largest distance and their extents along the box axes.
+// surface_shape and mask_surface_shape both end here, so the formulas exist once. O(1).
+SurfaceShape surface_shape_from_measures(double volume_mm3, double area_mm2, const ConvexHull& hull, double diameter_mm,
+                                         const Vec3& box_extent_mm);
 
 }  // namespace soiq

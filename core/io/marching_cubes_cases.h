@@ -1,0 +1,17 @@
+#pragma once
+// The case table of soiq's marching cubes (marching_cubes.h: VTK's vtkFlyingEdges3D at iso 0.5),
+// read off VTK once per process by running it on each of the 256 single-cube patterns. With it,
+// mask_surface_shape(runs) reproduces the marching-cubes surface's volume and area exactly (up
+// to rounding) without building the surface.
+// Output   the table (cube_case_table.h). Cases 0 and 255 have no triangles.
+// Errors   none; a VTK failure is a broken installation and aborts (assert) in debug builds and
+//          yields an empty case in release builds, which the tests would catch.
+// Cost     ~256 tiny VTK runs on the first call (a few ms); then free. Thread-safe (static init).
+
+#include "core/cube_case_table.h"
+
+namespace soiq {
+
+const CubeCaseTable& marching_cubes_cases();
+
+}  // namespace soiq

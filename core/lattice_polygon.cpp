@@ -1,0 +1,57 @@
+#include "core/lattice_polygon.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace soiq {
+namespace {
+
+// Twice the signed area of (a, b, c): > 0 for a counter-clockwise turn. Exact below 2^62.
+int64_t turn(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c) {
+  return (b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u);
+}
+
+}  // namespace
+
+std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& points) {
+  const size_t n = points.size();
+  if (n <= 2) return points;
+  std::vector<LatticePoint> hull(2 * n);
+  size_t h = 0;
+  for (size_t p = 0; p < n; ++p) {  // lower chain
+    while (h >= 2 && turn(hull[h - 2], hull[h - 1], points[p]) <= 0) --h;
+    hull[h++] = points[p];
+  }
+  for (size_t p = n - 1, lower = h + 1; p-- > 0;) {  // upper chain
+    while (h >= lower && turn(hull[h - 2], hull[h - 1], points[p]) <= 0) --h;
+    hull[h++] = points[p];
+  }
+  hull.resize(h - 1);  // the last point repeats the first
+  return hull;
+}
+
+double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v) {
+  const size_t h = hull.size();
+  auto squared = [&](size_t a, size_t b) {
+    const double du = double(hull[a].u - hull[b].u) * scale_u, dv = double(hull[a].v - hull[b].v) * scale_v;
+    return du * du + dv * dv;
+  };
+  if (h < 2) return 0;
+  if (h == 2) return std::sqrt(squared(0, 1));
+  double best = 0;
+  size_t j = 1;
+  for (size_t i = 0; i < h; ++i) {
+    const size_t i1 = (i + 1) % h;
+    // Advance j to the vertex farthest from edge (i, i1); the area grows, then falls (convexity).
+    while (turn(hull[i], hull[i1], hull[(j + 1) % h]) > turn(hull[i], hull[i1], hull[j])) j = (j + 1) % h;
+    best = std::max({best, squared(i, j), squared(i1, j)});
+    // An edge parallel to (i, i1) at j: its other end is antipodal to both ends as well.
+    const size_t j1 = (j + 1) % h;
+    if (turn(hull[i], hull[i1], hull[j1]) == turn(hull[i], hull[i1], hull[j])) {
+      best = std::max({best, squared(i, j1), squared(i1, j1)});
+    }
+  }
+  return std::sqrt(best);
+}
+
+}  // namespace soiq

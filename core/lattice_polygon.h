@@ -1,0 +1,37 @@
+#pragma once
+// Convex hull and diameter of integer points in a plane, exact: the 2D step of the mask-surface
+// features computed from runs (mask_surface_shape.h, mask_maximum_2d_diameters.h), whose points
+// are marching-cubes vertices in doubled index coordinates (every coordinate an integer).
+//
+// lattice_hull
+//   Input   points sorted by (u, v) ascending, distinct; |coordinates| < 2^30.
+//   Output  the hull's vertices counter-clockwise, starting at the first point; points on an
+//           edge's interior (collinear) are left out. One point gives itself; all collinear
+//           points give the two ends. Turns are exact integer cross products (Andrew's monotone
+//           chain).
+//   Cost    O(n) time and memory. Thread-safe.
+//
+// lattice_polygon_diameter
+//   Input   a convex polygon as lattice_hull returns it; scale_u, scale_v > 0: mm per unit along
+//           u and v (a grid's anisotropic spacing, halved for doubled coordinates).
+//   Output  max over vertex pairs of sqrt((du scale_u)^2 + (dv scale_v)^2); 0 for fewer than 2.
+//   Method  rotating calipers over the antipodal pairs, found with exact integer areas. An affine
+//           map (the scaling) keeps parallel supporting lines parallel, so the antipodal pairs of
+//           the scaled polygon are those of the integer one, and its diameter is one of them.
+//   Cost    O(h) for h vertices. Thread-safe.
+
+#include <cstdint>
+#include <vector>
+
+namespace soiq {
+
+struct LatticePoint {
+  int64_t u = 0, v = 0;
+  bool operator==(const LatticePoint&) const = default;
+};
+
+std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& sorted_points);
+
+double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v);
+
+}  // namespace soiq
