@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/ball_dilation.h"
 #include "core/distance_transform.h"
 
 namespace soiq {
@@ -46,6 +47,30 @@ Status check_structure(const RunLengthVolume& v) {
     if (run.begin < 0 || run.begin >= run.end || run.end > v.geometry.dims[0]) return invalid_argument(bad);
   }
   return ok_status();
+}
+
+// Runs of `a` minus runs of `b`, line by line (both on one grid).
+RunLengthVolume subtract(const RunLengthVolume& a, const RunLengthVolume& b) {
+  RunLengthVolume out;
+  out.geometry = a.geometry;
+  out.line_start.resize(a.line_start.size());
+  for (int64_t l = 0; l < a.line_count(); ++l) {
+    out.line_start[size_t(l)] = int64_t(out.runs.size());
+    int64_t rb = b.line_start[size_t(l)];
+    const int64_t eb = b.line_start[size_t(l) + 1];
+    for (int64_t ra = a.line_start[size_t(l)]; ra < a.line_start[size_t(l) + 1]; ++ra) {
+      int32_t from = a.runs[size_t(ra)].begin;
+      const int32_t to = a.runs[size_t(ra)].end;
+      while (rb < eb && b.runs[size_t(rb)].end <= from) ++rb;
+      for (int64_t q = rb; q < eb && b.runs[size_t(q)].begin < to; ++q) {
+        if (b.runs[size_t(q)].begin > from) out.runs.push_back({from, b.runs[size_t(q)].begin});
+        from = std::max(from, b.runs[size_t(q)].end);
+      }
+      if (from < to) out.runs.push_back({from, to});
+    }
+  }
+  out.line_start.back() = int64_t(out.runs.size());
+  return out;
 }
 
 const char* kind_word(RegionKind kind) {
@@ -125,6 +150,17 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
     return resource_exhausted(buf);
   }
 
+  // The shell by run dilation when the ball's (j, k) cross section times the runs per line costs
+  // less than the transform's pass over the box (both select the same voxels).
+  const bool is_shell = spec.kind == RegionKind::kShell;
+  if (is_shell && options.allow_run_dilation) {
+    const int64_t lines = std::max<int64_t>(1, inside_box.dims()[1] * inside_box.dims()[2]);
+    const double runs_per_line = double(structure.runs.size()) / double(lines);
+    if (double(ball_dilation_offsets(g, r)) * std::max(1.0, runs_per_line) < 2.0 * double(bd[0])) {
+      return subtract(ball_dilation(structure, r), structure);
+    }
+  }
+
   // Dense inside flags of the box.
   const int64_t ny = g.dims[1];
   std::vector<uint8_t> inside(size_t(bd[0] * bd[1] * bd[2]), 0);
@@ -140,7 +176,6 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
   }
 
   // Shell: distances to the inside voxels; core: to the outside ones.
-  const bool is_shell = spec.kind == RegionKind::kShell;
   std::vector<uint8_t> outside;
   if (!is_shell) {
     outside.resize(inside.size());

@@ -6,8 +6,10 @@
 
 #include "core/centre_of_mass_shift.h"
 #include "core/intensity_features.h"
-#include "core/io/marching_cubes.h"
-#include "core/maximum_2d_diameters.h"
+#include "core/io/marching_cubes_cases.h"
+#include "core/mask_maximum_2d_diameters.h"
+#include "core/mask_surface_shape.h"
+#include "core/mask_surface_sweep.h"
 #include "core/surface_shape.h"
 
 namespace soiq {
@@ -62,39 +64,6 @@ class PartTimer {
  private:
   FeatureReport& report_;
 };
-
-// The structure's mask cropped to its bounding box (the same voxel centres, a smaller grid), so
-// marching cubes and the 2D diameters cost what the structure costs, not what the image does.
-Result<Mask> cropped_mask(const RunLengthVolume& v) {
-  const auto& d = v.geometry.dims;
-  int64_t lo[3] = {d[0], d[1], d[2]}, hi[3] = {-1, -1, -1};
-  for (int64_t l = 0; l < v.line_count(); ++l) {
-    if (v.line_start[size_t(l)] == v.line_start[size_t(l + 1)]) continue;
-    const int64_t j = l % d[1], k = l / d[1];
-    lo[0] = std::min<int64_t>(lo[0], v.runs[size_t(v.line_start[size_t(l)])].begin);
-    hi[0] = std::max<int64_t>(hi[0], v.runs[size_t(v.line_start[size_t(l + 1)] - 1)].end - 1);
-    lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
-    lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
-  }
-  if (hi[0] < 0) return invalid_argument("the structure has no voxels inside its grid");
-  Mask m;
-  m.geometry = v.geometry;
-  m.geometry.origin_mm = v.geometry.index_to_physical({double(lo[0]), double(lo[1]), double(lo[2])});
-  m.geometry.dims = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
-  SOIQ_RETURN_IF_ERROR(check_grid_size(m.geometry, kDefaultMaxVoxels));
-  m.voxels.assign(size_t(m.geometry.voxel_count()), 0);
-  const int64_t nx = m.geometry.dims[0], ny = m.geometry.dims[1];
-  for (int64_t k = lo[2]; k <= hi[2]; ++k) {
-    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
-      const int64_t l = j + d[1] * k;
-      uint8_t* row = m.voxels.data() + ((k - lo[2]) * ny + (j - lo[1])) * nx;
-      for (int64_t r = v.line_start[size_t(l)]; r < v.line_start[size_t(l + 1)]; ++r) {
-        std::fill(row + (v.runs[size_t(r)].begin - lo[0]), row + (v.runs[size_t(r)].end - lo[0]), uint8_t(1));
-      }
-    }
-  }
-  return m;
-}
 
 void add_surface(FeatureReport& report, const SurfaceShape& s, const std::string& prefix,
                  const std::function<bool(const std::string&)>& wanted) {
@@ -192,30 +161,30 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
 
   const bool need_mask_surface = any_wanted(kDiameter2dNames) || (!has_surface && any_wanted(kSurfaceNames)) ||
                                  (has_surface && any_wanted(kSurfaceNames, "mask_"));
-  std::optional<Mask> crop;
-  std::optional<TriangleMesh> mask_surface;
+  // The mask's marching-cubes surface is never built: its features come from one sweep of the
+  // runs (mask_surface_sweep.h), exactly those of marching_cubes(mask) up to rounding.
+  std::optional<MaskSurfaceSweep> sweep;
   if (need_mask_surface) {
-    SOIQ_ASSIGN_OR_RETURN(Mask m, timer.run("mask crop", [&] { return cropped_mask(input.volume); }));
-    SOIQ_ASSIGN_OR_RETURN(TriangleMesh s,
-                          timer.run("mask surface (marching cubes)", [&] { return marching_cubes(m); }));
-    crop = std::move(m);
-    mask_surface = std::move(s);
+    SOIQ_ASSIGN_OR_RETURN(MaskSurfaceSweep swept,
+                          timer.run("mask surface sweep", [&] { return mask_surface_sweep(input.volume); }));
+    sweep = std::move(swept);
   }
-  const Mat3& axes = input.volume.geometry.direction;
+  const ImageGeometry& grid = input.volume.geometry;
+  auto mask_shape = [&] { return mask_surface_shape(*sweep, grid, marching_cubes_cases()); };
   if (any_wanted(kSurfaceNames)) {
-    const TriangleMesh& surface = has_surface ? *input.surface : *mask_surface;
-    SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run(has_surface ? "surface shape" : "mask surface shape",
-                                                    [&] { return surface_shape(surface, axes); }));
+    SOIQ_ASSIGN_OR_RETURN(
+        SurfaceShape s, has_surface
+                            ? timer.run("surface shape", [&] { return surface_shape(*input.surface, grid.direction); })
+                            : timer.run("mask surface shape", mask_shape));
     add_surface(report, s, "", wanted);
   }
   if (has_surface && any_wanted(kSurfaceNames, "mask_")) {
-    SOIQ_ASSIGN_OR_RETURN(SurfaceShape s,
-                          timer.run("mask surface shape", [&] { return surface_shape(*mask_surface, axes); }));
+    SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("mask surface shape", mask_shape));
     add_surface(report, s, "mask_", wanted);
   }
   if (any_wanted(kDiameter2dNames)) {
     SOIQ_ASSIGN_OR_RETURN(Maximum2DDiameters d, timer.run("2d diameters", [&] {
-      return maximum_2d_diameters(*mask_surface, crop->geometry);
+      return mask_maximum_2d_diameters(*sweep, grid.spacing_mm);
     }));
     const double values[] = {d.slice_mm, d.column_mm, d.row_mm};
     for (size_t i = 0; i < 3; ++i) {

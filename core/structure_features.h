@@ -21,7 +21,8 @@
 //            is one, else of the mask's marching-cubes surface (as IBSI and PyRadiomics do). With a
 //            stored surface, the mask-surface values are also given, prefixed "mask_".
 //   maximum_2d_diameter_slice_mm / _column_mm / _row_mm: always of the mask's marching-cubes
-//            surface, whose vertices lie on the grid's (half-)voxel planes (maximum_2d_diameters.h).
+//            surface, whose vertices lie on the grid's (half-)voxel planes (maximum_2d_diameters.h;
+//            computed from the runs: mask_maximum_2d_diameters.h, mask_surface_shape.h).
 //   per region and image: mean, standard_deviation, variance, skewness, excess_kurtosis, minimum,
 //            maximum, median, p10, p90, interquartile_range, range, mean_absolute_deviation,
 //            energy, root_mean_square, voxel_count (intensity_features.h); for the inside region
@@ -31,7 +32,8 @@
 //                     features asked without an image, an empty structure, an image in another
 //                     frame of reference (no region voxel inside it), an empty region.
 //   Others as the parts report them.
-// Cost: the sum of the parts requested; the mask surface is built once (marching cubes).
+// Cost: the sum of the parts requested. The mask's marching-cubes surface is never built: its
+// features come from one O(runs) sweep shared by the mask surface shape and the 2D diameters.
 
 #include <optional>
 #include <string>

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "core/ball_dilation.h"
 #include "core/primitives.h"
 #include "core/voxelize_1d.h"
 
@@ -78,15 +79,28 @@ TEST_P(RegionsOracle, EqualsBruteForceVoxelForVoxelOnAnAnisotropicGrid) {
   const OracleCase c = GetParam();
   for (uint64_t seed : {1, 2, 3}) {
     const Mask blob = random_blob(seed);
-    auto got = region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2});
-    ASSERT_TRUE(got.ok()) << got.status().to_string();
-    const RunLengthVolume want = from_mask(brute_force_region(blob, c.kind, c.radius_mm));
+    const Mask brute = brute_force_region(blob, c.kind, c.radius_mm);
+    const RunLengthVolume want = from_mask(brute);
     if (!c.empty) {
       ASSERT_GT(voxel_count(want), 0);
     }
-    auto cmp = compare(*got, want);
-    ASSERT_TRUE(cmp.ok());
-    EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed;
+    // Both ways to a shell (run dilation when cheaper, else the distance transform) and the
+    // transform alone.
+    for (const bool allow_run_dilation : {true, false}) {
+      auto got =
+          region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2, .allow_run_dilation = allow_run_dilation});
+      ASSERT_TRUE(got.ok()) << got.status().to_string();
+      auto cmp = compare(*got, want);
+      ASSERT_TRUE(cmp.ok());
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed << ", run dilation " << allow_run_dilation;
+    }
+    if (c.kind == RegionKind::kShell) {  // the dilation itself: the structure plus its shell
+      Mask dilated = brute;
+      for (size_t n = 0; n < blob.voxels.size(); ++n) dilated.voxels[n] |= blob.voxels[n];
+      auto cmp = compare(ball_dilation(from_mask(blob), c.radius_mm), from_mask(dilated));
+      ASSERT_TRUE(cmp.ok());
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed;
+    }
   }
 }
 
