@@ -1,0 +1,132 @@
+#include "client/cli/demo_load_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "client/cli/cli_args.h"
+#include "client/cli/record_args.h"
+#include "client/cli/remote_options.h"
+#include "client/cohort/synthetic_cohort.h"
+#include "core/io/write_image.h"
+#include "core/io/write_mesh.h"
+
+namespace soiq::cli {
+
+namespace {
+
+struct DemoArgs {
+  int patients = 20;
+  int seed = 1;
+};
+
+Result<DemoArgs> parse(int argc, char** argv) {
+  DemoArgs a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg != "--patients" && arg != "--seed") return invalid_argument("unexpected argument '" + arg + "'");
+    SOIQ_ASSIGN_OR_RETURN(const std::string v, option_value(argc, argv, i));
+    if (arg == "--patients") {
+      SOIQ_ASSIGN_OR_RETURN(a.patients, parse_int(v, arg, 1, 1000));
+    } else {
+      SOIQ_ASSIGN_OR_RETURN(a.seed, parse_int(v, arg, 0, 1 << 30));
+    }
+  }
+  return a;
+}
+
+// A private temporary folder, removed when the command ends.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "soiq-demo-XXXXXX").string();
+    if (mkdtemp(pattern.data())) path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+Status load_patient(const client::Client& c, const SyntheticPatient& p, const std::string& dir) {
+  soiq::v1::Patient patient;
+  patient.set_patient_id(p.patient_id);
+  patient.set_sex(p.sex);
+  patient.set_birth_date(p.birth_date);
+  soiq::v1::Study study;
+  study.set_study_uid(p.study_uid);
+  study.set_patient_id(p.patient_id);
+  study.set_study_date(p.study_date);
+  study.set_description(p.study_description);
+  study.set_modality(p.modality);
+
+  soiq::v1::UploadImageHeader image;
+  *image.mutable_patient() = patient;
+  *image.mutable_study() = study;
+  image.set_series_uid(p.series_uid);
+  image.set_modality(p.modality);
+  const std::string image_path = dir + "/" + p.patient_id + ".nii.gz";
+  SOIQ_RETURN_IF_ERROR(write_image(p.image, image_path));
+  SOIQ_RETURN_IF_ERROR(c.upload_image(image, image_path).status());
+
+  int64_t first = 0, last = 0;
+  for (const SyntheticStructure& s : p.structures) {
+    soiq::v1::UploadSurfaceHeader header;
+    *header.mutable_patient() = patient;
+    *header.mutable_study() = study;
+    header.set_structure_name(s.name);
+    header.set_laterality(s.laterality);
+    const std::string mesh_path = dir + "/" + p.patient_id + "_" + s.name + "_" + s.laterality + ".stl";
+    SOIQ_RETURN_IF_ERROR(write_mesh(s.surface, mesh_path));
+    SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, c.upload_surface(header, mesh_path));
+    last = r.structure().id();
+    if (first == 0) first = last;
+  }
+  std::printf("%s  %s  born %s  MR %s: image %lldx%lldx%lld, %zu structures (ids %lld-%lld)\n", p.patient_id.c_str(),
+              p.sex.c_str(), p.birth_date.c_str(), p.study_date.c_str(), (long long)p.image.geometry.dims[0],
+              (long long)p.image.geometry.dims[1], (long long)p.image.geometry.dims[2], p.structures.size(),
+              (long long)first, (long long)last);
+  std::fflush(stdout);
+  return ok_status();
+}
+
+Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
+  SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
+  // Fail fast, before generating anything, when the server is not there.
+  SOIQ_RETURN_IF_ERROR(c.server_info().status());
+  const TempDir dir;
+  if (dir.path().empty()) return internal_error("cannot create a temporary folder for the demo files");
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<SyntheticPatient> cohort = synthetic_cohort(a.patients, uint64_t(a.seed));
+  size_t structures = 0;
+  for (const SyntheticPatient& p : cohort) {
+    SOIQ_RETURN_IF_ERROR(load_patient(c, p, dir.path()));
+    structures += p.structures.size();
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("\nloaded %zu patients, %zu MR images, %zu structures into soiqd at %s in %.1f s\n", cohort.size(),
+              cohort.size(), structures, c.address().c_str(), s);
+  std::printf(
+      "try:\n"
+      "  soiq ls structures --name hippocampus\n"
+      "  soiq query --name hippocampus --min-age 60 --select voxel_volume_mm3 --order-by voxel_volume_mm3\n"
+      "  soiq query --name amygdala --sex F --series-modality MR --where 'mean[inside,MR]>200' "
+      "--select 'mean[shell:3,MR]'\n"
+      "  soiq query --name caudate --laterality L --select 'asym(voxel_volume_mm3)' --order-by "
+      "'asym(voxel_volume_mm3)' --desc --limit 5\n");
+  return ok_status();
+}
+
+}  // namespace
+
+int run_demo_load_command(int argc, char** argv, const client::ClientOptions& remote) {
+  return run_command("demo-load", parse(argc, argv), [&](const DemoArgs& a) { return demo_load(a, remote); });
+}
+
+}  // namespace soiq::cli

@@ -1,0 +1,81 @@
+#include "client/cli/query_command.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include "client/cli/cli_args.h"
+#include "client/cli/progress_bar.h"
+#include "client/cli/query_args.h"
+#include "client/cli/remote_options.h"
+#include "client/cli/row_printer.h"
+
+namespace soiq::cli {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) { g_interrupted = true; }
+
+std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, size_t feature_columns, bool csv) {
+  const soiq::v1::Structure& s = row.structure();
+  std::vector<Cell> cells = {int_cell(s.id()), text_cell(s.patient_id()), text_cell(s.study_uid()), text_cell(s.name()),
+                             text_cell(s.laterality())};
+  for (size_t c = 0; c < feature_columns; ++c) {
+    if (c < size_t(row.values_size())) {
+      const auto& v = row.values(int(c)).value();
+      cells.push_back(numbers_cell({v.begin(), v.end()}, csv));
+    } else {
+      cells.push_back({"", "null"});
+    }
+  }
+  return cells;
+}
+
+void print_summary(const soiq::v1::QuerySummary& s) {
+  std::fprintf(stderr,
+               "%lld candidates, %lld computed, %lld cache hits, %lld matched, %lld returned, %lld failed; "
+               "stage 1 %.1f ms, stage 2 %.1f ms, total %.1f ms\n",
+               (long long)s.stage1_candidates(), (long long)s.computed(), (long long)s.cache_hits(),
+               (long long)s.matched(), (long long)s.returned(), (long long)s.failed(), s.stage1_ms(), s.stage2_ms(),
+               s.total_ms());
+  for (const std::string& f : s.failures()) std::fprintf(stderr, "  %s\n", f.c_str());
+}
+
+Status query(const QueryArgs& a, const client::ClientOptions& remote) {
+  SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
+  const std::vector<std::string> features = query_feature_columns(a.request);
+  std::vector<std::string> header = {"id", "patient_id", "study_uid", "name", "laterality"};
+  header.insert(header.end(), features.begin(), features.end());
+  RowPrinter out(a.format, header);
+  ProgressBar bar;
+  client::QueryHandlers handlers;
+  handlers.cancel = &g_interrupted;
+  handlers.on_progress = [&](const soiq::v1::QueryProgress& p) {
+    bar.update(p.stage(), p.done(), p.total());
+    return true;
+  };
+  handlers.on_row = [&](const soiq::v1::QueryRow& row) {
+    out.row(row_cells(row, features.size(), a.format == "csv"));
+    return true;
+  };
+  g_interrupted = false;
+  auto previous = std::signal(SIGINT, on_interrupt);
+  const Result<soiq::v1::QuerySummary> summary = c.query(a.request, handlers);
+  std::signal(SIGINT, previous);
+  bar.clear();
+  if (!summary.ok()) return summary.status();
+  out.end();
+  print_summary(*summary);
+  return ok_status();
+}
+
+}  // namespace
+
+int run_query_command(int argc, char** argv, const client::ClientOptions& remote) {
+  return run_command("query", parse_query_args(argc, argv), [&](const QueryArgs& a) { return query(a, remote); });
+}
+
+}  // namespace soiq::cli

@@ -1,0 +1,96 @@
+#include "client/cli/remote_convert_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "client/cli/cli_args.h"
+#include "client/cli/grid_args.h"
+#include "client/cli/record_args.h"
+#include "client/cli/remote_options.h"
+#include "client/cli/show_records.h"
+#include "core/io/read_image.h"
+#include "core/io/write_image.h"
+
+namespace soiq::cli {
+
+namespace {
+
+struct RemoteConvertArgs {
+  soiq::v1::ConvertRequest request;
+  std::string out;
+};
+
+Result<RemoteConvertArgs> parse(int argc, char** argv) {
+  RemoteConvertArgs a;
+  GridArgs grid;
+  std::string id;
+  for (int i = 1; i < argc; ++i) {
+    SOIQ_ASSIGN_OR_RETURN(const bool is_grid, parse_grid_option(argc, argv, i, grid));
+    if (is_grid) continue;
+    const std::string arg = argv[i];
+    if (arg == "-o" || arg == "--output") {
+      SOIQ_ASSIGN_OR_RETURN(a.out, option_value(argc, argv, i));
+    } else if (arg == "--even-odd") {
+      a.request.set_fill_rule(soiq::v1::EVEN_ODD);
+    } else if (arg == "--robust" || arg == "--ras" || arg == "--reference" || arg == "--threads") {
+      return invalid_argument(arg + " applies to a mesh file; a stored structure keeps how it was uploaded" +
+                              (arg == "--reference" ? " (use --series UID for a stored image's grid)" : ""));
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      return invalid_argument("unknown option '" + arg + "'");
+    } else if (id.empty()) {
+      id = arg;
+    } else {
+      return invalid_argument("unexpected argument '" + arg + "'");
+    }
+  }
+  SOIQ_ASSIGN_OR_RETURN(const int64_t structure_id, parse_structure_id(id));
+  a.request.set_structure_id(structure_id);
+  SOIQ_RETURN_IF_ERROR(check_grid_args(grid));
+  if (grid.given || grid.margin_given) *a.request.mutable_grid() = grid.grid;
+  if (a.out.empty()) return invalid_argument("missing -o OUT");
+  if (!ends_with(a.out, ".nii.gz") && !ends_with(a.out, ".nii") && !ends_with(a.out, ".nrrd") &&
+      !ends_with(a.out, ".mha")) {
+    return invalid_argument("output '" + a.out + "' has an unknown extension; use .nii.gz, .nii, .nrrd or .mha");
+  }
+  a.request.set_encoding(soiq::v1::NIFTI_GZ);
+  return a;
+}
+
+Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) {
+  SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
+  // soiqd sends .nii.gz; any other format goes through a temporary file beside the output.
+  const bool direct = ends_with(a.out, ".nii.gz");
+  const std::string path = direct ? a.out : a.out + ".part.nii.gz";
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file) return not_found("cannot write '" + path + "'");
+  client::ConvertHandlers handlers;
+  handlers.on_nifti = [&](std::string_view bytes) {
+    file.write(bytes.data(), std::streamsize(bytes.size()));
+    return bool(file);
+  };
+  const Result<soiq::v1::ConvertSummary> summary = c.convert(a.request, handlers);
+  file.close();
+  if (!summary.ok() || !file) {
+    std::remove(path.c_str());
+    return summary.ok() ? data_loss("error writing '" + path + "' (disk full?)") : summary.status();
+  }
+  if (!direct) {
+    Result<Image> image = read_image(path);
+    std::remove(path.c_str());
+    if (!image.ok()) return image.status();
+    SOIQ_RETURN_IF_ERROR(write_mask(mask_from_image(*image), a.out));
+  }
+  const soiq::v1::ConvertSummary& s = *summary;
+  std::printf("%lld voxels inside, %.3f mm3 on %s; %s; %.2f ms -> %s\n", (long long)s.voxel_count(), s.volume_mm3(),
+              geometry_text(s.geometry()).c_str(), s.defects().c_str(), s.milliseconds(), a.out.c_str());
+  return ok_status();
+}
+
+}  // namespace
+
+int run_remote_convert_command(int argc, char** argv, const client::ClientOptions& remote) {
+  return run_command("convert", parse(argc, argv), [&](const RemoteConvertArgs& a) { return convert(a, remote); });
+}
+
+}  // namespace soiq::cli

@@ -1,0 +1,126 @@
+#pragma once
+// soiq::client::Client: the C++ client of soiqd (proto/soiq/v1/soiq.proto). One method per RPC,
+// each returning a soiq::Result with the API's messages as values; gRPC's status is mapped once
+// (grpc_status.h), so callers see soiq's one error model and never a gRPC type.
+//
+// Connection: `address` (empty: $SOIQ_SERVER, else 127.0.0.1:50051); with `token_file`, every call
+// carries "authorization: Bearer <token>"; with `tls_ca_file` (PEM) the channel is TLS and the
+// server's certificate is verified against it, otherwise plaintext. connect() reads the files and
+// builds the channel; it does not wait for the server: an unreachable one shows as UNAVAILABLE on
+// the first call ("cannot reach soiqd at ADDR: ...").
+// Deadlines: `deadline` for unary calls, `stream_deadline` for uploads, downloads, convert and
+// queries. Retries (retry.h) on UNAVAILABLE for the calls safe to repeat: gets, lists, info,
+// features, uploads (the bytes are local and resent whole), and convert, download and query while
+// nothing has been delivered to a callback yet. Deletes are not retried.
+// Cancellation: a callback returning false, or `*cancel` becoming true (checked every 50 ms), cancels
+// the call (ClientContext::TryCancel); the method then returns CANCELLED.
+// Thread-safety: a Client may be used from several threads at once (gRPC stubs are thread-safe).
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "client/retry.h"
+#include "core/status.h"
+#include "soiq/v1/soiq.grpc.pb.h"
+
+namespace soiq::client {
+
+inline constexpr const char* kDefaultAddress = "127.0.0.1:50051";
+
+struct ClientOptions {
+  std::string address;      // HOST:PORT; empty: $SOIQ_SERVER, else kDefaultAddress
+  std::string token_file;   // bearer token; empty: none
+  std::string tls_ca_file;  // PEM roots for TLS; empty: plaintext
+  std::chrono::milliseconds deadline{30'000};
+  std::chrono::milliseconds stream_deadline{600'000};
+  int max_receive_message_bytes = 64 << 20;
+  int max_send_message_bytes = 8 << 20;
+  size_t chunk_bytes = 1 << 20;  // upload chunks; soiqd accepts 4 MiB messages by default
+  RetryPolicy retry;
+};
+
+// (bytes sent so far, total bytes); called after each chunk.
+using ProgressFn = std::function<void(int64_t, int64_t)>;
+
+struct ConvertHandlers {
+  std::function<bool(const soiq::v1::ConvertSummary&)> on_summary;
+  std::function<bool(std::string_view nifti_bytes)> on_nifti;
+  std::function<bool(const soiq::v1::RunBatch&)> on_runs;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct QueryHandlers {
+  std::function<bool(const soiq::v1::QueryProgress&)> on_progress;
+  std::function<bool(const soiq::v1::QueryRow&)> on_row;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+class Client {
+ public:
+  // NOT_FOUND/INVALID_ARGUMENT for an unreadable token or CA file (read_token_file.h).
+  static Result<Client> connect(ClientOptions options);
+
+  const std::string& address() const { return options_.address; }
+  const ClientOptions& options() const { return options_; }
+
+  // Uploads: `header.format` may be empty when it follows from the path's extension (stl, obj, ply,
+  // vtk, vtp; nii, nii.gz, nrrd, mha). The file is read whole, then sent in chunk_bytes chunks.
+  Result<soiq::v1::UploadSurfaceResponse> upload_surface(soiq::v1::UploadSurfaceHeader header, const std::string& path,
+                                                         const ProgressFn& progress = {}) const;
+  Result<soiq::v1::UploadSurfaceResponse> upload_surface_bytes(const soiq::v1::UploadSurfaceHeader& header,
+                                                               std::string_view bytes,
+                                                               const ProgressFn& progress = {}) const;
+  Result<soiq::v1::UploadImageResponse> upload_image(soiq::v1::UploadImageHeader header, const std::string& path,
+                                                     const ProgressFn& progress = {}) const;
+  Result<soiq::v1::UploadImageResponse> upload_image_bytes(const soiq::v1::UploadImageHeader& header,
+                                                           std::string_view bytes,
+                                                           const ProgressFn& progress = {}) const;
+
+  Result<soiq::v1::ListPatientsResponse> list_patients(const soiq::v1::ListPatientsRequest& request) const;
+  Result<soiq::v1::Patient> get_patient(const std::string& patient_id) const;
+  Result<soiq::v1::ListStudiesResponse> list_studies(const soiq::v1::ListStudiesRequest& request) const;
+  Result<soiq::v1::Study> get_study(const std::string& study_uid) const;
+  Result<soiq::v1::ListStructuresResponse> list_structures(const soiq::v1::ListStructuresRequest& request) const;
+  Result<soiq::v1::Structure> get_structure(int64_t id) const;
+  Result<soiq::v1::DeleteResponse> delete_structure(int64_t id) const;
+  Result<soiq::v1::DeleteResponse> delete_patient(const std::string& patient_id) const;
+  Result<soiq::v1::ServerInfo> server_info() const;
+  Result<soiq::v1::FeaturesResponse> compute_features(const soiq::v1::FeaturesRequest& request) const;
+
+  // The stored surface, written to `out_path` (replaced; removed again on failure). Returns the
+  // bytes written. `request.format` empty: from out_path's extension.
+  Result<int64_t> download_surface(soiq::v1::DownloadSurfaceRequest request, const std::string& out_path) const;
+
+  // Streams the conversion to the handlers; returns the summary (the first message).
+  Result<soiq::v1::ConvertSummary> convert(const soiq::v1::ConvertRequest& request,
+                                           const ConvertHandlers& handlers) const;
+
+  // Streams progress and rows to the handlers; returns the closing summary.
+  Result<soiq::v1::QuerySummary> query(const soiq::v1::QueryRequest& request, const QueryHandlers& handlers) const;
+
+ private:
+  Client(ClientOptions options, std::string token, std::shared_ptr<grpc::Channel> channel);
+  // A fresh context per attempt: deadline and authorization.
+  std::unique_ptr<grpc::ClientContext> context(std::chrono::milliseconds deadline) const;
+  Status map(const grpc::Status& status, std::chrono::milliseconds deadline) const;
+  template <typename Response, typename Call>
+  Result<Response> unary(Call call, bool retry) const;
+  template <typename Request, typename Response, typename Header>
+  Result<Response> upload(const Header& header, std::string_view bytes, const ProgressFn& progress,
+                          const char* what) const;
+
+  ClientOptions options_;
+  std::string token_;
+  std::shared_ptr<grpc::Channel> channel_;
+  std::shared_ptr<soiq::v1::Soiq::Stub> stub_;
+};
+
+// The format of a mesh or image file from its extension: "stl", "nii.gz", ...; "" when unknown.
+std::string format_from_path(const std::string& path);
+
+}  // namespace soiq::client
