@@ -23,8 +23,8 @@ namespace soiq::db {
 
 struct PatientRecord {
   std::string patient_id;
-  std::string sex;         // "M", "F", "O" or ""
-  std::string birth_date;  // YYYYMMDD or ""
+  std::string sex;              // "M", "F", "O" or ""
+  std::string birth_date;       // YYYYMMDD or ""
   int64_t study_count = 0;      // filled on reads
   int64_t structure_count = 0;  // filled on reads
 };
@@ -87,8 +87,8 @@ struct AddedStructure {
 struct NewSeries {
   PatientRecord patient;
   StudyRecord study;
-  SeriesRecord series;      // sha256 filled by the caller from the blob
-  std::string image_blob;   // encoded (db/image_blob.h)
+  SeriesRecord series;     // sha256 filled by the caller from the blob
+  std::string image_blob;  // encoded (db/image_blob.h)
 };
 
 template <typename T>
@@ -180,8 +180,7 @@ class Store {
   // Every cached entry under each key (one round trip for many keys).
   virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) = 0;
   // Stores entries; `surface_sha256` ties them to the surface so they go with it.
-  virtual Status put_cached_features(const std::string& surface_sha256,
-                                     const std::vector<CachedFeature>& entries) = 0;
+  virtual Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) = 0;
 
   virtual Result<Counts> counts() = 0;
 };

@@ -1,0 +1,71 @@
+#include "db/image_blob.h"
+
+#include <bit>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "db/deflate.h"
+#include "db/sha256.h"
+
+namespace soiq::db {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "image blobs assume a little-endian host");
+static_assert(std::numeric_limits<float>::is_iec559, "image blobs store IEEE float32");
+
+// The geometry part of the hash: every field at %.17g (round-trips a double), in a fixed order.
+std::string canonical_geometry_text(const ImageGeometry& g) {
+  char buf[1024];
+  const auto& d = g.direction;
+  std::snprintf(buf, sizeof buf,
+                "origin %.17g %.17g %.17g\nspacing %.17g %.17g %.17g\ndims %" PRId64 " %" PRId64 " %" PRId64
+                "\ndirection %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
+                g.origin_mm[0], g.origin_mm[1], g.origin_mm[2], g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2],
+                g.dims[0], g.dims[1], g.dims[2], d[0][0], d[0][1], d[0][2], d[1][0], d[1][1], d[1][2], d[2][0], d[2][1],
+                d[2][2]);
+  return buf;
+}
+
+}  // namespace
+
+Result<EncodedImage> encode_image(const Image& image) {
+  const auto& dims = image.geometry.dims;
+  if (dims[0] < 0 || dims[1] < 0 || dims[2] < 0 || image.voxels.size() != size_t(image.geometry.voxel_count())) {
+    return invalid_argument("image has " + std::to_string(image.voxels.size()) + " voxels but its grid is " +
+                            describe(image.geometry));
+  }
+  const size_t bytes = image.voxels.size() * sizeof(float);
+  EncodedImage out;
+  Sha256 hasher;
+  const std::string text = canonical_geometry_text(image.geometry);
+  hasher.update(text.data(), text.size());
+  hasher.update(image.voxels.data(), bytes);
+  out.sha256 = hasher.hex_digest();
+  SOIQ_ASSIGN_OR_RETURN(out.blob, deflate_bytes(image.voxels.data(), bytes));
+  return out;
+}
+
+Result<Image> decode_image(const std::string& blob, const ImageGeometry& geometry) {
+  const auto& dims = geometry.dims;
+  if (dims[0] < 0 || dims[1] < 0 || dims[2] < 0) return invalid_argument("image grid has negative dimensions");
+  // Multiply in double first: the product of three int64 can overflow.
+  const double count = double(dims[0]) * double(dims[1]) * double(dims[2]);
+  if (count * sizeof(float) > double(std::numeric_limits<size_t>::max() / 2)) {
+    return data_loss("image grid " + describe(geometry) + " is too large for an image blob");
+  }
+  const size_t expected = size_t(geometry.voxel_count()) * sizeof(float);
+  SOIQ_ASSIGN_OR_RETURN(std::string raw, inflate_bytes(blob, expected));
+  if (raw.size() != expected) {
+    return data_loss("image blob holds " + std::to_string(raw.size()) + " bytes but its grid " + describe(geometry) +
+                     " needs " + std::to_string(expected));
+  }
+  Image image;
+  image.geometry = geometry;
+  image.voxels.resize(size_t(geometry.voxel_count()));
+  if (expected > 0) std::memcpy(image.voxels.data(), raw.data(), expected);
+  return image;
+}
+
+}  // namespace soiq::db

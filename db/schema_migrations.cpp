@@ -1,0 +1,149 @@
+#include "db/schema_migrations.h"
+
+#include <string>
+#include <vector>
+
+namespace soiq::db {
+namespace {
+
+struct Migration {
+  int to_version;
+  const char* sql;
+};
+
+// Version 1: the whole store. Conventions:
+//   - Text fields that may be unknown are '' (never NULL), so globs and equality need no NULL
+//     handling; ages are NULL when unknown because they are compared as numbers.
+//   - patients and studies have integer surrogate keys for fast joins; the DICOM identifiers are
+//     UNIQUE (which indexes them).
+//   - Large blobs are the last column, so reading the other columns never touches overflow pages.
+//   - Every stage-1 filter has an index (DESIGN.md "Queries"); every foreign key has an index on
+//     its child column, so cascades and orphan checks are index lookups.
+//   - structures.id is AUTOINCREMENT: an id is never reused after a delete, so a client's old id
+//     can never name a different structure.
+constexpr char kSchemaV1[] = R"sql(
+CREATE TABLE patients (
+  pk INTEGER PRIMARY KEY,
+  patient_id TEXT NOT NULL UNIQUE,
+  sex TEXT NOT NULL DEFAULT '',
+  birth_date TEXT NOT NULL DEFAULT ''
+);
+CREATE INDEX patients_sex ON patients(sex);
+CREATE INDEX patients_birth_date ON patients(birth_date);
+
+CREATE TABLE studies (
+  pk INTEGER PRIMARY KEY,
+  study_uid TEXT NOT NULL UNIQUE,
+  patient_pk INTEGER NOT NULL REFERENCES patients(pk) ON DELETE CASCADE,
+  study_date TEXT NOT NULL DEFAULT '',
+  description TEXT NOT NULL DEFAULT '',
+  modality TEXT NOT NULL DEFAULT '',
+  age_years REAL,
+  age_given INTEGER NOT NULL DEFAULT 0  -- 1: age_years came from DICOM, else computed
+);
+CREATE INDEX studies_patient ON studies(patient_pk);
+CREATE INDEX studies_date ON studies(study_date);
+CREATE INDEX studies_age ON studies(age_years);
+CREATE INDEX studies_modality ON studies(modality);
+CREATE INDEX studies_description ON studies(description);
+
+CREATE TABLE image_blobs (
+  sha256 TEXT PRIMARY KEY NOT NULL,
+  blob BLOB NOT NULL
+);
+
+CREATE TABLE series (
+  pk INTEGER PRIMARY KEY,
+  series_uid TEXT NOT NULL UNIQUE,
+  study_pk INTEGER NOT NULL REFERENCES studies(pk) ON DELETE CASCADE,
+  modality TEXT NOT NULL DEFAULT '',
+  origin_x REAL NOT NULL, origin_y REAL NOT NULL, origin_z REAL NOT NULL,
+  spacing_x REAL NOT NULL, spacing_y REAL NOT NULL, spacing_z REAL NOT NULL,
+  dim_x INTEGER NOT NULL, dim_y INTEGER NOT NULL, dim_z INTEGER NOT NULL,
+  -- row-major 3x3; columns are the i, j, k directions in LPS
+  d00 REAL NOT NULL, d01 REAL NOT NULL, d02 REAL NOT NULL,
+  d10 REAL NOT NULL, d11 REAL NOT NULL, d12 REAL NOT NULL,
+  d20 REAL NOT NULL, d21 REAL NOT NULL, d22 REAL NOT NULL,
+  image_sha256 TEXT NOT NULL REFERENCES image_blobs(sha256)
+);
+CREATE INDEX series_study ON series(study_pk, modality);
+CREATE INDEX series_modality ON series(modality, study_pk);
+CREATE INDEX series_image ON series(image_sha256);
+
+CREATE TABLE surfaces (
+  sha256 TEXT PRIMARY KEY NOT NULL,
+  vertex_count INTEGER NOT NULL,
+  triangle_count INTEGER NOT NULL,
+  min_x REAL NOT NULL, min_y REAL NOT NULL, min_z REAL NOT NULL,
+  max_x REAL NOT NULL, max_y REAL NOT NULL, max_z REAL NOT NULL,
+  blob BLOB NOT NULL
+);
+
+CREATE TABLE structures (
+  id INTEGER PRIMARY KEY AUTOINCREMENT,
+  study_pk INTEGER NOT NULL REFERENCES studies(pk) ON DELETE CASCADE,
+  name TEXT NOT NULL,
+  laterality TEXT NOT NULL DEFAULT '',
+  robust INTEGER NOT NULL DEFAULT 0,
+  created_at TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')),
+  surface_sha256 TEXT NOT NULL REFERENCES surfaces(sha256)
+);
+CREATE INDEX structures_study ON structures(study_pk);
+CREATE INDEX structures_name_lower ON structures(lower(name));
+CREATE INDEX structures_laterality ON structures(laterality);
+CREATE INDEX structures_surface ON structures(surface_sha256);
+
+CREATE TABLE feature_cache (
+  key TEXT NOT NULL,
+  entry TEXT NOT NULL,
+  surface_sha256 TEXT NOT NULL REFERENCES surfaces(sha256) ON DELETE CASCADE,
+  value BLOB NOT NULL,  -- little-endian float64s
+  PRIMARY KEY (key, entry)
+) WITHOUT ROWID;
+CREATE INDEX feature_cache_surface ON feature_cache(surface_sha256);
+)sql";
+
+// Append new steps here; never edit a released one.
+const std::vector<Migration>& migrations() {
+  static const std::vector<Migration> kMigrations = {
+      {1, kSchemaV1},
+  };
+  return kMigrations;
+}
+
+}  // namespace
+
+int latest_schema_version() { return migrations().back().to_version; }
+
+Result<int> schema_version(Connection& c) {
+  SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare("PRAGMA user_version"));
+  SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
+  if (!row) return internal_error("PRAGMA user_version returned no row");
+  return int(st.int64(0));
+}
+
+Status migrate_schema(Connection& c) {
+  for (const Migration& m : migrations()) {
+    // Read the version inside the write transaction: another process may have migrated meanwhile.
+    Status s = run_transaction(c, TransactionKind::kWrite, [&]() -> Status {
+      SOIQ_ASSIGN_OR_RETURN(const int version, schema_version(c));
+      if (version > latest_schema_version()) {
+        return failed_precondition("database '" + c.path() + "' has schema version " + std::to_string(version) +
+                                   ", newer than version " + std::to_string(latest_schema_version()) +
+                                   " that this soiqd knows; run a newer soiqd");
+      }
+      if (version >= m.to_version) return ok_status();
+      SOIQ_RETURN_IF_ERROR(c.exec(m.sql));
+      // user_version is part of the database header, so it commits or rolls back with the step.
+      return c.exec("PRAGMA user_version = " + std::to_string(m.to_version));
+    });
+    if (!s.ok()) {
+      if (s.code() == StatusCode::kFailedPrecondition) return s;
+      return Status(s.code(), "migrating '" + c.path() + "' to schema version " + std::to_string(m.to_version) + ": " +
+                                  s.message());
+    }
+  }
+  return ok_status();
+}
+
+}  // namespace soiq::db

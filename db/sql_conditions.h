@@ -1,0 +1,38 @@
+#pragma once
+// A conjunction of SQL conditions with their bound parameters, for the queries whose filters are
+// optional (list_* and stage1): each added condition takes the next ?n, and bind() binds them all.
+// Column names are code constants, never input; every input value goes through a parameter.
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "db/sqlite_statement.h"
+
+namespace soiq::db {
+
+class SqlConditions {
+ public:
+  // "column = value"
+  void equal(const std::string& column, const std::string& value);
+  // "column op value" for op in <, <=, >, >=
+  void compare(const std::string& column, const char* op, const std::string& value);
+  void compare(const std::string& column, const char* op, double value);
+  // "column GLOB pattern", plus the index range of the pattern's literal prefix (glob_range.h).
+  void glob(const std::string& column, const std::string& pattern);
+  // A condition with one parameter written as "?"; e.g. "st.pk IN (… WHERE modality = ? …)" where
+  // every "?" is the same value.
+  void with_parameter(const std::string& condition_with_question_marks, const std::string& value);
+
+  // " AND c1 AND c2 …" (empty when there is no condition), to follow a WHERE clause.
+  std::string sql() const;
+  void bind(Statement& st) const;
+
+ private:
+  std::string next();  // the next parameter, "?n"
+
+  std::vector<std::string> conditions_;
+  std::vector<std::variant<std::string, double>> params_;
+};
+
+}  // namespace soiq::db

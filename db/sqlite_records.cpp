@@ -1,0 +1,60 @@
+#include "db/sqlite_records.h"
+
+namespace soiq::db {
+
+PatientRecord read_patient(const Statement& row, int col) {
+  PatientRecord p;
+  p.patient_id = row.text(col);
+  p.sex = row.text(col + 1);
+  p.birth_date = row.text(col + 2);
+  p.study_count = row.int64(col + 3);
+  p.structure_count = row.int64(col + 4);
+  return p;
+}
+
+StudyRecord read_study(const Statement& row, int col) {
+  StudyRecord s;
+  s.study_uid = row.text(col);
+  s.patient_id = row.text(col + 1);
+  s.study_date = row.text(col + 2);
+  s.description = row.text(col + 3);
+  s.modality = row.text(col + 4);
+  s.age_years = row.optional_real(col + 5);
+  s.structure_count = row.int64(col + 6);
+  return s;
+}
+
+StructureRecord read_structure(const Statement& row, int col) {
+  StructureRecord s;
+  s.id = row.int64(col);
+  s.patient_id = row.text(col + 1);
+  s.study_uid = row.text(col + 2);
+  s.name = row.text(col + 3);
+  s.laterality = row.text(col + 4);
+  s.robust = row.int64(col + 5) != 0;
+  s.created_at = row.text(col + 6);
+  s.surface.sha256 = row.text(col + 7);
+  s.surface.vertex_count = row.int64(col + 8);
+  s.surface.triangle_count = row.int64(col + 9);
+  for (int i = 0; i < 6; ++i) s.surface.bounds_mm[i] = row.real(col + 10 + i);
+  return s;
+}
+
+SeriesRecord read_series(const Statement& row, int col) {
+  SeriesRecord s;
+  s.series_uid = row.text(col);
+  s.study_uid = row.text(col + 1);
+  s.modality = row.text(col + 2);
+  for (int a = 0; a < 3; ++a) {
+    s.geometry.origin_mm[a] = row.real(col + 3 + a);
+    s.geometry.spacing_mm[a] = row.real(col + 6 + a);
+    s.geometry.dims[a] = row.int64(col + 9 + a);
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) s.geometry.direction[r][c] = row.real(col + 12 + 3 * r + c);
+  }
+  s.sha256 = row.text(col + 21);
+  return s;
+}
+
+}  // namespace soiq::db

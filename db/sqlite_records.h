@@ -1,0 +1,46 @@
+#pragma once
+// The SELECT column lists of the store's records and the code that reads a row back into a record,
+// shared by every query that returns records (sqlite_store_*.cpp). Each list assumes the aliases
+// of kStructureJoin: s = structures, st = studies, p = patients, sf = surfaces.
+
+#include "db/sqlite_statement.h"
+#include "db/store.h"
+
+namespace soiq::db {
+
+inline constexpr char kStructureJoin[] =
+    "structures s JOIN studies st ON st.pk = s.study_pk JOIN patients p ON p.pk = st.patient_pk "
+    "JOIN surfaces sf ON sf.sha256 = s.surface_sha256";
+
+// PatientRecord with its counts; needs p.
+inline constexpr char kPatientColumns[] =
+    "p.patient_id, p.sex, p.birth_date, "
+    "(SELECT count(*) FROM studies c WHERE c.patient_pk = p.pk), "
+    "(SELECT count(*) FROM studies c JOIN structures cs ON cs.study_pk = c.pk WHERE c.patient_pk = p.pk)";
+inline constexpr int kPatientColumnCount = 5;
+
+// StudyRecord with its structure count; needs st and p.
+inline constexpr char kStudyColumns[] =
+    "st.study_uid, p.patient_id, st.study_date, st.description, st.modality, st.age_years, "
+    "(SELECT count(*) FROM structures cs WHERE cs.study_pk = st.pk)";
+inline constexpr int kStudyColumnCount = 7;
+
+// StructureRecord with its SurfaceInfo; needs s, st, p, sf.
+inline constexpr char kStructureColumns[] =
+    "s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256, "
+    "sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z";
+inline constexpr int kStructureColumnCount = 16;
+
+// SeriesRecord; needs se = series and st.
+inline constexpr char kSeriesColumns[] =
+    "se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x, "
+    "se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, "
+    "se.d12, se.d20, se.d21, se.d22, se.image_sha256";
+
+// Each reads its columns starting at `col`.
+PatientRecord read_patient(const Statement& row, int col);
+StudyRecord read_study(const Statement& row, int col);
+StructureRecord read_structure(const Statement& row, int col);
+SeriesRecord read_series(const Statement& row, int col);
+
+}  // namespace soiq::db

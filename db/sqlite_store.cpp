@@ -1,0 +1,74 @@
+#include "db/sqlite_store.h"
+
+#include "db/schema_migrations.h"
+
+namespace soiq::db {
+
+Result<std::unique_ptr<SqliteStore>> SqliteStore::open(const std::string& path, const SqliteOptions& options) {
+  if (options.busy_timeout_ms < 0) return invalid_argument("busy_timeout_ms must be >= 0");
+  if (options.read_connections < 1) return invalid_argument("read_connections must be >= 1");
+  std::unique_ptr<SqliteStore> store(new SqliteStore());
+  SOIQ_ASSIGN_OR_RETURN(store->writer_, Connection::open(path, options.busy_timeout_ms, ConnectionRole::kWriter));
+  // Migrate before any reader exists, so readers only ever see the current schema.
+  SOIQ_RETURN_IF_ERROR(migrate_schema(*store->writer_));
+  for (int i = 0; i < options.read_connections; ++i) {
+    SOIQ_ASSIGN_OR_RETURN(auto reader, Connection::open(path, options.busy_timeout_ms, ConnectionRole::kReader));
+    store->free_readers_.push_back(reader.get());
+    store->readers_.push_back(std::move(reader));
+  }
+  return store;
+}
+
+SqliteStore::~SqliteStore() {
+  // Keeps the query planner's statistics fresh at the cost of a little work on close (SQLite's
+  // advice for long-lived connections); failures only cost plan quality, so they are ignored.
+  if (writer_) (void)writer_->exec("PRAGMA optimize");
+}
+
+Status SqliteStore::read(const std::function<Status(Connection&)>& fn) {
+  Connection* c = nullptr;
+  {
+    std::unique_lock lock(readers_mutex_);
+    reader_free_.wait(lock, [&] { return !free_readers_.empty(); });
+    c = free_readers_.back();
+    free_readers_.pop_back();
+  }
+  Status s = run_transaction(*c, TransactionKind::kRead, [&] { return fn(*c); });
+  {
+    std::lock_guard lock(readers_mutex_);
+    free_readers_.push_back(c);
+  }
+  reader_free_.notify_one();
+  return s;
+}
+
+Status SqliteStore::write(const std::function<Status(Connection&)>& fn) {
+  std::lock_guard lock(writer_mutex_);
+  return run_transaction(*writer_, TransactionKind::kWrite, [&] { return fn(*writer_); });
+}
+
+Result<int> SqliteStore::schema_version() {
+  int version = 0;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(version, db::schema_version(c));
+    return ok_status();
+  }));
+  return version;
+}
+
+Result<Counts> SqliteStore::counts() {
+  Counts n;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare("SELECT (SELECT count(*) FROM patients), (SELECT count(*) FROM "
+                                                  "studies), (SELECT count(*) FROM series), (SELECT count(*) FROM "
+                                                  "structures), (SELECT count(*) FROM surfaces), (SELECT count(*) "
+                                                  "FROM feature_cache)"));
+    SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
+    if (!row) return internal_error("count query returned no row");
+    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5)};
+    return ok_status();
+  }));
+  return n;
+}
+
+}  // namespace soiq::db

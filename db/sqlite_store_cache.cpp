@@ -1,0 +1,81 @@
+// SqliteStore's feature cache: values are little-endian float64 arrays keyed by (key, entry).
+#include <bit>
+#include <cstring>
+
+#include "db/sqlite_store.h"
+#include "db/validate_records.h"
+
+namespace soiq::db {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "cached values are stored as little-endian float64");
+
+// Keys go into `key IN (?1, …, ?n)` with n a power of two up to this, the last key repeated as
+// padding: at most 9 statement shapes in the cache, and few round trips for many keys.
+constexpr size_t kMaxKeysPerQuery = 256;
+
+std::string in_list_sql(size_t n) {
+  std::string sql = "SELECT key, entry, value FROM feature_cache WHERE key IN (";
+  for (size_t i = 1; i <= n; ++i) sql += (i > 1 ? ", ?" : "?") + std::to_string(i);
+  return sql + ") ORDER BY key, entry";
+}
+
+}  // namespace
+
+Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vector<std::string>& keys) {
+  std::vector<CachedFeature> out;
+  if (keys.empty()) return out;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    for (size_t begin = 0; begin < keys.size(); begin += kMaxKeysPerQuery) {
+      const size_t count = std::min(kMaxKeysPerQuery, keys.size() - begin);
+      const size_t padded = std::bit_ceil(count);
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(in_list_sql(padded)));
+      for (size_t i = 0; i < padded; ++i) q.bind(int(i + 1), keys[begin + std::min(i, count - 1)]);
+      while (true) {
+        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+        if (!row) break;
+        CachedFeature f{q.text(0), q.text(1), {}};
+        const std::string bytes = q.blob(2);
+        if (bytes.size() % sizeof(double) != 0) {
+          return data_loss("cached feature '" + f.entry + "' under key '" + f.key + "' has " +
+                           std::to_string(bytes.size()) + " bytes, not a whole number of float64");
+        }
+        f.value.resize(bytes.size() / sizeof(double));
+        if (!bytes.empty()) std::memcpy(f.value.data(), bytes.data(), bytes.size());
+        out.push_back(std::move(f));
+      }
+    }
+    return ok_status();
+  }));
+  return out;
+}
+
+Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
+  SOIQ_RETURN_IF_ERROR(validate_sha256(surface_sha256, "surface"));
+  for (const CachedFeature& f : entries) {
+    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
+  }
+  return write([&](Connection& c) -> Status {
+    {
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT 1 FROM surfaces WHERE sha256 = ?1"));
+      q.bind(1, surface_sha256);
+      SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
+      // The surface may have been deleted while its features were computed: nothing to cache then.
+      if (!found) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
+    }
+    for (const CachedFeature& f : entries) {
+      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare("INSERT INTO feature_cache(key, entry, surface_sha256, value) "
+                                                    "VALUES (?1, ?2, ?3, ?4) ON CONFLICT(key, entry) DO UPDATE SET "
+                                                    "surface_sha256 = excluded.surface_sha256, value = "
+                                                    "excluded.value"));
+      up.bind(1, f.key);
+      up.bind(2, f.entry);
+      up.bind(3, surface_sha256);
+      up.bind_blob(4, f.value.data(), f.value.size() * sizeof(double));
+      SOIQ_RETURN_IF_ERROR(up.run());
+    }
+    return ok_status();
+  });
+}
+
+}  // namespace soiq::db

@@ -1,0 +1,81 @@
+// SqliteStore::stage1: the structured half of a query (DESIGN.md "Queries") as one SQL query over
+// indexed columns.
+#include "db/glob_range.h"
+#include "db/sql_conditions.h"
+#include "db/sqlite_records.h"
+#include "db/sqlite_store.h"
+#include "db/validate_records.h"
+
+namespace soiq::db {
+namespace {
+
+SqlConditions stage1_conditions(const Stage1Filter& f) {
+  SqlConditions where;
+  if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
+  if (!f.sex.empty()) where.equal("p.sex", f.sex);
+  // An unknown date ('') or age (NULL) never satisfies a range: `> ''` keeps the range an index
+  // range where only an upper bound is given.
+  if (!f.birth_date_from.empty()) where.compare("p.birth_date", ">=", f.birth_date_from);
+  if (!f.birth_date_to.empty()) {
+    where.compare("p.birth_date", "<=", f.birth_date_to);
+    if (f.birth_date_from.empty()) where.compare("p.birth_date", ">", std::string());
+  }
+  if (f.min_age_years) where.compare("st.age_years", ">=", *f.min_age_years);
+  if (f.max_age_years) where.compare("st.age_years", "<=", *f.max_age_years);
+  if (!f.study_date_from.empty()) where.compare("st.study_date", ">=", f.study_date_from);
+  if (!f.study_date_to.empty()) {
+    where.compare("st.study_date", "<=", f.study_date_to);
+    if (f.study_date_from.empty()) where.compare("st.study_date", ">", std::string());
+  }
+  if (!f.modality.empty()) {
+    // The set of matching studies from two indexes, rather than an OR with a correlated EXISTS,
+    // so the planner can start from it when it is the most selective filter.
+    where.with_parameter(
+        "st.pk IN (SELECT pk FROM studies WHERE modality = ? UNION SELECT study_pk FROM series WHERE modality = ?)",
+        f.modality);
+  }
+  if (!f.study_description_glob.empty()) where.glob("st.description", f.study_description_glob);
+  if (!f.structure_name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.structure_name_glob));
+  if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);
+  return where;
+}
+
+}  // namespace
+
+Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_t limit) {
+  if (limit < 1) return invalid_argument("stage-1 limit must be >= 1, got " + std::to_string(limit));
+  SOIQ_RETURN_IF_ERROR(validate_stage1_filter(f));
+  const SqlConditions where = stage1_conditions(f);
+  std::vector<Candidate> out;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    // limit + 1 rows tell whether there are too many without counting them all first.
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns +
+                                                 ", " + kStudyColumns + " FROM " + kStructureJoin + " WHERE 1" +
+                                                 where.sql() + " ORDER BY s.id LIMIT " + std::to_string(limit + 1)));
+    where.bind(q);
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      if (int64_t(out.size()) == limit) {
+        // Too many: count them all (same snapshot) so the message can say how many.
+        SOIQ_ASSIGN_OR_RETURN(Statement n, c.prepare("SELECT count(*) FROM structures s JOIN studies st ON st.pk = "
+                                                     "s.study_pk JOIN patients p ON p.pk = st.patient_pk WHERE 1" +
+                                                     where.sql()));
+        where.bind(n);
+        SOIQ_ASSIGN_OR_RETURN(const bool counted, n.step());
+        const int64_t total = counted ? n.int64(0) : limit + 1;
+        return resource_exhausted("stage 1 matches " + std::to_string(total) + " structures, more than the limit of " +
+                                  std::to_string(limit) + "; narrow the stage-1 filter");
+      }
+      Candidate cand;
+      cand.structure = read_structure(q, 0);
+      cand.patient = read_patient(q, kStructureColumnCount);
+      cand.study = read_study(q, kStructureColumnCount + kPatientColumnCount);
+      out.push_back(std::move(cand));
+    }
+    return ok_status();
+  }));
+  return out;
+}
+
+}  // namespace soiq::db

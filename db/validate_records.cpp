@@ -1,0 +1,62 @@
+#include "db/validate_records.h"
+
+#include <cmath>
+
+#include "db/age_years.h"
+
+namespace soiq::db {
+
+Status validate_sex(const std::string& sex) {
+  if (sex.empty() || sex == "M" || sex == "F" || sex == "O") return ok_status();
+  return invalid_argument("sex '" + sex + "' is not one of M, F, O or empty");
+}
+
+Status validate_laterality(const std::string& laterality) {
+  if (laterality.empty() || laterality == "L" || laterality == "R") return ok_status();
+  return invalid_argument("laterality '" + laterality + "' is not one of L, R or empty");
+}
+
+Status validate_sha256(const std::string& sha256, const std::string& what) {
+  bool ok = sha256.size() == 64;
+  for (char c : sha256) ok = ok && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
+  if (ok) return ok_status();
+  return invalid_argument(what + " sha256 '" + sha256 + "' is not 64 lower-case hex digits");
+}
+
+Status validate_patient(const PatientRecord& p) {
+  if (p.patient_id.empty()) return invalid_argument("patient_id is empty");
+  SOIQ_RETURN_IF_ERROR(validate_sex(p.sex));
+  return validate_date(p.birth_date, "birth date of patient '" + p.patient_id + "'");
+}
+
+Status validate_study(const StudyRecord& s, const std::string& patient_id) {
+  if (s.study_uid.empty()) return invalid_argument("study_uid is empty");
+  if (!s.patient_id.empty() && s.patient_id != patient_id) {
+    return invalid_argument("study '" + s.study_uid + "' names patient '" + s.patient_id +
+                            "' but is sent with patient '" + patient_id + "'");
+  }
+  if (s.age_years && !(std::isfinite(*s.age_years) && *s.age_years >= 0)) {
+    return invalid_argument("age of study '" + s.study_uid + "' must be finite and >= 0, got " +
+                            std::to_string(*s.age_years));
+  }
+  return validate_date(s.study_date, "study date of study '" + s.study_uid + "'");
+}
+
+Status validate_stage1_filter(const Stage1Filter& f) {
+  SOIQ_RETURN_IF_ERROR(validate_sex(f.sex));
+  SOIQ_RETURN_IF_ERROR(validate_laterality(f.laterality));
+  SOIQ_RETURN_IF_ERROR(validate_date(f.birth_date_from, "birth_date_from"));
+  SOIQ_RETURN_IF_ERROR(validate_date(f.birth_date_to, "birth_date_to"));
+  SOIQ_RETURN_IF_ERROR(validate_date(f.study_date_from, "study_date_from"));
+  SOIQ_RETURN_IF_ERROR(validate_date(f.study_date_to, "study_date_to"));
+  for (const auto& age : {f.min_age_years, f.max_age_years}) {
+    if (age && !std::isfinite(*age)) return invalid_argument("age bounds must be finite");
+  }
+  if (f.min_age_years && f.max_age_years && *f.min_age_years > *f.max_age_years) {
+    return invalid_argument("min_age_years " + std::to_string(*f.min_age_years) + " is above max_age_years " +
+                            std::to_string(*f.max_age_years));
+  }
+  return ok_status();
+}
+
+}  // namespace soiq::db

@@ -1,0 +1,181 @@
+// Opening a SqliteStore: schema creation and migration, refusals, persistence, durability.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "db/schema_migrations.h"
+#include "db/sqlite_store.h"
+#include "tests/db/temp_store.h"
+
+namespace soiq::db {
+namespace {
+
+using testing::contains;
+using testing::new_structure;
+using testing::open_store;
+using testing::TempDir;
+
+void set_user_version(const std::string& path, int version) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, (std::string("PRAGMA user_version = ") + std::to_string(version)).c_str(), nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+}
+
+TEST(SqliteStoreOpen, NewFileGetsTheLatestSchemaInWalMode) {
+  TempDir dir;
+  auto store = open_store(dir.file("new.db"));
+  ASSERT_TRUE(store);
+  EXPECT_EQ(*store->schema_version(), latest_schema_version());
+  auto n = store->counts();
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(n->patients + n->studies + n->series + n->structures + n->surfaces + n->cached_features, 0);
+  store.reset();
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(dir.file("new.db").c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "PRAGMA journal_mode", -1, &st, nullptr);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_STREQ(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)), "wal");
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+}
+
+TEST(SqliteStoreOpen, EmptyExistingFileIsMigratedFromVersionZero) {
+  TempDir dir;
+  std::ofstream(dir.file("empty.db")).close();  // zero bytes: a valid, empty SQLite database
+  auto store = open_store(dir.file("empty.db"));
+  ASSERT_TRUE(store);
+  EXPECT_EQ(*store->schema_version(), latest_schema_version());
+}
+
+TEST(SqliteStoreOpen, DataPersistsAcrossCloseAndReopen) {
+  TempDir dir;
+  int64_t id = 0;
+  {
+    auto store = open_store(dir.file("p.db"));
+    auto added = store->add_structure(new_structure("P1", "1.2.3", "Hippocampus"));
+    ASSERT_TRUE(added.ok()) << added.status().to_string();
+    id = added->structure.id;
+    ASSERT_TRUE(store->put_cached_features(added->structure.surface.sha256, {{"k", "volume", {1.5, -0.0}}}).ok());
+  }
+  auto store = open_store(dir.file("p.db"));
+  auto s = store->get_structure(id);
+  ASSERT_TRUE(s.ok()) << s.status().to_string();
+  EXPECT_EQ(s->name, "Hippocampus");
+  EXPECT_EQ(s->patient_id, "P1");
+  auto cached = store->cached_features({"k"});
+  ASSERT_TRUE(cached.ok());
+  ASSERT_EQ(cached->size(), 1u);
+  EXPECT_EQ((*cached)[0].value, (std::vector<double>{1.5, -0.0}));
+}
+
+TEST(SqliteStoreOpen, NewerSchemaVersionIsRefusedNamingBothVersions) {
+  TempDir dir;
+  { open_store(dir.file("future.db")); }
+  set_user_version(dir.file("future.db"), latest_schema_version() + 5);
+  auto store = SqliteStore::open(dir.file("future.db"), {});
+  ASSERT_FALSE(store.ok());
+  EXPECT_EQ(store.status().code(), StatusCode::kFailedPrecondition);
+  const std::string& m = store.status().message();
+  EXPECT_TRUE(contains(m, std::string("schema version ") + std::to_string(latest_schema_version() + 5))) << m;
+  EXPECT_TRUE(contains(m, std::string("version ") + std::to_string(latest_schema_version()) + " that this soiqd knows"))
+      << m;
+}
+
+TEST(SqliteStoreOpen, FileThatIsNotADatabaseIsRefusedNamingThePath) {
+  TempDir dir;
+  const std::string path = dir.file("notes.txt");
+  {
+    std::ofstream out(path);
+    for (int i = 0; i < 200; ++i) out << "these are not the pages of a SQLite database\n";
+  }
+  auto store = SqliteStore::open(path, {});
+  ASSERT_FALSE(store.ok());
+  EXPECT_EQ(store.status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_TRUE(contains(store.status().message(), path)) << store.status().message();
+  EXPECT_TRUE(contains(store.status().message(), "not a database")) << store.status().message();
+}
+
+TEST(SqliteStoreOpen, MissingDirectoryIsRefusedNamingThePath) {
+  TempDir dir;
+  const std::string path = dir.file("no/such/dir/x.db");
+  auto store = SqliteStore::open(path, {});
+  ASSERT_FALSE(store.ok());
+  EXPECT_TRUE(contains(store.status().message(), path)) << store.status().message();
+}
+
+TEST(SqliteStoreOpen, BadOptionsAreInvalidArgument) {
+  TempDir dir;
+  SqliteOptions options;
+  options.read_connections = 0;
+  EXPECT_EQ(SqliteStore::open(dir.file("x.db"), options).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(SqliteStoreOpen, LockHeldByAnotherProcessPastTheTimeoutIsUnavailable) {
+  TempDir dir;
+  SqliteOptions options;
+  options.busy_timeout_ms = 50;
+  auto store = open_store(dir.file("busy.db"), options);
+  // Another connection (as another process would) holds the write lock.
+  sqlite3* other = nullptr;
+  ASSERT_EQ(sqlite3_open(dir.file("busy.db").c_str(), &other), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr), SQLITE_OK);
+  auto added = store->add_structure(new_structure("P1", "S1", "x"));
+  ASSERT_FALSE(added.ok());
+  EXPECT_EQ(added.status().code(), StatusCode::kUnavailable) << added.status().to_string();
+  // Reads are not blocked by a writer in WAL mode.
+  EXPECT_TRUE(store->counts().ok());
+  sqlite3_exec(other, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(other);
+  EXPECT_TRUE(store->add_structure(new_structure("P1", "S1", "x")).ok());
+}
+
+TEST(SqliteStoreOpen, KilledWriterLosesNothingAcknowledged) {
+  TempDir dir;
+  const std::string path = dir.file("kill.db");
+  { open_store(path); }
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // The child writes as fast as it can and acknowledges each id once add_structure returned.
+    close(fds[0]);
+    auto store = SqliteStore::open(path, {});
+    if (!store.ok()) _exit(2);
+    for (int i = 0;; ++i) {
+      auto added = (*store)->add_structure(
+          new_structure(std::string("P") + std::to_string(i % 7),
+                        std::string("S") + std::to_string(i % 13) + std::string("_") + std::to_string(i % 7),
+                        std::string("s") + std::to_string(i), i));
+      if (!added.ok()) _exit(3);
+      const int64_t id = added->structure.id;
+      if (write(fds[1], &id, sizeof id) != sizeof id) _exit(4);
+    }
+  }
+  close(fds[1]);
+  std::vector<int64_t> acknowledged;
+  int64_t id = 0;
+  while (acknowledged.size() < 40 && read(fds[0], &id, sizeof id) == sizeof id) acknowledged.push_back(id);
+  kill(child, SIGKILL);
+  while (read(fds[0], &id, sizeof id) == sizeof id) acknowledged.push_back(id);
+  close(fds[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "child exited early with " << WEXITSTATUS(status);
+
+  auto store = open_store(path);
+  ASSERT_GE(acknowledged.size(), 40u);
+  for (int64_t a : acknowledged) EXPECT_TRUE(store->get_structure(a).ok()) << "lost structure " << a;
+}
+
+}  // namespace
+}  // namespace soiq::db

@@ -1,0 +1,309 @@
+// SqliteStore writes: add_structure, put_series, deletes and the feature cache.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <functional>
+
+#include "db/sqlite_store.h"
+#include "tests/db/temp_store.h"
+
+namespace soiq::db {
+namespace {
+
+using testing::contains;
+using testing::new_series;
+using testing::new_structure;
+using testing::open_store;
+using testing::TempDir;
+
+class SqliteStoreWrite : public ::testing::Test {
+ protected:
+  void SetUp() override { store_ = open_store(dir_.file("store.db")); }
+  Counts counts() { return *store_->counts(); }
+
+  TempDir dir_;
+  std::unique_ptr<SqliteStore> store_;
+};
+
+TEST_F(SqliteStoreWrite, AddStructureReturnsTheFullRecord) {
+  NewStructure s = new_structure("P1", "1.2.3", "Hippocampus", 2.0);
+  s.patient.sex = "F";
+  s.patient.birth_date = "19600101";
+  s.study.study_date = "20200101";
+  s.study.modality = "MR";
+  s.laterality = "L";
+  s.robust = true;
+  auto added = store_->add_structure(s);
+  ASSERT_TRUE(added.ok()) << added.status().to_string();
+  const StructureRecord& r = added->structure;
+  EXPECT_GT(r.id, 0);
+  EXPECT_EQ(r.patient_id, "P1");
+  EXPECT_EQ(r.study_uid, "1.2.3");
+  EXPECT_EQ(r.name, "Hippocampus");
+  EXPECT_EQ(r.laterality, "L");
+  EXPECT_TRUE(r.robust);
+  EXPECT_EQ(r.surface.sha256, s.surface.sha256);
+  EXPECT_EQ(r.surface.vertex_count, 4);
+  EXPECT_EQ(r.surface.triangle_count, 4);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(r.surface.bounds_mm[i], s.surface.bounds_mm[i]);
+  // ISO 8601 UTC: 2024-01-02T03:04:05.678Z
+  ASSERT_EQ(r.created_at.size(), 24u) << r.created_at;
+  EXPECT_EQ(r.created_at[10], 'T');
+  EXPECT_EQ(r.created_at.back(), 'Z');
+  EXPECT_FALSE(added->surface_already_stored);
+
+  auto study = store_->get_study("1.2.3");
+  ASSERT_TRUE(study.ok());
+  ASSERT_TRUE(study->age_years.has_value());
+  EXPECT_EQ(*study->age_years, 60.0);
+  EXPECT_EQ(study->structure_count, 1);
+  auto patient = store_->get_patient("P1");
+  EXPECT_EQ(patient->sex, "F");
+  EXPECT_EQ(patient->study_count, 1);
+  EXPECT_EQ(patient->structure_count, 1);
+}
+
+TEST_F(SqliteStoreWrite, SameMeshTwiceIsStoredOnceForTwoStructures) {
+  auto a = store_->add_structure(new_structure("P1", "S1", "left"));
+  auto b = store_->add_structure(new_structure("P2", "S2", "right"));
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_FALSE(a->surface_already_stored);
+  EXPECT_TRUE(b->surface_already_stored);
+  EXPECT_EQ(a->structure.surface.sha256, b->structure.surface.sha256);
+  EXPECT_NE(a->structure.id, b->structure.id);
+  EXPECT_EQ(counts().surfaces, 1);
+  EXPECT_EQ(counts().structures, 2);
+  auto blob = store_->get_surface_blob(a->structure.surface.sha256);
+  ASSERT_TRUE(blob.ok());
+  auto mesh = decode_surface(*blob);
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_EQ(mesh->vertices_mm, testing::tetrahedron(0).vertices_mm);
+}
+
+TEST_F(SqliteStoreWrite, NonEmptyFieldsOverwriteAndEmptyOnesKeep) {
+  NewStructure s = new_structure("P1", "S1", "a");
+  s.patient.sex = "M";
+  s.study.description = "first";
+  ASSERT_TRUE(store_->add_structure(s).ok());
+  NewStructure t = new_structure("P1", "S1", "b");
+  t.patient.birth_date = "19700101";
+  t.study.modality = "CT";
+  ASSERT_TRUE(store_->add_structure(t).ok());
+  auto p = store_->get_patient("P1");
+  EXPECT_EQ(p->sex, "M");
+  EXPECT_EQ(p->birth_date, "19700101");
+  auto st = store_->get_study("S1");
+  EXPECT_EQ(st->description, "first");
+  EXPECT_EQ(st->modality, "CT");
+}
+
+TEST_F(SqliteStoreWrite, StudyOfAnotherPatientIsRefusedAndLeavesNothing) {
+  ASSERT_TRUE(store_->add_structure(new_structure("P1", "S1", "a")).ok());
+  const Counts before = counts();
+  auto bad = store_->add_structure(new_structure("P2", "S1", "b", 5.0));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(contains(bad.status().message(), "study 'S1' belongs to patient 'P1', not to 'P2'"))
+      << bad.status().message();
+  EXPECT_EQ(store_->get_patient("P2").status().code(), StatusCode::kNotFound);
+  const Counts after = counts();
+  EXPECT_EQ(after.patients, before.patients);
+  EXPECT_EQ(after.structures, before.structures);
+  EXPECT_EQ(after.surfaces, before.surfaces);
+}
+
+TEST_F(SqliteStoreWrite, FailureLateInTheTransactionLeavesNothing) {
+  // A trigger (installed as another client could) makes the last insert of add_structure fail,
+  // after the patient, study and surface rows were written in the same transaction.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(dir_.file("store.db").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "CREATE TRIGGER fail BEFORE INSERT ON structures WHEN NEW.name = 'boom' "
+                         "BEGIN SELECT RAISE(ABORT, 'injected failure'); END",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  NewStructure s = new_structure("P9", "S9", "boom", 9.0);
+  s.patient.birth_date = "19500101";
+  auto r = store_->add_structure(s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInternal);
+  EXPECT_TRUE(contains(r.status().message(), "injected failure")) << r.status().message();
+  const Counts n = counts();
+  EXPECT_EQ(n.patients, 0);
+  EXPECT_EQ(n.studies, 0);
+  EXPECT_EQ(n.surfaces, 0);
+  EXPECT_EQ(n.structures, 0);
+  // The store is usable afterwards: the transaction was closed.
+  EXPECT_TRUE(store_->add_structure(new_structure("P9", "S9", "fine", 9.0)).ok());
+}
+
+TEST_F(SqliteStoreWrite, AgeIsGivenOrComputedAndFollowsTheBirthDate) {
+  NewStructure s = new_structure("P1", "S1", "a");
+  s.study.study_date = "20100601";
+  ASSERT_TRUE(store_->add_structure(s).ok());
+  EXPECT_FALSE(store_->get_study("S1")->age_years.has_value());  // no birth date yet
+
+  NewStructure given = new_structure("P1", "S2", "b");
+  given.study.study_date = "20100601";
+  given.study.age_years = 42.5;
+  ASSERT_TRUE(store_->add_structure(given).ok());
+
+  NewStructure birth = new_structure("P1", "S3", "c");
+  birth.patient.birth_date = "19800601";
+  birth.study.study_date = "20200601";
+  ASSERT_TRUE(store_->add_structure(birth).ok());
+  EXPECT_EQ(*store_->get_study("S1")->age_years, 30.0);  // recomputed when the birth date arrived
+  EXPECT_EQ(*store_->get_study("S2")->age_years, 42.5);  // a given age is kept
+  EXPECT_EQ(*store_->get_study("S3")->age_years, 40.0);
+}
+
+TEST_F(SqliteStoreWrite, InvalidInputsAreInvalidArgumentNamingTheField) {
+  struct Case {
+    std::function<void(NewStructure&)> change;
+    std::string phrase;
+  };
+  const std::vector<Case> cases = {
+      {[](NewStructure& s) { s.patient.patient_id = std::string(""); }, "patient_id"},
+      {[](NewStructure& s) { s.study.study_uid = std::string(""); }, "study_uid"},
+      {[](NewStructure& s) { s.name = std::string(""); }, "name"},
+      {[](NewStructure& s) { s.patient.sex = std::string("X"); }, "sex 'X'"},
+      {[](NewStructure& s) { s.laterality = std::string("left"); }, "laterality 'left'"},
+      {[](NewStructure& s) { s.patient.birth_date = std::string("1960-01-01"); }, "birth date"},
+      {[](NewStructure& s) { s.study.study_date = std::string("20201340"); }, "study date"},
+      {[](NewStructure& s) { s.study.patient_id = std::string("P2"); }, "names patient 'P2'"},
+      {[](NewStructure& s) { s.surface.sha256 = std::string("ABC"); }, "sha256"},
+  };
+  for (const Case& c : cases) {
+    NewStructure s = new_structure("P1", "S1", "x");
+    c.change(s);
+    auto r = store_->add_structure(s);
+    ASSERT_FALSE(r.ok()) << c.phrase;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_TRUE(contains(r.status().message(), c.phrase)) << r.status().message();
+  }
+  EXPECT_EQ(counts().patients, 0);
+}
+
+TEST_F(SqliteStoreWrite, PutSeriesInsertsThenReplaces) {
+  auto first = store_->put_series(new_series("P1", "S1", "SE1", 1.0f));
+  ASSERT_TRUE(first.ok()) << first.status().to_string();
+  EXPECT_FALSE(*first);
+  NewSeries second = new_series("P1", "S1", "SE1", 2.0f);
+  second.series.modality = "PT";
+  auto replaced = store_->put_series(second);
+  ASSERT_TRUE(replaced.ok());
+  EXPECT_TRUE(*replaced);
+  auto series = store_->get_series("SE1");
+  ASSERT_TRUE(series.ok());
+  EXPECT_EQ(series->modality, "PT");
+  EXPECT_EQ(series->study_uid, "S1");
+  EXPECT_EQ(series->geometry, second.series.geometry);
+  EXPECT_EQ(series->sha256, second.series.sha256);
+  auto blob = store_->get_image_blob("SE1");
+  ASSERT_TRUE(blob.ok());
+  auto image = decode_image(*blob, series->geometry);
+  ASSERT_TRUE(image.ok());
+  EXPECT_EQ(image->voxels, std::vector<float>(12, 2.0f));
+  EXPECT_EQ(counts().series, 1);
+  // The replaced image blob was orphaned and is gone: only one remains, checked via a second
+  // series that shares the new blob.
+  auto listed = store_->list_series("S1");
+  ASSERT_TRUE(listed.ok());
+  ASSERT_EQ(listed->size(), 1u);
+}
+
+TEST_F(SqliteStoreWrite, DeleteStructureKeepsASharedSurfaceAndDropsAnOrphan) {
+  auto a = store_->add_structure(new_structure("P1", "S1", "a", 0));
+  auto b = store_->add_structure(new_structure("P1", "S1", "b", 0));  // same surface as a
+  auto c = store_->add_structure(new_structure("P1", "S1", "c", 1));
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  const std::string shared = a->structure.surface.sha256, own = c->structure.surface.sha256;
+  ASSERT_TRUE(store_->put_cached_features(shared, {{"k1", "volume", {1}}}).ok());
+  ASSERT_TRUE(store_->put_cached_features(own, {{"k2", "volume", {2}}, {"k2", "area", {3}}}).ok());
+
+  EXPECT_EQ(*store_->delete_structure(a->structure.id), 1);
+  EXPECT_TRUE(store_->get_surface_blob(shared).ok());  // b still uses it
+  EXPECT_EQ(store_->cached_features({"k1"})->size(), 1u);
+
+  EXPECT_EQ(*store_->delete_structure(c->structure.id), 1);
+  EXPECT_EQ(store_->get_surface_blob(own).status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(store_->cached_features({"k2"})->empty());
+  EXPECT_EQ(counts().surfaces, 1);
+  EXPECT_EQ(counts().cached_features, 1);
+}
+
+TEST_F(SqliteStoreWrite, DeletePatientCascadesAndRemovesOnlyOrphanBlobs) {
+  ASSERT_TRUE(store_->add_structure(new_structure("P1", "S1", "a", 0)).ok());
+  ASSERT_TRUE(store_->add_structure(new_structure("P1", "S1b", "b", 1)).ok());
+  auto kept = store_->add_structure(new_structure("P2", "S2", "c", 0));  // shares surface 0
+  ASSERT_TRUE(kept.ok());
+  ASSERT_TRUE(store_->put_series(new_series("P1", "S1", "SE1", 1.0f)).ok());
+  ASSERT_TRUE(store_->put_series(new_series("P1", "S1", "SE1b", 5.0f)).ok());
+  ASSERT_TRUE(store_->put_series(new_series("P2", "S2", "SE2", 1.0f)).ok());  // shares SE1's image
+  const std::string own_surface = encode_surface(testing::tetrahedron(1))->info.sha256;
+  ASSERT_TRUE(store_->put_cached_features(own_surface, {{"own", "volume", {1}}}).ok());
+  ASSERT_TRUE(store_->put_cached_features(kept->structure.surface.sha256, {{"shared", "volume", {1}}}).ok());
+
+  auto deleted = store_->delete_patient("P1");
+  ASSERT_TRUE(deleted.ok()) << deleted.status().to_string();
+  EXPECT_EQ(*deleted, 2);
+  const Counts n = counts();
+  EXPECT_EQ(n.patients, 1);
+  EXPECT_EQ(n.studies, 1);
+  EXPECT_EQ(n.series, 1);
+  EXPECT_EQ(n.structures, 1);
+  EXPECT_EQ(n.surfaces, 1);
+  EXPECT_EQ(n.cached_features, 1);
+  EXPECT_TRUE(store_->get_image_blob("SE2").ok());  // the shared image blob stayed
+  EXPECT_TRUE(store_->get_surface_blob(kept->structure.surface.sha256).ok());
+  EXPECT_EQ(store_->get_study("S1").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(store_->get_series("SE1b").status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(SqliteStoreWrite, UnknownIdsAreNotFoundNamingTheId) {
+  const auto expect = [](const Status& s, const std::string& id) {
+    EXPECT_EQ(s.code(), StatusCode::kNotFound) << s.to_string();
+    EXPECT_TRUE(contains(s.message(), id)) << s.message();
+  };
+  expect(store_->delete_structure(424242).status(), "424242");
+  expect(store_->get_structure(424243).status(), "424243");
+  expect(store_->delete_patient("PX1").status(), "PX1");
+  expect(store_->get_patient("PX2").status(), "PX2");
+  expect(store_->get_study("1.2.9").status(), "1.2.9");
+  expect(store_->list_studies("PX3", {}).status(), "PX3");
+  expect(store_->list_series("1.2.8").status(), "1.2.8");
+  expect(store_->get_series("SEX").status(), "SEX");
+  expect(store_->get_image_blob("SEY").status(), "SEY");
+  const std::string sha(64, 'a');
+  expect(store_->get_surface_blob(sha).status(), sha);
+  expect(store_->put_cached_features(sha, {{"k", "e", {1}}}), sha);
+}
+
+TEST_F(SqliteStoreWrite, CachedFeaturesRoundTripManyKeysAndReplace) {
+  auto a = store_->add_structure(new_structure("P1", "S1", "a"));
+  ASSERT_TRUE(a.ok());
+  const std::string sha = a->structure.surface.sha256;
+  std::vector<CachedFeature> entries;
+  std::vector<std::string> keys;
+  for (int i = 0; i < 700; ++i) {  // more keys than one IN list holds
+    keys.push_back(std::string("key") + std::to_string(i));
+    entries.push_back({keys.back(), "mean|inside|", {double(i), 0.5}});
+  }
+  entries.push_back({"key3", "empty", {}});
+  ASSERT_TRUE(store_->put_cached_features(sha, entries).ok());
+  auto got = store_->cached_features(keys);
+  ASSERT_TRUE(got.ok()) << got.status().to_string();
+  EXPECT_EQ(got->size(), 701u);
+  ASSERT_TRUE(store_->put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
+  auto one = store_->cached_features({"key5", "nope"});
+  ASSERT_EQ(one->size(), 1u);
+  EXPECT_EQ((*one)[0].value, std::vector<double>{-1});
+  auto empty = store_->cached_features({"key3"});
+  ASSERT_EQ(empty->size(), 2u);
+  EXPECT_EQ((*empty)[0].entry, "empty");
+  EXPECT_TRUE((*empty)[0].value.empty());
+}
+
+}  // namespace
+}  // namespace soiq::db

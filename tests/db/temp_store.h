@@ -1,0 +1,88 @@
+#pragma once
+// Test support for tests/db: a unique temporary directory removed at the end of the test, and
+// small builders of valid store inputs.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "db/image_blob.h"
+#include "db/sqlite_store.h"
+#include "db/surface_blob.h"
+
+namespace soiq::db::testing {
+
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("soiq_db_" + std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()) + "_" +
+             std::to_string(counter++) + "_" + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::unique_ptr<SqliteStore> open_store(const std::string& path, SqliteOptions options = {}) {
+  auto store = SqliteStore::open(path, options);
+  EXPECT_TRUE(store.ok()) << store.status().to_string();
+  return store.ok() ? std::move(store).value() : nullptr;
+}
+
+// A tetrahedron shifted by `offset`: distinct offsets give distinct surfaces.
+inline TriangleMesh tetrahedron(double offset) {
+  TriangleMesh m;
+  m.vertices_mm = {{offset, 0, 0}, {offset + 1, 0, 0}, {offset, 1, 0}, {offset, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
+inline NewStructure new_structure(const std::string& patient_id, const std::string& study_uid, const std::string& name,
+                                  double surface_offset = 0) {
+  NewStructure s;
+  s.patient.patient_id = patient_id;
+  s.study.study_uid = study_uid;
+  s.name = name;
+  auto encoded = encode_surface(tetrahedron(surface_offset));
+  EXPECT_TRUE(encoded.ok());
+  s.surface = encoded->info;
+  s.surface_blob = encoded->blob;
+  return s;
+}
+
+inline NewSeries new_series(const std::string& patient_id, const std::string& study_uid, const std::string& series_uid,
+                            float fill) {
+  NewSeries s;
+  s.patient.patient_id = patient_id;
+  s.study.study_uid = study_uid;
+  s.series.series_uid = series_uid;
+  s.series.modality = "MR";
+  Image image;
+  image.geometry.dims = {3, 2, 2};
+  image.geometry.spacing_mm = {0.5, 0.75, 2};
+  image.geometry.origin_mm = {-10, 20, 30.25};
+  image.voxels.assign(12, fill);
+  s.series.geometry = image.geometry;
+  auto encoded = encode_image(image);
+  EXPECT_TRUE(encoded.ok());
+  s.series.sha256 = encoded->sha256;
+  s.image_blob = encoded->blob;
+  return s;
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace soiq::db::testing
