@@ -1,0 +1,101 @@
+#include "tests/integration/soiqd_process.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace soiq::testing {
+namespace {
+
+int wait_exit(pid_t pid, std::chrono::seconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    int status = 0;
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return -1;
+}
+
+}  // namespace
+
+TempDir::TempDir() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "soiq-it-XXXXXX").string();
+  path_ = mkdtemp(pattern.data());
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args) {
+  const std::string dir = std::filesystem::path(db_path).parent_path().string();
+  static int counter = 0;
+  const std::string tag = std::to_string(getpid()) + "-" + std::to_string(++counter);
+  log_path_ = dir + "/soiqd-" + tag + ".log";
+  port_path_ = dir + "/soiqd-" + tag + ".port";
+  std::vector<std::string> args = {SOIQD_BINARY, "--db", db_path, "--listen", "127.0.0.1:0", "--port-file", port_path_};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
+  pid_ = fork();
+  if (pid_ == 0) {
+    const int fd = open(log_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    dup2(fd, 2);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < until) {
+    std::ifstream in(port_path_);
+    if (in >> port_ && port_ > 0) {
+      address_ = "127.0.0.1:" + std::to_string(port_);
+      return;
+    }
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {  // exited early: a startup error, in the log
+      pid_ = -1;
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+SoiqdProcess::~SoiqdProcess() {
+  if (pid_ > 0 && terminate() < 0) kill_hard();
+}
+
+int SoiqdProcess::terminate() {
+  if (pid_ <= 0) return -1;
+  kill(pid_, SIGTERM);
+  const int status = wait_exit(pid_, std::chrono::seconds(15));
+  if (status >= 0) pid_ = -1;
+  return status;
+}
+
+void SoiqdProcess::kill_hard() {
+  if (pid_ <= 0) return;
+  kill(pid_, SIGKILL);
+  wait_exit(pid_, std::chrono::seconds(15));
+  pid_ = -1;
+}
+
+std::string SoiqdProcess::log() const {
+  std::ifstream in(log_path_);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace soiq::testing

@@ -1,0 +1,53 @@
+#pragma once
+// A real soiqd for integration tests: started as a child process on a free loopback port (port 0,
+// read back from --port-file) with its own temporary directory and SQLite file, stopped with
+// SIGTERM (graceful shutdown, which the tests also check) or killed with SIGKILL.
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace soiq::testing {
+
+// A fresh temporary directory, removed with everything in it when the object goes.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+class SoiqdProcess {
+ public:
+  // Starts soiqd with `--db db_path --listen 127.0.0.1:0` plus `extra_args`; waits (up to 30 s) for
+  // the port. On failure address() is empty and log() says why.
+  SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args = {});
+  ~SoiqdProcess();  // SIGTERM, then SIGKILL after 15 s
+  SoiqdProcess(const SoiqdProcess&) = delete;
+  SoiqdProcess& operator=(const SoiqdProcess&) = delete;
+
+  bool running() const { return pid_ > 0; }
+  const std::string& address() const { return address_; }
+  int port() const { return port_; }
+  // Sends SIGTERM and waits; returns the exit status (0 for a clean shutdown), -1 on timeout.
+  int terminate();
+  // SIGKILL: a crash, nothing flushed by the server itself.
+  void kill_hard();
+  std::string log() const;  // the server's stderr so far
+
+ private:
+  pid_t pid_ = -1;
+  int port_ = 0;
+  std::string address_;
+  std::string log_path_;
+  std::string port_path_;
+};
+
+}  // namespace soiq::testing
