@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# The remote `soiq` commands end to end against a real soiqd: upload (and deduplication),
+# upload-image, ls, show, features and convert (checked against the offline commands on the same
+# data), download, query (rows, summary, a malformed expression), rm, the demo cohort, and each
+# error with its exit code and one line: unknown id 3, open mesh 4, bad usage 2, no token 7,
+# server down 6.
+# Usage: remote_test.sh SOIQ SOIQD TEST_DATA_DIR
+soiq=$1
+soiqd=$2
+data=$3
+source "$(dirname "$0")/../cli/lib.sh"
+source "$(dirname "$0")/soiqd.sh"
+
+start_soiqd main
+export SOIQ_SERVER=$server
+phantom="$data/ibsi_digital_phantom"
+
+"$soiq" info >"$tmp/info" || fail "soiq info: $(cat "$tmp/info")"
+grep -q "^version" "$tmp/info" || fail "info lacks the version: $(cat "$tmp/info")"
+
+# A closed surface model of the IBSI phantom's mask, made offline.
+"$soiq" mesh "$phantom/mask.nii.gz" -o "$tmp/phantom.stl" >/dev/null || fail "soiq mesh"
+record=(--patient P1 --study 1.2.3 --sex F --birth-date 19600101 --study-date 20200101 --modality CT)
+id=$("$soiq" upload "$tmp/phantom.stl" "${record[@]}" --name phantom --laterality L -q) || fail "upload: $id"
+[[ "$id" =~ ^[0-9]+$ ]] || fail "upload -q printed '$id', not an id"
+"$soiq" upload "$tmp/phantom.stl" "${record[@]}" --name phantom --laterality R >"$tmp/up2" || fail "second upload"
+grep -q "deduplicated" "$tmp/up2" || fail "the same mesh again is not deduplicated: $(cat "$tmp/up2")"
+id2=$(sed -n 's/^structure \([0-9]*\):.*/\1/p' "$tmp/up2")
+[ -n "$id2" ] && [ "$id2" != "$id" ] || fail "second upload is not a new structure: $(cat "$tmp/up2")"
+"$soiq" upload-image "$phantom/phantom.nii.gz" "${record[@]}" --series 1.2.3.1 >"$tmp/img" || fail "upload-image"
+grep -q "^series 1.2.3.1: CT" "$tmp/img" || fail "upload-image output: $(cat "$tmp/img")"
+
+# Listing and showing.
+"$soiq" ls | grep -q "^P1 " || fail "ls patients lacks P1"
+[ "$("$soiq" ls structures --patient P1 --format csv | wc -l)" -eq 3 ] || fail "ls structures: not header + 2 rows"
+"$soiq" ls structures --name PHANT* --laterality R --format json >"$tmp/ls.json" || fail "ls --format json"
+grep -q "\"id\": $id2," "$tmp/ls.json" || fail "ls json lacks structure $id2: $(cat "$tmp/ls.json")"
+grep -q "\"id\": $id," "$tmp/ls.json" && fail "ls --laterality R lists the L structure"
+"$soiq" ls studies --patient P1 | grep -q "^1.2.3 " || fail "ls studies"
+"$soiq" show structure "$id" | grep -q "^name  *phantom" || fail "show structure"
+"$soiq" show study 1.2.3 | grep -q "^series  *1.2.3.1 CT" || fail "show study lacks its series"
+"$soiq" show patient P1 --format json | grep -q '"patient_id":"P1"' || fail "show patient --format json"
+
+# Features on the stored image's grid: the voxels are the mask's own (the conversion is exact), so
+# the volume equals the offline value of the mask, and the mean is IBSI's 2.15.
+"$soiq" features "$id" --series 1.2.3.1 --image CT --features voxel_volume_mm3,mean --format csv >"$tmp/f.csv" ||
+  fail "remote features: $(cat "$tmp/f.csv")"
+remote_volume=$(awk -F, '$3 == "voxel_volume_mm3" { print $4 }' "$tmp/f.csv")
+local_volume=$("$soiq" features "$phantom/mask.nii.gz" --features voxel_volume_mm3 --format csv |
+  awk -F, '$3 == "voxel_volume_mm3" { print $4 }')
+[ -n "$remote_volume" ] && [ "$remote_volume" = "$local_volume" ] ||
+  fail "remote volume '$remote_volume' != offline '$local_volume'"
+within mean "$(awk -F, '$3 == "mean" { print $4 }' "$tmp/f.csv")" 2.15 0.005
+"$soiq" convert "$id" --series 1.2.3.1 -o "$tmp/back.nii.gz" >/dev/null || fail "remote convert"
+"$soiq" compare "$tmp/back.nii.gz" "$phantom/mask.nii.gz" | grep -q "^identical" || fail "remote convert != mask"
+"$soiq" convert "$id" --spacing 0.5 -o "$tmp/fine.nrrd" | grep -q "voxels inside" || fail "remote convert to nrrd"
+[ -s "$tmp/fine.nrrd" ] || fail "no nrrd written"
+"$soiq" download "$id" -o "$tmp/down.vtp" | grep -q "bytes ->" || fail "download"
+"$soiq" features "$tmp/down.vtp" --features mesh_volume_mm3 --format csv >/dev/null || fail "downloaded mesh unreadable"
+
+# The two-stage query: rows on stdout, the summary on stderr.
+"$soiq" query --patient 'P*' --sex F --name phantom --where 'voxel_volume_mm3 > 0' --select 'mean[inside,CT]' \
+  --series-modality CT --order-by voxel_volume_mm3 --format csv >"$tmp/q.csv" 2>"$tmp/q.err" ||
+  fail "query: $(cat "$tmp/q.err")"
+head -1 "$tmp/q.csv" | grep -qF 'id,patient_id,study_uid,name,laterality,voxel_volume_mm3,"mean[inside,CT]",voxel_volume_mm3' ||
+  fail "query header: $(head -1 "$tmp/q.csv")"
+[ "$(wc -l <"$tmp/q.csv")" -eq 3 ] || fail "query rows: $(cat "$tmp/q.csv")"
+grep -q "2 candidates.*2 matched" "$tmp/q.err" || fail "query summary: $(cat "$tmp/q.err")"
+"$soiq" query --sex M --format json >"$tmp/q.json" 2>/dev/null || fail "empty query"
+[ "$(tr -d '[:space:]' <"$tmp/q.json")" = "[]" ] || fail "a query without matches is not []: $(cat "$tmp/q.json")"
+expect 2 "expected ']' at column 16" -- "$soiq" query --where 'mean[shell:5,PT>2'
+expect 2 "unknown feature\|bogus" -- "$soiq" query --name phantom --where 'bogus > 1'
+
+# Errors: one line each, with the exit code of exit_code.h.
+expect 3 "999999" -- "$soiq" show structure 999999
+expect 3 "999999" -- "$soiq" features 999999
+expect 3 "NOPE" -- "$soiq" show patient NOPE
+expect 2 "missing --patient" -- "$soiq" upload "$tmp/phantom.stl" --study 1.2.3 --name x
+expect 2 "structure id" -- "$soiq" rm structure abc
+printf 'solid open\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 10 0 0\nvertex 0 10 0\nendloop\nendfacet\nendsolid open\n' >"$tmp/open.stl"
+expect 4 "robust" -- "$soiq" upload "$tmp/open.stl" "${record[@]}" --name open
+
+# Deleting.
+"$soiq" rm structure "$id2" | grep -q "^deleted 1 structure$" || fail "rm structure"
+expect 3 "$id2" -- "$soiq" show structure "$id2"
+"$soiq" rm patient P1 | grep -q "^deleted 1 structure$" || fail "rm patient"
+expect 3 "P1" -- "$soiq" show patient P1
+
+# The demo cohort answers queries at once.
+"$soiq" demo-load --patients 2 >"$tmp/demo" || fail "demo-load: $(cat "$tmp/demo")"
+grep -q "loaded 2 patients, 2 MR images, 12 structures" "$tmp/demo" || fail "demo-load output: $(cat "$tmp/demo")"
+"$soiq" query --name hippocampus --select voxel_volume_mm3 --select 'mean[shell:3,MR]' --series-modality MR \
+  --format csv >"$tmp/h.csv" 2>/dev/null || fail "hippocampus query"
+[ "$(wc -l <"$tmp/h.csv")" -eq 5 ] || fail "hippocampus rows: $(cat "$tmp/h.csv")"
+"$soiq" query --name amygdala --laterality L --select 'asym(voxel_volume_mm3)' --format csv >"$tmp/a.csv" 2>/dev/null ||
+  fail "asymmetry query"
+[ "$(wc -l <"$tmp/a.csv")" -eq 3 ] || fail "asymmetry rows: $(cat "$tmp/a.csv")"
+
+# Authentication: a server with a token refuses a client without it.
+echo "0123456789abcdef0123456789abcdef" >"$tmp/token"
+start_soiqd auth --token-file "$tmp/token"
+expect 7 "" -- "$soiq" info --server "$server"
+"$soiq" --server "$server" --token-file "$tmp/token" info >/dev/null || fail "info with the token"
+expect 3 "token file" -- "$soiq" info --server "$server" --token-file "$tmp/token-missing"
+stop_soiqd
+
+# Server down: exit 6, naming the address.
+expect 6 "cannot reach soiqd at $server" -- "$soiq" ls --server "$server"
+
+finish remote_test
