@@ -1,0 +1,75 @@
+// Many threads on one SqliteStore, as the server's worker pool calls it.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <set>
+#include <thread>
+
+#include "db/sqlite_store.h"
+#include "tests/db/temp_store.h"
+
+namespace soiq::db {
+namespace {
+
+using testing::new_structure;
+using testing::open_store;
+using testing::TempDir;
+
+TEST(SqliteStoreConcurrency, EightThreadsWritingAndReadingLoseNothing) {
+  TempDir dir;
+  SqliteOptions options;
+  options.read_connections = 3;  // fewer readers than threads: some wait for a connection
+  auto store = open_store(dir.file("threads.db"), options);
+  constexpr int kThreads = 8, kPerThread = 40;
+  std::atomic<int> errors{0};
+  std::vector<std::vector<int64_t>> ids(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      const auto fail = [&](const Status& s) {
+        ADD_FAILURE() << "thread " << t << ": " << s.to_string();
+        ++errors;
+      };
+      for (int i = 0; i < kPerThread; ++i) {
+        // Threads share patients, studies and surfaces, so upserts and dedup race each other.
+        const std::string patient = std::string("P") + std::to_string(i % 5);
+        auto added = store->add_structure(new_structure(patient, std::string("S") + std::to_string(i % 5),
+                                                        std::string("s") + std::to_string(t), double(i % 10)));
+        if (!added.ok()) {
+          fail(added.status());
+          continue;
+        }
+        ids[t].push_back(added->structure.id);
+        auto back = store->get_structure(added->structure.id);
+        if (!back.ok()) fail(back.status());
+        Stage1Filter f;
+        f.patient_id_glob = patient;
+        auto found = store->stage1(f, 1'000'000);
+        if (!found.ok()) fail(found.status());
+        auto page = store->list_structures(StructureFilter{patient, "", "", ""}, PageRequest{});
+        if (!page.ok()) fail(page.status());
+        if (i % 10 == 0) {
+          auto n = store->counts();
+          if (!n.ok()) fail(n.status());
+        }
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(errors.load(), 0);
+  std::set<int64_t> all;
+  for (const auto& v : ids) all.insert(v.begin(), v.end());
+  EXPECT_EQ(all.size(), size_t(kThreads * kPerThread));
+  auto n = store->counts();
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(n->structures, kThreads * kPerThread);
+  EXPECT_EQ(n->surfaces, 10);
+  EXPECT_EQ(n->patients, 5);
+  EXPECT_EQ(n->studies, 5);
+  auto everything = store->stage1(Stage1Filter{}, 1'000'000);
+  ASSERT_TRUE(everything.ok());
+  EXPECT_EQ(everything->size(), size_t(kThreads * kPerThread));
+}
+
+}  // namespace
+}  // namespace soiq::db
