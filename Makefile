@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: deps build run test test-sanitize bench format clean
+.PHONY: deps build run demo test test-sanitize bench format clean
 
 deps:
 	scripts/install-deps
@@ -12,8 +12,12 @@ build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Until soiqd exists, `make run` runs the offline conversion demo (scripts/demo).
+# soiqd on 127.0.0.1:50051 with the SQLite store var/soiq.db, in the foreground (scripts/run-server).
 run: build
+	scripts/run-server $(BUILD)
+
+# The offline conversion demo: a real label map -> surface -> volume, voxel for voxel (scripts/demo).
+demo: build
 	scripts/demo $(BUILD)
 
 test: build
