@@ -56,34 +56,37 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
     jlo = std::min(jlo, l % ny), jhi = std::max(jhi, l % ny), klo = std::min(klo, l / ny), khi = std::max(khi, l / ny);
   }
   for (const Offset& o : offsets) mj = std::max(mj, std::abs(o.dj)), mk = std::max(mk, std::abs(o.dk));
-  std::vector<Run> pieces;
+  // The union of a line's pieces by a difference array over their span, O(pieces + span): no
+  // sort. A count that stays positive across a piece's end joins adjacent pieces into one run
+  // (runs are non-adjacent).
+  std::vector<int32_t> delta(size_t(nx) + 1, 0);
   for (int64_t l = 0; l < s.line_count(); ++l) {
     out.line_start[size_t(l)] = int64_t(out.runs.size());
     const int64_t j = l % ny, k = l / ny;
     if (jhi < 0 || j < jlo - mj || j > jhi + mj || k < klo - mk || k > khi + mk) continue;
-    pieces.clear();
+    int64_t span_lo = nx, span_hi = 0;
     for (const Offset& o : offsets) {
       const int64_t sj = j + o.dj, sk = k + o.dk;
       if (sj < 0 || sj >= ny || sk < 0 || sk >= nz) continue;
       const int64_t sl = sj + ny * sk;
       for (int64_t r = s.line_start[size_t(sl)]; r < s.line_start[size_t(sl) + 1]; ++r) {
         const Run& run = s.runs[size_t(r)];
-        pieces.push_back(
-            {int32_t(std::max<int64_t>(0, run.begin - o.di_max)), int32_t(std::min<int64_t>(nx, run.end + o.di_max))});
+        const int64_t b = std::max<int64_t>(0, run.begin - o.di_max), e = std::min<int64_t>(nx, run.end + o.di_max);
+        ++delta[size_t(b)], --delta[size_t(e)];
+        span_lo = std::min(span_lo, b), span_hi = std::max(span_hi, e);
       }
     }
-    if (pieces.empty()) continue;
-    std::sort(pieces.begin(), pieces.end(), [](const Run& a, const Run& b) { return a.begin < b.begin; });
-    Run cur = pieces.front();
-    for (size_t p = 1; p < pieces.size(); ++p) {
-      if (pieces[p].begin <= cur.end) {  // overlapping or adjacent: one run (runs are non-adjacent)
-        cur.end = std::max(cur.end, pieces[p].end);
-      } else {
-        out.runs.push_back(cur);
-        cur = pieces[p];
+    int32_t count = 0;
+    int64_t begin = -1;
+    for (int64_t i = span_lo; i <= span_hi; ++i) {
+      count += delta[size_t(i)];
+      delta[size_t(i)] = 0;
+      if (count > 0 && begin < 0) begin = i;
+      if (count == 0 && begin >= 0) {
+        out.runs.push_back({int32_t(begin), int32_t(i)});
+        begin = -1;
       }
     }
-    out.runs.push_back(cur);
   }
   out.line_start.back() = int64_t(out.runs.size());
   return out;

@@ -9,9 +9,10 @@
 //          distance transform decides it: for offsets (di, dj, dk) voxels, with d_a = offset_a x
 //          spacing_a, the double value (dk)^2 + ((dj)^2 + (di)^2), each square and sum rounded, is
 //          <= r^2 (1 + 1e-12). That value grows with |di|, so each (dj, dk) has a largest |di|.
-// Cost     O(lines of the grown box x offsets (dj, dk) in the ball x runs per line, plus a sort
-//          per line): cheaper than the distance transform's O(box voxels) while the ball's cross
-//          section is small next to the box (regions.h chooses). Thread-safe.
+// Cost     O(lines of the grown box x (offsets (dj, dk) in the ball x runs per line + the line's
+//          reach)): each line's pieces are united by a difference array, no sort. Cheaper than the
+//          distance transform's O(box voxels) while the ball's cross section is small next to the
+//          box (regions.h chooses). Thread-safe.
 
 #include <cstdint>
 
