@@ -2,30 +2,67 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace soiq {
 namespace {
 
-// Puts the order statistic of every rank in `ranks` (ascending, each in [first, last)) at its
-// position, as a full sort would, by selection: nth_element on the middle rank partitions the range,
-// and each side recurses with its own ranks. O(N log k) expected for k ranks instead of a sort's
-// O(N log N); the values are the same.
-void select_ranks(std::vector<double>& v, const size_t* ranks, size_t count, size_t first, size_t last) {
-  if (count == 0) return;
-  const size_t mid = count / 2, m = ranks[mid];
-  std::nth_element(v.begin() + long(first), v.begin() + long(m), v.begin() + long(last));
-  select_ranks(v, ranks, mid, first, m);
-  select_ranks(v, ranks + mid + 1, count - mid - 1, m + 1, last);
+// The order statistics of the given ranks (ascending, distinct, each < N), exactly those a sort
+// would put there, by one bucket pass: bucket(v) = floor((v - min) * scale) is non-decreasing in v
+// (each rounded step is monotone), so bucket(v) < bucket(w) implies v < w, and the value of rank k
+// is the (k - values in lower buckets)-th smallest of k's bucket. Only the buckets holding a rank
+// are gathered and selected (nth_element). O(N + buckets) for the at most ten ranks used here.
+std::vector<double> order_statistics(const std::vector<double>& v, const std::vector<size_t>& ranks, double lo,
+                                     double hi) {
+  std::vector<double> out(ranks.size(), lo);
+  if (!(hi > lo)) return out;  // constant values
+  const size_t buckets = std::clamp<size_t>(v.size() / 8, 1, size_t(1) << 16);
+  // A finite scale even when hi - lo overflows (then every value falls in bucket 0: still exact).
+  const double width = hi - lo;
+  double scale = double(buckets) / width;
+  if (!std::isfinite(width) || !std::isfinite(scale)) scale = 0;
+  auto bucket_of = [&](double x) { return std::min(size_t((x - lo) * scale), buckets - 1); };
+  std::vector<uint32_t> count(buckets, 0);
+  for (const double x : v) ++count[bucket_of(x)];
+  // The bucket of each rank and its rank within that bucket.
+  std::vector<size_t> rank_bucket(ranks.size()), rank_within(ranks.size());
+  std::vector<int> slot(buckets, -1);
+  std::vector<std::vector<double>> gathered;
+  size_t below = 0, r = 0;
+  for (size_t b = 0; b < buckets && r < ranks.size(); ++b) {
+    while (r < ranks.size() && ranks[r] < below + count[b]) {
+      if (slot[b] < 0) slot[b] = int(gathered.size()), gathered.emplace_back();
+      rank_bucket[r] = b, rank_within[r] = ranks[r] - below;
+      ++r;
+    }
+    below += count[b];
+  }
+  for (size_t b = 0; b < buckets; ++b) {
+    if (slot[b] >= 0) gathered[size_t(slot[b])].reserve(count[b]);
+  }
+  for (const double x : v) {
+    const int s = slot[bucket_of(x)];
+    if (s >= 0) gathered[size_t(s)].push_back(x);
+  }
+  for (size_t q = 0; q < ranks.size(); ++q) {
+    std::vector<double>& g = gathered[size_t(slot[rank_bucket[q]])];
+    std::nth_element(g.begin(), g.begin() + long(rank_within[q]), g.end());
+    out[q] = g[rank_within[q]];
+  }
+  return out;
 }
 
-// Linear interpolation between order statistics at 0-based rank h = (N - 1) p ("type 7"); the
-// ranks floor(h) and floor(h) + 1 must be in place (select_ranks).
-double percentile(const std::vector<double>& ordered, double p) {
-  const double h = double(ordered.size() - 1) * p;
+// Linear interpolation between order statistics at 0-based rank h = (N - 1) p ("type 7").
+double percentile(size_t n, const std::vector<size_t>& ranks, const std::vector<double>& values, double p) {
+  const double h = double(n - 1) * p;
   const size_t lo = size_t(std::floor(h));
-  const size_t hi = std::min(lo + 1, ordered.size() - 1);
-  return ordered[lo] + (h - double(lo)) * (ordered[hi] - ordered[lo]);
+  const size_t hi = std::min(lo + 1, n - 1);
+  auto at = [&](size_t rank) {
+    return values[size_t(std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin())];
+  };
+  return at(lo) + (h - double(lo)) * (at(hi) - at(lo));
 }
 
 constexpr double kPercentiles[] = {0.1, 0.25, 0.5, 0.75, 0.9};
@@ -80,11 +117,12 @@ Result<IntensityFeatures> intensity_features(std::vector<double> values) {
   }
   std::sort(ranks.begin(), ranks.end());
   ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
-  select_ranks(values, ranks.data(), ranks.size(), 0, values.size());
-  f.median = percentile(values, 0.5);
-  f.p10 = percentile(values, 0.1);
-  f.p90 = percentile(values, 0.9);
-  f.interquartile_range = percentile(values, 0.75) - percentile(values, 0.25);
+  const std::vector<double> ordered = order_statistics(values, ranks, f.minimum, f.maximum);
+  const size_t count = values.size();
+  f.median = percentile(count, ranks, ordered, 0.5);
+  f.p10 = percentile(count, ranks, ordered, 0.1);
+  f.p90 = percentile(count, ranks, ordered, 0.9);
+  f.interquartile_range = percentile(count, ranks, ordered, 0.75) - percentile(count, ranks, ordered, 0.25);
   return f;
 }
 

@@ -18,8 +18,9 @@
 // Output   IntensityFeatures. A constant region (m2 == 0) has skewness and excess kurtosis 0, as
 //          PyRadiomics returns, rather than 0/0.
 // Errors   INVALID_ARGUMENT  no values ("no intensity values"); a NaN or infinite value.
-// Cost     O(N) expected: the percentiles' order statistics by selection (nth_element), no
-//          sort; moments in two passes over doubles. Thread-safe.
+// Cost     O(N): moments in two passes over doubles; the percentiles' order statistics, exact, by
+//          one pass into up to 2^16 buckets monotone in the value and a selection (nth_element)
+//          within the few buckets that hold a wanted rank; no sort. Thread-safe.
 
 #include <cstdint>
 #include <vector>
@@ -35,7 +36,7 @@ struct IntensityFeatures {
   double mean_absolute_deviation = 0, energy = 0, root_mean_square = 0;
 };
 
-// Taken by value: the values are reordered in place (partitioned around the percentile ranks).
+// Taken by value (callers move their samples in); the values are not reordered.
 Result<IntensityFeatures> intensity_features(std::vector<double> values);
 
 }  // namespace soiq

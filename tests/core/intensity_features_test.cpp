@@ -122,5 +122,33 @@ TEST(IntensityFeatures, PercentilesBySelectionEqualThoseOfASortedCopy) {
   }
 }
 
+// The bucketed selection stays exact at the edges of its value-to-bucket map: a range that
+// overflows, a range of a few ulps, signed zeros, and ranks in the first and last bucket.
+TEST(IntensityFeatures, PercentilesAreExactOnExtremeRanges) {
+  std::mt19937_64 rng(3);
+  const double big = std::numeric_limits<double>::max();
+  const std::vector<std::vector<double>> bases = {{-big, big, 0, 1e300, -1e300},
+                                                  {1.0, std::nextafter(1.0, 2.0), std::nextafter(1.0, 0.0)},
+                                                  {-0.0, 0.0, 1e-300},
+                                                  {0, 0, 0, 1e9},
+                                                  {5e-324, 0, 1e-320}};
+  for (const std::vector<double>& base : bases) {
+    for (size_t n : {2, 17, 1000, 50001}) {
+      std::vector<double> values(n);
+      for (double& v : values) v = base[rng() % base.size()];
+      std::vector<double> sorted = values;
+      std::sort(sorted.begin(), sorted.end());
+      auto f = intensity_features(values);
+      if (!f.ok()) continue;  // moments overflow to infinity on +-DBL_MAX: not this test's subject
+      const double h = double(n - 1) * 0.5;
+      const size_t lo = size_t(std::floor(h)), hi = std::min(lo + 1, n - 1);
+      EXPECT_EQ(f->median, sorted[lo] + (h - double(lo)) * (sorted[hi] - sorted[lo])) << n;
+      const double h10 = double(n - 1) * 0.1;
+      const size_t l10 = size_t(std::floor(h10)), u10 = std::min(l10 + 1, n - 1);
+      EXPECT_EQ(f->p10, sorted[l10] + (h10 - double(l10)) * (sorted[u10] - sorted[l10])) << n;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace soiq
