@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/convex_hull.h"
+#include "core/hull_vertex_candidates.h"
 #include "core/mesh_defects.h"
 #include "core/point_set_diameter.h"
 
@@ -51,11 +52,15 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
                             " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
   }
 
-  SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(points));
+  // Qhull over the shortlist only: its hull is the vertices' hull (hull_vertex_candidates.h).
+  std::vector<Vec3> candidates;
+  for (const int64_t v : hull_vertex_candidates(points)) candidates.push_back(points[size_t(v)]);
+  if (candidates.size() < 4) candidates = points;  // a degenerate set: Qhull names the problem
+  SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(candidates));
   // The farthest pair of a set is a pair of its hull's vertices.
   std::vector<Vec3> hull_points;
   hull_points.reserve(hull.vertex_indices.size());
-  for (const int64_t v : hull.vertex_indices) hull_points.push_back(points[size_t(v)]);
+  for (const int64_t v : hull.vertex_indices) hull_points.push_back(candidates[size_t(v)]);
   const double diameter = point_set_diameter(hull_points);
 
   // Extents along the box axes (the columns of box_axes).
