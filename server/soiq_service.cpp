@@ -3,6 +3,7 @@
 #include <openssl/crypto.h>
 
 #include <chrono>
+#include <future>
 
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
@@ -88,6 +89,15 @@ grpc::Status SoiqService::handle(const char* method, const grpc::ServerContext& 
   if (status.ok()) status = body();
   log_rpc(method, status, ms_since(start));
   return to_grpc(status);
+}
+
+template <typename T>
+Result<T> SoiqService::on_pool(const std::function<Result<T>()>& work) {
+  // The promise is shared: the worker may still be inside set_value when get() returns.
+  auto done = std::make_shared<std::promise<Result<T>>>();
+  std::future<Result<T>> result = done->get_future();
+  pool_.submit([done, &work] { done->set_value(work()); });
+  return result.get();  // `work` is only used before set_value, while this call waits
 }
 
 Status SoiqService::authorize(const grpc::ServerContext& ctx) const {
@@ -265,7 +275,9 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
     SOIQ_ASSIGN_OR_RETURN(GridChoice choice, grid_choice(request->grid()));
     SOIQ_ASSIGN_OR_RETURN(auto series, series_of(store_, s.study_uid));
     SOIQ_ASSIGN_OR_RETURN(ResolvedGrid grid, resolve_grid(choice, s, series, 0, config_.max_grid_voxels));
-    SOIQ_ASSIGN_OR_RETURN(Voxelization v, features_.convert(s, grid.geometry, fill_rule_of(request->fill_rule())));
+    SOIQ_ASSIGN_OR_RETURN(Voxelization v, on_pool<Voxelization>([&] {
+                            return features_.convert(s, grid.geometry, fill_rule_of(request->fill_rule()));
+                          }));
     v1::ConvertResponse first;
     v1::ConvertSummary* summary = first.mutable_summary();
     *summary->mutable_geometry() = to_proto(grid.geometry);
@@ -336,7 +348,7 @@ grpc::Status SoiqService::ComputeFeatures(grpc::ServerContext* ctx, const v1::Fe
                                  [&](const WantedValue& w) { return values.count(w.entry) > 0; });
     const Clock::time_point start = Clock::now();
     if (!hit) {
-      SOIQ_ASSIGN_OR_RETURN(values, features_.compute(plan, ask));
+      SOIQ_ASSIGN_OR_RETURN(values, on_pool<FeatureValues>([&] { return features_.compute(plan, ask); }));
       v1::Timing* t = response->add_timings();
       t->set_part("conversion and features");
       t->set_milliseconds(ms_since(start));

@@ -4,6 +4,7 @@
 // Limits: uploads larger than max_upload_bytes are RESOURCE_EXHAUSTED as soon as the stream passes
 // the limit (nothing stored); grids larger than max_grid_voxels likewise, before allocation.
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -54,6 +55,10 @@ class SoiqService final : public v1::Soiq::Service {
  private:
   Status authorize(const grpc::ServerContext& ctx) const;
   // Every handler: authorize, run `body` (returns soiq::Status), log, and map once to gRPC.
+  // Runs `work` on the worker pool and waits: conversions and features from every RPC share the
+  // pool, so --workers bounds how many run at once.
+  template <typename T>
+  Result<T> on_pool(const std::function<Result<T>()>& work);
   template <typename Body>
   grpc::Status handle(const char* method, const grpc::ServerContext& ctx, Body&& body);
 
