@@ -122,4 +122,14 @@ std::vector<std::string> query_feature_columns(const soiq::v1::QueryRequest& r) 
   return columns;
 }
 
+std::vector<size_t> distinct_columns(const std::vector<std::string>& columns) {
+  std::vector<size_t> keep;
+  for (size_t c = 0; c < columns.size(); ++c) {
+    bool seen = false;
+    for (const size_t k : keep) seen = seen || columns[k] == columns[c];
+    if (!seen) keep.push_back(c);
+  }
+  return keep;
+}
+
 }  // namespace soiq::cli

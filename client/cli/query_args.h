@@ -31,4 +31,8 @@ Result<QueryArgs> parse_query_args(int argc, char** argv);
 // select, then order_by (as feature_text gives them).
 std::vector<std::string> query_feature_columns(const soiq::v1::QueryRequest& request);
 
+// The positions of `columns` to print: the first of each distinct name (an --order-by that repeats
+// a --select, say, is shown once).
+std::vector<size_t> distinct_columns(const std::vector<std::string>& columns);
+
 }  // namespace soiq::cli

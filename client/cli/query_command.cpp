@@ -19,11 +19,12 @@ std::atomic<bool> g_interrupted{false};
 
 extern "C" void on_interrupt(int) { g_interrupted = true; }
 
-std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, size_t feature_columns, bool csv) {
+// `shown`: the positions of the row's values to print (distinct_columns).
+std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, const std::vector<size_t>& shown, bool csv) {
   const soiq::v1::Structure& s = row.structure();
   std::vector<Cell> cells = {int_cell(s.id()), text_cell(s.patient_id()), text_cell(s.study_uid()), text_cell(s.name()),
                              text_cell(s.laterality())};
-  for (size_t c = 0; c < feature_columns; ++c) {
+  for (const size_t c : shown) {
     if (c < size_t(row.values_size())) {
       const auto& v = row.values(int(c)).value();
       cells.push_back(numbers_cell({v.begin(), v.end()}, csv));
@@ -47,8 +48,9 @@ void print_summary(const soiq::v1::QuerySummary& s) {
 Status query(const QueryArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   const std::vector<std::string> features = query_feature_columns(a.request);
+  const std::vector<size_t> shown = distinct_columns(features);
   std::vector<std::string> header = {"id", "patient_id", "study_uid", "name", "laterality"};
-  header.insert(header.end(), features.begin(), features.end());
+  for (const size_t c : shown) header.push_back(features[c]);
   RowPrinter out(a.format, header);
   ProgressBar bar;
   client::QueryHandlers handlers;
@@ -58,7 +60,7 @@ Status query(const QueryArgs& a, const client::ClientOptions& remote) {
     return true;
   };
   handlers.on_row = [&](const soiq::v1::QueryRow& row) {
-    out.row(row_cells(row, features.size(), a.format == "csv"));
+    out.row(row_cells(row, shown, a.format == "csv"));
     return true;
   };
   g_interrupted = false;

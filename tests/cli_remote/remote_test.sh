@@ -62,7 +62,7 @@ within mean "$(awk -F, '$3 == "mean" { print $4 }' "$tmp/f.csv")" 2.15 0.005
 "$soiq" query --patient 'P*' --sex F --name phantom --where 'voxel_volume_mm3 > 0' --select 'mean[inside,CT]' \
   --series-modality CT --order-by voxel_volume_mm3 --format csv >"$tmp/q.csv" 2>"$tmp/q.err" ||
   fail "query: $(cat "$tmp/q.err")"
-head -1 "$tmp/q.csv" | grep -qF 'id,patient_id,study_uid,name,laterality,voxel_volume_mm3,"mean[inside,CT]",voxel_volume_mm3' ||
+head -1 "$tmp/q.csv" | grep -qxF 'id,patient_id,study_uid,name,laterality,voxel_volume_mm3,"mean[inside,CT]"' ||
   fail "query header: $(head -1 "$tmp/q.csv")"
 [ "$(wc -l <"$tmp/q.csv")" -eq 3 ] || fail "query rows: $(cat "$tmp/q.csv")"
 grep -q "2 candidates.*2 matched" "$tmp/q.err" || fail "query summary: $(cat "$tmp/q.err")"

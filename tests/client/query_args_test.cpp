@@ -62,6 +62,10 @@ TEST(ParseQueryArgs, WhereSelectOrderByAndColumnsInTheServersOrder) {
             (std::vector<std::string>{"voxel_volume_mm3", "mean[shell:5,PT]", "sphericity", "mean[inside,PT]"}));
 }
 
+TEST(DistinctColumns, RepeatedFeatureIsShownOnce) {
+  EXPECT_EQ(distinct_columns({"a", "b", "a", "c", "b"}), (std::vector<size_t>{0, 1, 3}));
+}
+
 TEST(ParseQueryArgs, SpacingGivesAnAxisAlignedGrid) {
   const auto a = parse({"--spacing", "0.5", "--margin", "3"});
   ASSERT_TRUE(a.ok()) << a.status().to_string();
