@@ -1,68 +1,110 @@
 #include "core/hull_vertex_candidates.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/exact_predicates.h"
 
 namespace soiq {
 namespace {
 
+// Order-preserving integer image of a coordinate: x < y iff key(x) < key(y), x == y iff equal
+// keys (-0.0 is first made +0.0).
+uint64_t key_of(double x) {
+  x += 0.0;
+  uint64_t u = 0;
+  std::memcpy(&u, &x, sizeof u);
+  return (u >> 63) != 0 ? ~u : u | (uint64_t(1) << 63);
+}
+
 struct Item {
-  double a, b, c;  // the plane coordinate, the row coordinate, the value within the row
+  uint64_t a, b, c;  // keys of the plane coordinate, the row coordinate, the value within the row
   int64_t index;
 };
 
-bool less_abc(const Item& x, const Item& y) {
-  if (x.a != y.a) return x.a < y.a;
-  if (x.b != y.b) return x.b < y.b;
-  return x.c < y.c;
+// Sorts by (a, b, c), ties kept in input order: LSD radix sort over 11-bit digits, c's first, with
+// the passes whose digit is the same for every item skipped (lattice coordinates share most bits).
+void radix_sort(std::vector<Item>& items, std::vector<Item>& buffer) {
+  constexpr int kBits = 11, kDigits = 6, kBuckets = 1 << kBits;
+  const size_t n = items.size();
+  std::vector<uint32_t> count(size_t(3 * kDigits * kBuckets), 0);
+  auto digit = [](const Item& it, int key, int d) {
+    const uint64_t k = key == 0 ? it.c : key == 1 ? it.b : it.a;
+    return size_t((k >> (kBits * d)) & (kBuckets - 1));
+  };
+  for (const Item& it : items) {
+    for (int key = 0; key < 3; ++key) {
+      for (int d = 0; d < kDigits; ++d) ++count[size_t((key * kDigits + d) * kBuckets) + digit(it, key, d)];
+    }
+  }
+  buffer.resize(n);
+  for (int key = 0; key < 3; ++key) {
+    for (int d = 0; d < kDigits; ++d) {
+      uint32_t* c = count.data() + size_t((key * kDigits + d) * kBuckets);
+      if (n == 0 || c[digit(items[0], key, d)] == n) continue;  // one digit value: order unchanged
+      uint32_t sum = 0;
+      for (int b = 0; b < kBuckets; ++b) {
+        const uint32_t here = c[b];
+        c[b] = sum, sum += here;
+      }
+      for (const Item& it : items) buffer[c[digit(it, key, d)]++] = it;
+      items.swap(buffer);
+    }
+  }
 }
 
 // Turn of o -> p -> q in the (b, c) plane: > 0 counter-clockwise.
-int turn(const Item& o, const Item& p, const Item& q) { return orient2d_sign(o.b, o.c, p.b, p.c, q.b, q.c); }
+// A row end in its plane: the row and value coordinates themselves, for exact turns.
+struct End {
+  double b, c;
+  int64_t index;
+};
+
+int turn(const End& o, const End& p, const End& q) { return orient2d_sign(o.b, o.c, p.b, p.c, q.b, q.c); }
 
 // Marks in `vertex` the strict 2D hull vertices of one plane given by its row ends (sorted by (b, c),
 // distinct): Andrew's monotone chain, collinear points popped.
-void mark_plane_hull(const std::vector<Item>& ends, std::vector<Item>& chain, std::vector<char>& vertex) {
+void mark_plane_hull(const std::vector<End>& ends, std::vector<End>& chain, std::vector<char>& vertex) {
   if (ends.size() <= 2) {
-    for (const Item& e : ends) vertex[size_t(e.index)] = 1;
+    for (const End& e : ends) vertex[size_t(e.index)] = 1;
     return;
   }
   for (int pass = 0; pass < 2; ++pass) {  // lower chain forwards, upper chain backwards
     chain.clear();
     for (size_t n = 0; n < ends.size(); ++n) {
-      const Item& p = pass == 0 ? ends[n] : ends[ends.size() - 1 - n];
+      const End& p = pass == 0 ? ends[n] : ends[ends.size() - 1 - n];
       while (chain.size() >= 2 && turn(chain[chain.size() - 2], chain.back(), p) <= 0) chain.pop_back();
       chain.push_back(p);
     }
-    for (const Item& e : chain) vertex[size_t(e.index)] = 1;
+    for (const End& e : chain) vertex[size_t(e.index)] = 1;
   }
 }
 
 }  // namespace
 
 std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
-  const size_t n = points.size();
-  std::vector<char> keep(n, 0), vertex(n, 0);
-  std::vector<Item> items(n), ends, chain;
+  // The survivors of each family go on to the next: a point that is not extreme among the
+  // survivors is not extreme in the whole set either (the survivors keep every extreme point).
+  std::vector<int64_t> alive(points.size());
+  for (size_t p = 0; p < points.size(); ++p) alive[p] = int64_t(p);
+  std::vector<char> vertex(points.size(), 0);
+  std::vector<Item> items, buffer;
+  std::vector<End> ends, chain;
   for (int family = 0; family < 3; ++family) {
     // Family 0: planes of constant x (rows of constant y); 1: constant y (rows z); 2: constant z (rows x).
     const int a = family, b = (family + 1) % 3, c = (family + 2) % 3;
-    if (family == 0) {
-      for (size_t p = 0; p < n; ++p) items[p] = {points[p][a], points[p][b], points[p][c], int64_t(p)};
-    } else {
-      for (Item& it : items) {
-        const Vec3& p = points[size_t(it.index)];
-        it = {p[a], p[b], p[c], it.index};
-      }
+    items.clear();
+    for (const int64_t i : alive) {
+      const Vec3& p = points[size_t(i)];
+      items.push_back({key_of(p[a]), key_of(p[b]), key_of(p[c]), i});
     }
-    // The index breaks ties so that duplicates keep their lowest index in every family.
-    std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) {
-      if (less_abc(x, y)) return true;
-      if (less_abc(y, x)) return false;
-      return x.index < y.index;
-    });
-    std::fill(vertex.begin(), vertex.end(), char(0));
+    // Stable from ascending indices: duplicates keep their lowest index.
+    radix_sort(items, buffer);
+    const size_t n = items.size();
+    auto end_of = [&](const Item& it) {
+      const Vec3& p = points[size_t(it.index)];
+      return End{p[b], p[c], it.index};
+    };
     for (size_t s = 0; s < n;) {
       size_t e = s;
       ends.clear();
@@ -70,22 +112,19 @@ std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
         // One row: its first and last distinct points (a middle one lies between them).
         size_t r = e;
         while (r < n && items[r].a == items[e].a && items[r].b == items[e].b) ++r;
-        ends.push_back(items[e]);
+        ends.push_back(end_of(items[e]));
         size_t last = r - 1;
         while (last > e && items[last - 1].c == items[last].c) --last;  // lowest index of the duplicates
-        if (items[last].c != items[e].c) ends.push_back(items[last]);
+        if (items[last].c != items[e].c) ends.push_back(end_of(items[last]));
         e = r;
       }
       mark_plane_hull(ends, chain, vertex);
       s = e;
     }
-    for (size_t p = 0; p < n; ++p) keep[p] = char(family == 0 ? vertex[p] : keep[p] & vertex[p]);
+    alive.erase(std::remove_if(alive.begin(), alive.end(), [&](int64_t i) { return !vertex[size_t(i)]; }), alive.end());
+    for (const int64_t i : alive) vertex[size_t(i)] = 0;
   }
-  std::vector<int64_t> out;
-  for (size_t p = 0; p < n; ++p) {
-    if (keep[p]) out.push_back(int64_t(p));
-  }
-  return out;
+  return alive;
 }
 
 }  // namespace soiq

@@ -15,7 +15,10 @@
 // Inputs   points in any frame, finite (not checked: the hull checks).
 // Output   indices into `points`, ascending: every extreme point of conv(points) (one index per
 //          distinct position) and possibly some others. 2D turns are exact (orient2d_sign).
-// Errors   none. Cost O(n log n) time (three sorts), O(n) memory. Thread-safe.
+// Errors   none.
+// Cost     O(n) time and memory: three radix sorts (by x, y, z planes), each over the previous
+//          family's survivors, then one monotone chain per plane over its rows' two ends.
+//          Thread-safe.
 
 #include <cstdint>
 #include <vector>
