@@ -8,13 +8,15 @@
 namespace soiq {
 namespace {
 
-// Order-preserving integer image of a coordinate: x < y iff key(x) < key(y), x == y iff equal
-// keys (-0.0 is first made +0.0).
+// Order-preserving integer image of a finite coordinate: 2^63 plus or minus its magnitude's bits
+// (which order like the magnitude), so x < y iff key(x) < key(y), and -0.0 and +0.0 share one key.
+// Unlike flipping a negative's bits, this keeps trailing zero bits zero on both sides of 0, so
+// the radix passes over them are skipped for lattice coordinates.
 uint64_t key_of(double x) {
-  x += 0.0;
   uint64_t u = 0;
   std::memcpy(&u, &x, sizeof u);
-  return (u >> 63) != 0 ? ~u : u | (uint64_t(1) << 63);
+  const uint64_t magnitude = u & ~(uint64_t(1) << 63), zero = uint64_t(1) << 63;
+  return (u >> 63) != 0 ? zero - magnitude : zero + magnitude;
 }
 
 struct Item {
@@ -27,27 +29,27 @@ struct Item {
 void radix_sort(std::vector<Item>& items, std::vector<Item>& buffer) {
   constexpr int kBits = 11, kDigits = 6, kBuckets = 1 << kBits;
   const size_t n = items.size();
-  std::vector<uint32_t> count(size_t(3 * kDigits * kBuckets), 0);
-  auto digit = [](const Item& it, int key, int d) {
-    const uint64_t k = key == 0 ? it.c : key == 1 ? it.b : it.a;
-    return size_t((k >> (kBits * d)) & (kBuckets - 1));
-  };
+  if (n < 2) return;
+  auto key_at = [](const Item& it, int key) { return key == 0 ? it.c : key == 1 ? it.b : it.a; };
+  // The digits in which some key differs from the first item's: only those need a pass.
+  uint64_t varies[3] = {0, 0, 0};
   for (const Item& it : items) {
-    for (int key = 0; key < 3; ++key) {
-      for (int d = 0; d < kDigits; ++d) ++count[size_t((key * kDigits + d) * kBuckets) + digit(it, key, d)];
-    }
+    for (int key = 0; key < 3; ++key) varies[key] |= key_at(it, key) ^ key_at(items[0], key);
   }
+  std::vector<uint32_t> count(kBuckets);
   buffer.resize(n);
   for (int key = 0; key < 3; ++key) {
     for (int d = 0; d < kDigits; ++d) {
-      uint32_t* c = count.data() + size_t((key * kDigits + d) * kBuckets);
-      if (n == 0 || c[digit(items[0], key, d)] == n) continue;  // one digit value: order unchanged
+      const int shift = kBits * d;
+      if (((varies[key] >> shift) & (kBuckets - 1)) == 0) continue;  // one digit value: order unchanged
+      std::fill(count.begin(), count.end(), 0u);
+      for (const Item& it : items) ++count[(key_at(it, key) >> shift) & (kBuckets - 1)];
       uint32_t sum = 0;
-      for (int b = 0; b < kBuckets; ++b) {
-        const uint32_t here = c[b];
-        c[b] = sum, sum += here;
+      for (uint32_t& c : count) {
+        const uint32_t here = c;
+        c = sum, sum += here;
       }
-      for (const Item& it : items) buffer[c[digit(it, key, d)]++] = it;
+      for (const Item& it : items) buffer[count[(key_at(it, key) >> shift) & (kBuckets - 1)]++] = it;
       items.swap(buffer);
     }
   }
