@@ -23,7 +23,8 @@ std::vector<double> order_statistics(const std::vector<double>& v, const std::ve
   const double width = hi - lo;
   double scale = double(buckets) / width;
   if (!std::isfinite(width) || !std::isfinite(scale)) scale = 0;
-  auto bucket_of = [&](double x) { return std::min(size_t((x - lo) * scale), buckets - 1); };
+  // Through int64_t: a signed conversion is one instruction; (x - lo) * scale is in [0, buckets].
+  auto bucket_of = [&](double x) { return std::min(size_t(int64_t((x - lo) * scale)), buckets - 1); };
   std::vector<uint32_t> count(buckets, 0);
   for (const double x : v) ++count[bucket_of(x)];
   // The bucket of each rank and its rank within that bucket.
@@ -71,17 +72,23 @@ constexpr double kPercentiles[] = {0.1, 0.25, 0.5, 0.75, 0.9};
 
 Result<IntensityFeatures> intensity_features(std::vector<double> values) {
   if (values.empty()) return invalid_argument("no intensity values: the region has no voxel inside the image");
-  for (double v : values) {
-    if (!std::isfinite(v)) return invalid_argument("intensity values include NaN or infinity");
-  }
   IntensityFeatures f;
   const double n = double(values.size());
   f.voxel_count = int64_t(values.size());
 
-  double sum = 0, energy = 0;
+  // One pass for the sums and the extremes. A NaN or infinity makes a sum non-finite, so the
+  // per-value check runs only then (or when finite values overflow the energy).
+  double sum = 0, energy = 0, lo = values[0], hi = values[0];
   for (double v : values) {
     sum += v;
     energy += v * v;
+    lo = v < lo ? v : lo;
+    hi = v >= hi ? v : hi;  // the last maximum, as std::minmax_element
+  }
+  if (!std::isfinite(sum) || !std::isfinite(energy)) {
+    for (double v : values) {
+      if (!std::isfinite(v)) return invalid_argument("intensity values include NaN or infinity");
+    }
   }
   f.mean = sum / n;
   // Central moments in a second pass: one pass (E[x^2] - mean^2) cancels badly for CT-like values.
@@ -105,9 +112,8 @@ Result<IntensityFeatures> intensity_features(std::vector<double> values) {
   f.energy = energy;
   f.root_mean_square = std::sqrt(energy / n);
 
-  const auto [min_it, max_it] = std::minmax_element(values.begin(), values.end());
-  f.minimum = *min_it;
-  f.maximum = *max_it;
+  f.minimum = lo;
+  f.maximum = hi;
   f.range = f.maximum - f.minimum;
   std::vector<size_t> ranks;
   for (const double p : kPercentiles) {
