@@ -9,6 +9,7 @@
 
 #include "client/grpc_status.h"
 #include "client/read_token_file.h"
+#include "grpc/health/v1/health.grpc.pb.h"
 
 namespace soiq::client {
 
@@ -164,6 +165,17 @@ Result<v1::ServerInfo> Client::server_info() const {
   return unary<v1::ServerInfo>([&](v1::Soiq::Stub& stub, grpc::ClientContext* ctx,
                                    v1::ServerInfo* out) { return stub.GetServerInfo(ctx, request, out); },
                                true);
+}
+
+Result<bool> Client::serving(const std::string& service) const {
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
+  grpc::health::v1::HealthCheckResponse response;
+  auto ctx = context(options_.deadline);
+  const Status s =
+      map(grpc::health::v1::Health::NewStub(channel_)->Check(ctx.get(), request, &response), options_.deadline);
+  if (!s.ok()) return s;
+  return response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
 }
 
 Result<v1::FeaturesResponse> Client::compute_features(const v1::FeaturesRequest& request) const {

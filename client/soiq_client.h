@@ -90,6 +90,9 @@ class Client {
   Result<soiq::v1::DeleteResponse> delete_structure(int64_t id) const;
   Result<soiq::v1::DeleteResponse> delete_patient(const std::string& patient_id) const;
   Result<soiq::v1::ServerInfo> server_info() const;
+  // The standard health service (grpc.health.v1.Health/Check) for `service` ("" = the server as a
+  // whole): true when SERVING, false when NOT_SERVING (e.g. shutting down). Not retried.
+  Result<bool> serving(const std::string& service = "") const;
   Result<soiq::v1::FeaturesResponse> compute_features(const soiq::v1::FeaturesRequest& request) const;
 
   // The stored surface, written to `out_path` (replaced; removed again on failure). Returns the

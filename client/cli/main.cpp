@@ -11,6 +11,7 @@
 #include "client/cli/download_command.h"
 #include "client/cli/exit_code.h"
 #include "client/cli/features_command.h"
+#include "client/cli/health_command.h"
 #include "client/cli/info_command.h"
 #include "client/cli/ls_command.h"
 #include "client/cli/mesh_command.h"
@@ -74,6 +75,8 @@ constexpr const char* kHelp =
     "      rows on stdout; a progress bar (on a terminal) and a summary line on stderr; Ctrl-C cancels\n"
     "  soiq info [--format text|json]\n"
     "      soiqd's version, limits and record counts\n"
+    "  soiq health\n"
+    "      asks soiqd's standard health service (grpc.health.v1): SERVING (exit 0) or not (exit 6)\n"
     "  soiq demo-load [--patients N] [--seed S]\n"
     "      loads a synthetic cohort (default 20 patients: MR image, hippocampus/amygdala/caudate L and R)\n"
     "\n"
@@ -129,6 +132,7 @@ int main(int argc, char** argv) {
   if (command == "download") return run_download_command(n, args, *remote);
   if (command == "query") return run_query_command(n, args, *remote);
   if (command == "info") return run_info_command(n, args, *remote);
+  if (command == "health") return run_health_command(n, args, *remote);
   if (command == "demo-load") return run_demo_load_command(n, args, *remote);
   std::fprintf(stderr, "soiq: unknown command '%s' (try 'soiq help')\n", command.c_str());
   return kExitUsage;

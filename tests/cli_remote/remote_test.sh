@@ -17,6 +17,7 @@ phantom="$data/ibsi_digital_phantom"
 
 "$soiq" info >"$tmp/info" || fail "soiq info: $(cat "$tmp/info")"
 grep -q "^version" "$tmp/info" || fail "info lacks the version: $(cat "$tmp/info")"
+[ "$("$soiq" health)" = SERVING ] || fail "soiq health does not say SERVING"
 
 # A closed surface model of the IBSI phantom's mask, made offline.
 "$soiq" mesh "$phantom/mask.nii.gz" -o "$tmp/phantom.stl" >/dev/null || fail "soiq mesh"
@@ -106,5 +107,6 @@ stop_soiqd
 
 # Server down: exit 6, naming the address.
 expect 6 "cannot reach soiqd at $server" -- "$soiq" ls --server "$server"
+expect 6 "cannot reach soiqd at $server" -- "$soiq" health --server "$server"
 
 finish remote_test

@@ -140,3 +140,23 @@ TEST_F(ServiceTest, BadServerConfigurationIsRefusedAtStart) {
 
 }  // namespace
 }  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+TEST_F(ServiceTest, TheStandardHealthServiceSaysServing) {
+  Result<bool> serving = client_->serving();
+  ASSERT_TRUE(serving.ok()) << serving.status().to_string();
+  EXPECT_TRUE(*serving);
+  // The health service answers without a token even when the API needs one (a load balancer's
+  // probe has none).
+  const std::string token = dir_.file("token");
+  std::ofstream(token) << "s3cret-token-0123456789abcdef\n";
+  start({"--token-file", token});
+  Result<bool> anonymous = connect().serving();
+  ASSERT_TRUE(anonymous.ok()) << anonymous.status().to_string();
+  EXPECT_TRUE(*anonymous);
+}
+
+}  // namespace
+}  // namespace soiq::testing
