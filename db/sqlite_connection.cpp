@@ -13,7 +13,7 @@ constexpr size_t kMaxCachedStatements = 128;
 
 }  // namespace
 
-Result<std::unique_ptr<Connection>> Connection::open(const std::string& path, int busy_timeout_ms,
+Result<std::unique_ptr<Connection>> Connection::open(const std::string& path, int busy_timeout_ms, int cache_mib,
                                                      ConnectionRole role) {
   const int flags =
       SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX | (role == ConnectionRole::kWriter ? SQLITE_OPEN_CREATE : 0);
@@ -29,7 +29,9 @@ Result<std::unique_ptr<Connection>> Connection::open(const std::string& path, in
   sqlite3_busy_timeout(db, busy_timeout_ms);
   // SQLite reads the file lazily: the first statement that touches it is where a file that is not
   // a database shows up, so its error names the path.
-  std::string pragmas = "PRAGMA foreign_keys=ON; PRAGMA synchronous=FULL;";
+  // A negative cache_size is in KiB.
+  std::string pragmas = "PRAGMA foreign_keys=ON; PRAGMA synchronous=FULL; PRAGMA cache_size=-" +
+                        std::to_string(int64_t{cache_mib} * 1024) + ";";
   if (role == ConnectionRole::kWriter) {
     pragmas = "PRAGMA journal_mode=WAL; " + pragmas;
   } else {

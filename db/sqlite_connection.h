@@ -2,7 +2,7 @@
 // One SQLite connection with soiq's settings and a cache of prepared statements. A connection is
 // used by one thread at a time; SqliteStore (sqlite_store.h) provides that mutual exclusion.
 //
-// Settings, applied on open: busy timeout, journal_mode=WAL (readers never block the writer and
+// Settings, applied on open: busy timeout, page cache size, journal_mode=WAL (readers never block the writer and
 // vice versa), foreign_keys=ON, synchronous=FULL (a commit is on disk before it is acknowledged,
 // so a killed server or a power cut loses nothing acknowledged). A reader connection also sets
 // query_only=ON, so a bug cannot write through it.
@@ -27,7 +27,8 @@ class Connection {
  public:
   // Creates the file when the writer opens a path that does not exist. Errors name the path:
   // FAILED_PRECONDITION when the file is not a SQLite database or cannot be opened.
-  static Result<std::unique_ptr<Connection>> open(const std::string& path, int busy_timeout_ms, ConnectionRole role);
+  static Result<std::unique_ptr<Connection>> open(const std::string& path, int busy_timeout_ms, int cache_mib,
+                                                  ConnectionRole role);
   ~Connection();
   Connection(const Connection&) = delete;
   Connection& operator=(const Connection&) = delete;

@@ -7,12 +7,15 @@ namespace soiq::db {
 Result<std::unique_ptr<SqliteStore>> SqliteStore::open(const std::string& path, const SqliteOptions& options) {
   if (options.busy_timeout_ms < 0) return invalid_argument("busy_timeout_ms must be >= 0");
   if (options.read_connections < 1) return invalid_argument("read_connections must be >= 1");
+  if (options.cache_mib < 1) return invalid_argument("cache_mib must be >= 1");
   std::unique_ptr<SqliteStore> store(new SqliteStore());
-  SOIQ_ASSIGN_OR_RETURN(store->writer_, Connection::open(path, options.busy_timeout_ms, ConnectionRole::kWriter));
+  SOIQ_ASSIGN_OR_RETURN(store->writer_,
+                        Connection::open(path, options.busy_timeout_ms, options.cache_mib, ConnectionRole::kWriter));
   // Migrate before any reader exists, so readers only ever see the current schema.
   SOIQ_RETURN_IF_ERROR(migrate_schema(*store->writer_));
   for (int i = 0; i < options.read_connections; ++i) {
-    SOIQ_ASSIGN_OR_RETURN(auto reader, Connection::open(path, options.busy_timeout_ms, ConnectionRole::kReader));
+    SOIQ_ASSIGN_OR_RETURN(auto reader,
+                          Connection::open(path, options.busy_timeout_ms, options.cache_mib, ConnectionRole::kReader));
     store->free_readers_.push_back(reader.get());
     store->readers_.push_back(std::move(reader));
   }

@@ -42,6 +42,7 @@ namespace soiq::db {
 struct SqliteOptions {
   int busy_timeout_ms = 5000;  // how long a method waits for another process's lock
   int read_connections = 4;    // >= 1; more than the worker threads that read at once gains nothing
+  int cache_mib = 64;          // page cache per connection, so stage 1 reads memory, not the file
 };
 
 class SqliteStore : public Store {

@@ -9,34 +9,31 @@
 namespace soiq::db {
 namespace {
 
+// Every condition is on stage1_rows (alias r), so the query reads one narrow table and joins the
+// records only for the rows it returns.
 SqlConditions stage1_conditions(const Stage1Filter& f) {
   SqlConditions where;
-  if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
-  if (!f.sex.empty()) where.equal("p.sex", f.sex);
+  if (!f.patient_id_glob.empty()) where.glob("r.patient_id", f.patient_id_glob);
+  if (!f.sex.empty()) where.equal("r.sex", f.sex);
   // An unknown date ('') or age (NULL) never satisfies a range: `> ''` keeps the range an index
   // range where only an upper bound is given.
-  if (!f.birth_date_from.empty()) where.compare("p.birth_date", ">=", f.birth_date_from);
+  if (!f.birth_date_from.empty()) where.compare("r.birth_date", ">=", f.birth_date_from);
   if (!f.birth_date_to.empty()) {
-    where.compare("p.birth_date", "<=", f.birth_date_to);
-    if (f.birth_date_from.empty()) where.compare("p.birth_date", ">", std::string());
+    where.compare("r.birth_date", "<=", f.birth_date_to);
+    if (f.birth_date_from.empty()) where.compare("r.birth_date", ">", std::string());
   }
-  if (f.min_age_years) where.compare("st.age_years", ">=", *f.min_age_years);
-  if (f.max_age_years) where.compare("st.age_years", "<=", *f.max_age_years);
-  if (!f.study_date_from.empty()) where.compare("st.study_date", ">=", f.study_date_from);
+  if (f.min_age_years) where.compare("r.age_years", ">=", *f.min_age_years);
+  if (f.max_age_years) where.compare("r.age_years", "<=", *f.max_age_years);
+  if (!f.study_date_from.empty()) where.compare("r.study_date", ">=", f.study_date_from);
   if (!f.study_date_to.empty()) {
-    where.compare("st.study_date", "<=", f.study_date_to);
-    if (f.study_date_from.empty()) where.compare("st.study_date", ">", std::string());
+    where.compare("r.study_date", "<=", f.study_date_to);
+    if (f.study_date_from.empty()) where.compare("r.study_date", ">", std::string());
   }
-  if (!f.modality.empty()) {
-    // The set of matching studies from two indexes, rather than an OR with a correlated EXISTS,
-    // so the planner can start from it when it is the most selective filter.
-    where.with_parameter(
-        "st.pk IN (SELECT pk FROM studies WHERE modality = ? UNION SELECT study_pk FROM series WHERE modality = ?)",
-        f.modality);
-  }
-  if (!f.study_description_glob.empty()) where.glob("st.description", f.study_description_glob);
-  if (!f.structure_name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.structure_name_glob));
-  if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);
+  // The study's modality or any of its series', all in r.modalities as /MR/CT/.
+  if (!f.modality.empty()) where.with_parameter("instr(r.modalities, '/' || ? || '/') > 0", f.modality);
+  if (!f.study_description_glob.empty()) where.glob("r.description", f.study_description_glob);
+  if (!f.structure_name_glob.empty()) where.glob("r.name_lower", ascii_lower(f.structure_name_glob));
+  if (!f.laterality.empty()) where.equal("r.laterality", f.laterality);
   return where;
 }
 
@@ -49,18 +46,22 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
   std::vector<Candidate> out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     // limit + 1 rows tell whether there are too many without counting them all first.
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns +
-                                                 ", " + kStudyColumns + " FROM " + kStructureJoin + " WHERE 1" +
-                                                 where.sql() + " ORDER BY s.id LIMIT " + std::to_string(limit + 1)));
+    // CROSS JOIN fixes the loop order (SQLite never reorders it): the filters choose the plan on
+    // stage1_rows alone, and the record tables are only probed by key for the rows it yields.
+    SOIQ_ASSIGN_OR_RETURN(
+        Statement q,
+        c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns + ", " + kStudyColumns +
+                  " FROM stage1_rows r CROSS JOIN structures s CROSS JOIN studies st CROSS JOIN patients p CROSS "
+                  "JOIN surfaces sf WHERE s.id = r.structure_id AND st.pk = s.study_pk AND p.pk = st.patient_pk "
+                  "AND sf.sha256 = s.surface_sha256" +
+                  where.sql() + " ORDER BY r.structure_id LIMIT " + std::to_string(limit + 1)));
     where.bind(q);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
       if (!row) break;
       if (int64_t(out.size()) == limit) {
         // Too many: count them all (same snapshot) so the message can say how many.
-        SOIQ_ASSIGN_OR_RETURN(Statement n, c.prepare("SELECT count(*) FROM structures s JOIN studies st ON st.pk = "
-                                                     "s.study_pk JOIN patients p ON p.pk = st.patient_pk WHERE 1" +
-                                                     where.sql()));
+        SOIQ_ASSIGN_OR_RETURN(Statement n, c.prepare("SELECT count(*) FROM stage1_rows r WHERE 1" + where.sql()));
         where.bind(n);
         SOIQ_ASSIGN_OR_RETURN(const bool counted, n.step());
         const int64_t total = counted ? n.int64(0) : limit + 1;

@@ -141,6 +141,27 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
   return keys;
 }
 
+// Rewrites the stage-1 rows of every structure of the patient from the base tables. Called by
+// each write that changes a structure, or a patient, study or series field stage 1 filters on;
+// a patient has few structures, so rewriting them all is simpler than tracking which changed.
+Status refresh_stage1_rows(Connection& c, int64_t patient_pk) {
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare("DELETE FROM stage1_rows WHERE patient_pk = ?1"));
+    del.bind(1, patient_pk);
+    SOIQ_RETURN_IF_ERROR(del.run());
+  }
+  SOIQ_ASSIGN_OR_RETURN(
+      Statement ins,
+      c.prepare("INSERT INTO stage1_rows(structure_id, patient_pk, patient_id, sex, birth_date, age_years, "
+                "study_date, modalities, description, name_lower, laterality) SELECT s.id, p.pk, p.patient_id, "
+                "p.sex, p.birth_date, st.age_years, st.study_date, '/' || st.modality || '/' || coalesce((SELECT "
+                "group_concat(se.modality || '/', '') FROM series se WHERE se.study_pk = st.pk), ''), "
+                "st.description, lower(s.name), s.laterality FROM structures s JOIN studies st ON st.pk = "
+                "s.study_pk JOIN patients p ON p.pk = st.patient_pk WHERE p.pk = ?1"));
+  ins.bind(1, patient_pk);
+  return ins.run();
+}
+
 // Deletes the surface (and, by cascade, its cached features) when no structure refers to it.
 Status delete_surface_if_orphan(Connection& c, const std::string& sha256) {
   SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare("DELETE FROM surfaces WHERE sha256 = ?1 AND NOT EXISTS "
@@ -204,6 +225,7 @@ Result<AddedStructure> SqliteStore::add_structure(const NewStructure& s) {
       if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
       id = ins.int64(0);
     }
+    SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
     SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
     return ok_status();
   }));
@@ -233,11 +255,16 @@ Result<bool> SqliteStore::put_series(const NewSeries& s) {
       SOIQ_RETURN_IF_ERROR(ins.run());
     }
     std::optional<std::string> old_sha;
+    std::optional<int64_t> old_patient_pk;
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT image_sha256 FROM series WHERE series_uid = ?1"));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT se.image_sha256, st.patient_pk FROM series se JOIN "
+                                                   "studies st ON st.pk = se.study_pk WHERE se.series_uid = ?1"));
       q.bind(1, s.series.series_uid);
       SOIQ_ASSIGN_OR_RETURN(replaced, q.step());
-      if (replaced) old_sha = q.text(0);
+      if (replaced) {
+        old_sha = q.text(0);
+        old_patient_pk = q.int64(1);
+      }
     }
     {
       // An upsert keeps the series' pk stable when it is replaced.
@@ -269,6 +296,12 @@ Result<bool> SqliteStore::put_series(const NewSeries& s) {
       SOIQ_RETURN_IF_ERROR(up.run());
     }
     if (old_sha && *old_sha != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, *old_sha));
+    // The series' modality counts for its study's structures; a series moved from another
+    // patient's study changes that patient's rows too.
+    SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+    if (old_patient_pk && *old_patient_pk != keys.patient_pk) {
+      SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, *old_patient_pk));
+    }
     return ok_status();
   }));
   return replaced;
