@@ -71,6 +71,8 @@ Status Statement::run() {
   }
 }
 
+void Statement::reset() { sqlite3_reset(stmt_); }
+
 bool Statement::is_null(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
 int64_t Statement::int64(int col) const { return sqlite3_column_int64(stmt_, col); }
 double Statement::real(int col) const { return sqlite3_column_double(stmt_, col); }

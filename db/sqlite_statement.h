@@ -38,6 +38,8 @@ class Statement {
   Result<bool> step();
   // Steps to the end, for statements whose rows (if any) are not needed.
   Status run();
+  // Back to before the first step, keeping the bindings, to run the statement again.
+  void reset();
 
   bool is_null(int col) const;
   int64_t int64(int col) const;

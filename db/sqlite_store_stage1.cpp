@@ -45,34 +45,43 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
   const SqlConditions where = stage1_conditions(f);
   std::vector<Candidate> out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    // limit + 1 rows tell whether there are too many without counting them all first.
-    // CROSS JOIN fixes the loop order (SQLite never reorders it): the filters choose the plan on
-    // stage1_rows alone, and the record tables are only probed by key for the rows it yields.
-    SOIQ_ASSIGN_OR_RETURN(
-        Statement q,
-        c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns + ", " + kStudyColumns +
-                  " FROM stage1_rows r CROSS JOIN structures s CROSS JOIN studies st CROSS JOIN patients p CROSS "
-                  "JOIN surfaces sf WHERE s.id = r.structure_id AND st.pk = s.study_pk AND p.pk = st.patient_pk "
-                  "AND sf.sha256 = s.surface_sha256" +
-                  where.sql() + " ORDER BY r.structure_id LIMIT " + std::to_string(limit + 1)));
-    where.bind(q);
-    while (true) {
-      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-      if (!row) break;
-      if (int64_t(out.size()) == limit) {
-        // Too many: count them all (same snapshot) so the message can say how many.
-        SOIQ_ASSIGN_OR_RETURN(Statement n, c.prepare("SELECT count(*) FROM stage1_rows r WHERE 1" + where.sql()));
-        where.bind(n);
-        SOIQ_ASSIGN_OR_RETURN(const bool counted, n.step());
-        const int64_t total = counted ? n.int64(0) : limit + 1;
-        return resource_exhausted("stage 1 matches " + std::to_string(total) + " structures, more than the limit of " +
-                                  std::to_string(limit) + "; narrow the stage-1 filter");
+    // The matching ids from stage1_rows alone, at most limit + 1 of them: the filters choose the
+    // plan on that one narrow table, and no record is built before we know there are not too many.
+    std::vector<int64_t> ids;
+    {
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT r.structure_id FROM stage1_rows r WHERE 1" + where.sql() +
+                                                   " ORDER BY r.structure_id LIMIT " + std::to_string(limit + 1)));
+      where.bind(q);
+      while (true) {
+        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+        if (!row) break;
+        ids.push_back(q.int64(0));
       }
+    }
+    if (int64_t(ids.size()) > limit) {
+      // Only for the message: the full count, in the same snapshot.
+      SOIQ_ASSIGN_OR_RETURN(Statement all, c.prepare("SELECT count(*) FROM stage1_rows r WHERE 1" + where.sql()));
+      where.bind(all);
+      SOIQ_ASSIGN_OR_RETURN(const bool counted, all.step());
+      const int64_t total = counted ? all.int64(0) : limit + 1;
+      return resource_exhausted("stage 1 matches " + std::to_string(total) + " structures, more than the limit of " +
+                                std::to_string(limit) + "; narrow the stage-1 filter");
+    }
+    // Then each record by key (one cached statement, a few index probes per row).
+    SOIQ_ASSIGN_OR_RETURN(Statement q,
+                          c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns + ", " +
+                                    kStudyColumns + " FROM " + kStructureJoin + " WHERE s.id = ?1"));
+    out.reserve(ids.size());
+    for (int64_t id : ids) {
+      q.bind(1, id);
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) return internal_error("stage1_rows names structure " + std::to_string(id) + " that does not exist");
       Candidate cand;
       cand.structure = read_structure(q, 0);
       cand.patient = read_patient(q, kStructureColumnCount);
       cand.study = read_study(q, kStructureColumnCount + kPatientColumnCount);
       out.push_back(std::move(cand));
+      q.reset();
     }
     return ok_status();
   }));
