@@ -6,6 +6,7 @@
 #include "core/structure_features.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
+#include "server/hull_free_surface_shape.h"
 
 namespace soiq::server {
 namespace {
@@ -143,9 +144,27 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   SOIQ_RETURN_IF_ERROR(check_cancel());
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
 
-  std::vector<std::shared_ptr<const Image>> images;
+  // Hull-free surface features (sphericity, ...) are computed here from volume and area when no
+  // asked feature needs the hull: structure_features would compute the convex hull for any surface
+  // feature (hull_free_surface_shape.h). The rest goes to structure_features, without the mesh
+  // when it needs none (no copy of it either).
+  const bool hull_asked = std::any_of(ask.names.begin(), ask.names.end(), needs_hull);
   FeatureRequest request;
-  request.names = ask.names;
+  std::vector<std::string> hull_free;
+  for (const std::string& n : ask.names) {
+    if (!hull_asked && is_hull_free_surface_name(n)) {
+      hull_free.push_back(n);
+    } else {
+      request.names.push_back(n);
+    }
+  }
+  // Empty names ask structure_features for everything: ask for a cheap one instead.
+  if (request.names.empty()) request.names.push_back("voxel_count");
+  const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
+    return is_hull_free_surface_name(n) || needs_hull(n);
+  });
+
+  std::vector<std::shared_ptr<const Image>> images;
   request.regions = ask.regions;
   request.interpolation = ask.interpolation;
   for (const db::SeriesRecord& s : plan.images) {
@@ -153,7 +172,8 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
     images.push_back(img);
     request.images.push_back(NamedImage{s.sha256, img.get()});
   }
-  StructureInput input{std::move(v.volume), *mesh};
+  StructureInput input{std::move(v.volume), std::nullopt};
+  if (core_needs_mesh) input.surface = *mesh;
   Result<FeatureReport> report = structure_features(input, request);
   if (!report.ok()) {
     return Status(report.status().code(),
@@ -161,6 +181,18 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   }
   FeatureValues values;
   std::vector<db::CachedFeature> entries;
+  if (!hull_free.empty()) {
+    Result<std::vector<std::pair<std::string, double>>> shape = hull_free_surface_shape(*mesh);
+    if (!shape.ok()) {
+      return Status(shape.status().code(),
+                    "structure " + std::to_string(plan.structure.id) + ": " + shape.status().message());
+    }
+    for (const auto& [name, value] : *shape) {
+      if (!contains(hull_free, name)) continue;
+      values[name] = {value};
+      entries.push_back({plan.cache_key, name, {value}});
+    }
+  }
   for (const Feature& f : report->features) {
     const std::string entry = feature_entry(f.name, f.region, f.image, ask.interpolation);
     values[entry] = f.value;
