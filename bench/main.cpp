@@ -6,6 +6,8 @@
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
+//   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
+//                    [--patients N] [--matched N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include "bench/convert_bench.h"
 #include "bench/cpu_probe.h"
 #include "bench/features_bench.h"
+#include "bench/query_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
 #include "bench/table5.h"
@@ -31,7 +34,9 @@ int usage() {
                "       soiq-bench table7 [--runs N] [--pin CPU]\n"
                "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
                "       soiq-bench cpu-probe [--runs N]\n"
-               "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n");
+               "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
+               "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
+               "                  [--patients N] [--matched N]\n");
   return 2;
 }
 
@@ -41,10 +46,11 @@ int main(int argc, char** argv) {
   using namespace soiq::bench;
   if (argc < 2) return usage();
   const std::string command = argv[1];
-  const auto args = parse_cli_args(
-      argc, argv, 2,
-      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models", "--sts"},
-      {"--json"});
+  const auto args =
+      parse_cli_args(argc, argv, 2,
+                     {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models",
+                      "--sts", "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched"},
+                     {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
     return 2;
@@ -56,5 +62,6 @@ int main(int argc, char** argv) {
   if (command == "scaling") return run_scaling(*args);
   if (command == "cpu-probe") return run_cpu_probe(*args);
   if (command == "features") return run_features_bench(*args);
+  if (command == "query") return run_query_bench(*args);
   return usage();
 }

@@ -1,0 +1,123 @@
+#include "bench/cold_breakdown.h"
+
+#include <chrono>
+#include <map>
+#include <memory>
+
+#include "core/intensity_features.h"
+#include "core/mesh_defects.h"
+#include "core/regions.h"
+#include "core/resample.h"
+#include "core/structure_features.h"
+#include "core/surface_shape.h"
+#include "core/voxelize_1d.h"
+#include "db/image_blob.h"
+#include "db/sqlite_store.h"
+#include "db/surface_blob.h"
+#include "server/grid_choice.h"
+#include "server/hull_free_surface_shape.h"
+
+namespace soiq::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Sums the time of each named part, in the order parts first appear.
+class Parts {
+ public:
+  template <typename F>
+  auto run(const std::string& part, F&& f) {
+    const Clock::time_point t0 = Clock::now();
+    auto result = f();
+    add(part, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    return result;
+  }
+  void add(const std::string& part, double ms) {
+    auto it = index_.find(part);
+    if (it == index_.end()) {
+      it = index_.emplace(part, parts_.size()).first;
+      parts_.emplace_back(part, 0.0);
+    }
+    parts_[it->second].second += ms;
+  }
+  std::vector<std::pair<std::string, double>> take() { return std::move(parts_); }
+
+ private:
+  std::map<std::string, size_t> index_;
+  std::vector<std::pair<std::string, double>> parts_;
+};
+
+}  // namespace
+
+Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage1Filter& filter) {
+  SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqliteStore> store, db::SqliteStore::open(db_path, {}));
+  ColdBreakdown out;
+  Parts parts;
+  const Clock::time_point t0 = Clock::now();
+  SOIQ_ASSIGN_OR_RETURN(std::vector<db::Candidate> candidates, store->stage1(filter, 100000));
+  out.stage1_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  SOIQ_ASSIGN_OR_RETURN(const server::GridChoice choice, server::grid_choice(v1::GridSpec{}));
+  SOIQ_ASSIGN_OR_RETURN(const RegionSpec shell, parse_region("shell:3"));
+  std::map<std::string, std::shared_ptr<const Image>> images;  // by study, as the server caches them
+  for (const db::Candidate& cand : candidates) {
+    const db::StructureRecord& s = cand.structure;
+    SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store->list_series(s.study_uid));
+    SOIQ_ASSIGN_OR_RETURN(const server::ResolvedGrid grid,
+                          server::resolve_grid(choice, s, series, shell.radius_mm, 500'000'000));
+    SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord mr, server::find_series("MR", series, s.study_uid));
+    SOIQ_ASSIGN_OR_RETURN(const std::string blob,
+                          parts.run("surface blob read", [&] { return store->get_surface_blob(s.surface.sha256); }));
+    SOIQ_ASSIGN_OR_RETURN(const TriangleMesh mesh,
+                          parts.run("surface blob decode", [&] { return db::decode_surface(blob); }));
+    VoxelizeOptions options;
+    options.known_defects = MeshDefects{};  // checked at upload, as the server trusts it
+    SOIQ_ASSIGN_OR_RETURN(Voxelization v,
+                          parts.run("1D conversion", [&] { return voxelize_1d(mesh, grid.geometry, options); }));
+    const StructureInput input = parts.run("(before) mesh copy into StructureInput", [&] {
+      return StructureInput{std::move(v.volume), mesh};
+    });
+    SOIQ_ASSIGN_OR_RETURN(const VolumeShape vs,
+                          parts.run("volume features", [&] { return volume_shape(input.volume); }));
+    SOIQ_ASSIGN_OR_RETURN(const SurfaceShape ss,
+                          parts.run("(before) surface features by surface_shape, with hull",
+                                    [&] { return surface_shape(mesh, grid.geometry.direction); }));
+    SOIQ_ASSIGN_OR_RETURN(const auto hull_free, parts.run("surface features, hull-free (volume + area)",
+                                                          [&] { return server::hull_free_surface_shape(mesh); }));
+    for (const auto& [name, value] : hull_free) {
+      if (name == "sphericity" && value != ss.sphericity)
+        return internal_error("structure " + std::to_string(s.id) +
+                              ": hull-free sphericity differs from surface_shape's");
+    }
+    SOIQ_ASSIGN_OR_RETURN(const RunLengthVolume r,
+                          parts.run("shell region (3 mm)", [&] { return region(input.volume, shell); }));
+    auto it = images.find(s.study_uid);
+    if (it == images.end()) {
+      SOIQ_ASSIGN_OR_RETURN(const std::string image_blob,
+                            parts.run("image read", [&] { return store->get_image_blob(mr.series_uid); }));
+      SOIQ_ASSIGN_OR_RETURN(Image image,
+                            parts.run("image decode", [&] { return db::decode_image(image_blob, mr.geometry); }));
+      it = images.emplace(s.study_uid, std::make_shared<const Image>(std::move(image))).first;
+    }
+    SOIQ_ASSIGN_OR_RETURN(RegionSamples samples,
+                          parts.run("resampling", [&] { return resample(*it->second, r, Interpolation::kNearest); }));
+    SOIQ_ASSIGN_OR_RETURN(const IntensityFeatures f, parts.run("intensity features", [&] {
+      return intensity_features(std::move(samples.values));
+    }));
+    const std::string key = "bench|" + s.surface.sha256 + "|" + grid.key;
+    const std::vector<db::CachedFeature> entries = {{key, "voxel_volume_mm3", {vs.voxel_volume_mm3}},
+                                                    {key, "sphericity", {ss.sphericity}},
+                                                    {key, "mean|shell:3|" + mr.sha256 + "|nearest", {f.mean}}};
+    SOIQ_RETURN_IF_ERROR(
+        parts.run("cache write", [&] { return store->put_cached_features(s.surface.sha256, entries); }));
+    ++out.structures;
+    out.triangles += int64_t(mesh.triangles.size());
+    out.voxels += vs.voxel_count;
+    out.shell_voxels += voxel_count(r);
+    out.values[s.id] = {vs.voxel_volume_mm3, ss.sphericity, f.mean};
+  }
+  out.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  out.parts_ms = parts.take();
+  return out;
+}
+
+}  // namespace soiq::bench
