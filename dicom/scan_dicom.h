@@ -1,0 +1,32 @@
+#pragma once
+// Finds the DICOM data under some paths and indexes it by patient, study and series (DESIGN.md
+// "DICOM and PACS"; issue 5 deliverable 1). Reads headers only (stops before Pixel Data).
+//
+// Inputs   paths: files, folders (walked recursively, symlinks followed, in sorted order) and
+//          DICOMDIRs. A DICOMDIR (a file with a Directory Record Sequence, any transfer syntax,
+//          records in any order) contributes the files its records reference (Referenced File ID,
+//          resolved against the DICOMDIR's folder); the File-set descriptor file it may name is
+//          ignored. A file met twice (through a folder and a DICOMDIR) is read once.
+//          DICOM files are read with or without preamble and file meta header.
+// Output   DicomScan (dicom/records.h): one record per patient, study and series, fields taken
+//          from the first instance that has them non-empty; study.age_years from Patient's Age or
+//          birth and study dates (dicom/age_at_study.h). Files that do not look like DICOM
+//          (dicom/dcmtk_file.h looks_like_dicom) are counted in non_dicom_skipped. A DICOM file
+//          that fails to load, has no SOP Instance / Series / Study UID, or a DICOMDIR reference
+//          to a missing file goes to `unreadable` with a Status naming the file (DATA_LOSS for
+//          parse errors, INVALID_ARGUMENT for missing UIDs, NOT_FOUND for missing references);
+//          the scan goes on.
+// Errors   NOT_FOUND when a given path does not exist. Nothing else stops a scan.
+// Cost     O(files) header reads; not thread-safe with respect to the files changing meanwhile.
+
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "dicom/records.h"
+
+namespace soiq::dicom {
+
+Result<DicomScan> scan_dicom(const std::vector<std::string>& paths);
+
+}  // namespace soiq::dicom

@@ -1,0 +1,105 @@
+#include "dicom/slice_stack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace soiq::dicom {
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+std::string fmt(const Vec3& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
+
+bool near(double a, double b, double tol) { return std::abs(a - b) <= tol; }
+
+}  // namespace
+
+Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double single_slice_spacing_mm) {
+  if (slices.empty()) return invalid_argument("image series has no slices");
+  const SliceInfo& first = slices[0];
+  const Vec3 row{first.orientation[0], first.orientation[1], first.orientation[2]};
+  const Vec3 col{first.orientation[3], first.orientation[4], first.orientation[5]};
+  if (!near(norm(row), 1, 1e-4) || !near(norm(col), 1, 1e-4) || std::abs(dot(row, col)) > 1e-4)
+    return invalid_argument("slice " + first.label + ": Image Orientation (Patient) is not two orthonormal vectors");
+  if (!(first.pixel_spacing_mm[0] > 0) || !(first.pixel_spacing_mm[1] > 0) || first.rows <= 0 || first.columns <= 0)
+    return invalid_argument("slice " + first.label + ": Pixel Spacing, Rows and Columns must be positive");
+  const Vec3 n = cross(row, col);
+
+  for (const SliceInfo& s : slices) {
+    for (int i = 0; i < 6; ++i)
+      if (!near(s.orientation[i], first.orientation[i], 1e-4))
+        return invalid_argument("slice " + s.label + " has a different Image Orientation (Patient) than slice " +
+                                first.label + "; a series must have one orientation");
+    if (s.rows != first.rows || s.columns != first.columns)
+      return invalid_argument("slice " + s.label + " is " + std::to_string(s.columns) + "x" + std::to_string(s.rows) +
+                              ", slice " + first.label + " is " + std::to_string(first.columns) + "x" +
+                              std::to_string(first.rows) + "; a series must have one size");
+    for (int i = 0; i < 2; ++i)
+      if (!near(s.pixel_spacing_mm[i], first.pixel_spacing_mm[i], 1e-6 * first.pixel_spacing_mm[i]))
+        return invalid_argument("slice " + s.label + " has a different Pixel Spacing than slice " + first.label);
+  }
+
+  StackGeometry out;
+  out.order.resize(slices.size());
+  std::iota(out.order.begin(), out.order.end(), size_t{0});
+  std::vector<double> along(slices.size());
+  for (size_t i = 0; i < slices.size(); ++i) along[i] = dot(n, slices[i].position_mm);
+  std::stable_sort(out.order.begin(), out.order.end(), [&](size_t a, size_t b) { return along[a] < along[b]; });
+
+  double spacing = single_slice_spacing_mm > 0 ? single_slice_spacing_mm : 1.0;
+  if (slices.size() > 1) {
+    const size_t last = out.order.back(), lowest = out.order.front();
+    spacing = (along[last] - along[lowest]) / static_cast<double>(slices.size() - 1);
+    const double tol = std::max(0.01, 0.01 * spacing);
+    for (size_t k = 0; k + 1 < slices.size(); ++k) {
+      const SliceInfo& a = slices[out.order[k]];
+      const SliceInfo& b = slices[out.order[k + 1]];
+      const double step = along[out.order[k + 1]] - along[out.order[k]];
+      const std::string where =
+          "slices " + a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm);
+      if (step <= tol) return invalid_argument("two slices at the same position: " + where);
+      // Consecutive positions must differ along the normal only; anything else is a tilted or
+      // sheared stack that an orthogonal grid cannot represent.
+      const Vec3 d = b.position_mm - a.position_mm;
+      if (norm(d - step * n) > tol)
+        return invalid_argument("slices are not stacked along the normal of their planes (gantry tilt?): " + where);
+    }
+    // The mean step hides a gap; the smallest step is the series' real spacing when a slice is
+    // missing, so compare every step with the smallest.
+    double smallest = along[out.order[1]] - along[out.order[0]];
+    for (size_t k = 1; k + 1 < slices.size(); ++k)
+      smallest = std::min(smallest, along[out.order[k + 1]] - along[out.order[k]]);
+    const double step_tol = std::max(0.01, 0.01 * smallest);
+    for (size_t k = 0; k + 1 < slices.size(); ++k) {
+      const SliceInfo& a = slices[out.order[k]];
+      const SliceInfo& b = slices[out.order[k + 1]];
+      const double step = along[out.order[k + 1]] - along[out.order[k]];
+      if (near(step, smallest, step_tol)) continue;
+      const double ratio = step / smallest;
+      const double missing = std::round(ratio) - 1;
+      const std::string where = a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " +
+                                fmt(b.position_mm) + " (" + fmt(step) + " mm apart, the others " + fmt(smallest) +
+                                " mm)";
+      if (missing >= 1 && near(ratio, std::round(ratio), 0.05))
+        return invalid_argument(fmt(missing) + " missing slice(s) between " + where);
+      return invalid_argument("irregular slice spacing between " + where);
+    }
+  }
+
+  ImageGeometry& g = out.geometry;
+  g.origin_mm = slices[out.order.front()].position_mm;
+  g.spacing_mm = {first.pixel_spacing_mm[1], first.pixel_spacing_mm[0], spacing};
+  g.dims = {first.columns, first.rows, static_cast<int64_t>(slices.size())};
+  for (int r = 0; r < 3; ++r) g.direction[r] = {row[r], col[r], n[r]};
+  SOIQ_RETURN_IF_ERROR(validate_geometry(g));
+  return out;
+}
+
+}  // namespace soiq::dicom

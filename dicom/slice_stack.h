@@ -1,0 +1,49 @@
+#pragma once
+// The grid of a stack of 2D DICOM images (DESIGN.md "Coordinates and grids"): exact geometry from
+// Image Position (Patient), Image Orientation (Patient) and Pixel Spacing, the slice spacing from
+// the positions, never from Slice Thickness or Spacing Between Slices.
+//
+// Inputs   slices in any order, each with its position (LPS mm, centre of the first pixel), its
+//          orientation (row direction = direction of increasing column index, then column
+//          direction), pixel spacing (between rows, between columns; mm), rows and columns, and a
+//          label naming it in messages (file name or instance number).
+//          single_slice_spacing_mm: the spacing along the normal when there is one slice
+//          (Spacing Between Slices or Slice Thickness; 1 when neither is known).
+// Output   StackGeometry: the grid with origin = position of the first slice along the normal
+//          n = row x column, direction columns (row, column, n), spacing (column spacing, row
+//          spacing, mean distance between consecutive slices along n), dims (columns, rows,
+//          slices); `order[k]` is the input index of slice k.
+// Errors   INVALID_ARGUMENT naming the slice(s) and position(s): no slices; a slice whose
+//          orientation, pixel spacing, rows or columns differ from the first slice's; an
+//          orientation that is not two orthonormal vectors (to 1e-4); two slices at the same
+//          position; a slice offset in-plane from the normal line (gantry tilt / sheared stack);
+//          a gap of about twice the others ("missing slice between ...") or any other step that
+//          differs from the smallest step by more than max(0.01 mm, 1%) ("irregular slice spacing").
+// Cost     O(n log n); thread-safe.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image_geometry.h"
+#include "core/status.h"
+#include "core/vec3.h"
+
+namespace soiq::dicom {
+
+struct SliceInfo {
+  Vec3 position_mm{0, 0, 0};                 // Image Position (Patient)
+  std::array<double, 6> orientation{};       // Image Orientation (Patient)
+  std::array<double, 2> pixel_spacing_mm{};  // Pixel Spacing: between rows, between columns
+  int64_t rows = 0, columns = 0;
+  std::string label;  // for messages
+};
+
+struct StackGeometry {
+  ImageGeometry geometry;
+  std::vector<size_t> order;  // order[k] = index into the input of slice k
+};
+
+Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double single_slice_spacing_mm = 1.0);
+
+}  // namespace soiq::dicom
