@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 namespace soiq::dicom {
 
@@ -30,6 +31,10 @@ Status condition_status(StatusCode code, const std::string& path, const std::str
 Result<std::unique_ptr<DcmFileFormat>> load_dicom_file(const std::string& path, bool until_pixel_data) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return not_found("'" + path + "': no such file");
+  // DCMTK logs its warnings (e.g. "PixelData encountered, skipping rest of dataset" for every
+  // header-only read) to stderr; what matters reaches the caller as a Status instead.
+  static std::once_flag quiet;
+  std::call_once(quiet, [] { DCM_dcmdataLogger.setLogLevel(OFLogger::FATAL_LOG_LEVEL); });
   auto file = std::make_unique<DcmFileFormat>();
   const OFCondition cond =
       file->loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect,
