@@ -1,0 +1,111 @@
+// The grid of a slice stack from positions and orientation, and each stack it must refuse.
+#include "dicom/slice_stack.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace soiq::dicom {
+namespace {
+
+// n slices of 4x3 pixels (0.5 mm between columns, 0.7 between rows) along the normal of
+// `orientation`, `step` mm apart, starting at `origin`.
+std::vector<SliceInfo> stack(int n, double step, std::array<double, 6> orientation = {1, 0, 0, 0, 1, 0},
+                             Vec3 origin = {-10, 20, 30}) {
+  const Vec3 row{orientation[0], orientation[1], orientation[2]}, col{orientation[3], orientation[4], orientation[5]};
+  const Vec3 normal = cross(row, col);
+  std::vector<SliceInfo> out;
+  for (int k = 0; k < n; ++k) {
+    SliceInfo s;
+    s.position_mm = origin + (k * step) * normal;
+    s.orientation = orientation;
+    s.pixel_spacing_mm = {0.7, 0.5};
+    s.rows = 3;
+    s.columns = 4;
+    s.label = "#" + std::to_string(k + 1);
+    out.push_back(s);
+  }
+  return out;
+}
+
+TEST(SliceStack, SortsSlicesAlongTheNormalAndTakesSpacingFromPositions) {
+  auto slices = stack(4, 2.5);
+  std::swap(slices[0], slices[3]);
+  auto r = slice_stack(slices, /*single_slice_spacing_mm=*/9);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_EQ(r->order, (std::vector<size_t>{3, 1, 2, 0}));
+  const ImageGeometry& g = r->geometry;
+  EXPECT_EQ(g.dims, (std::array<int64_t, 3>{4, 3, 4}));
+  EXPECT_EQ(g.spacing_mm, (Vec3{0.5, 0.7, 2.5}));
+  EXPECT_EQ(g.origin_mm, (Vec3{-10, 20, 30}));
+  EXPECT_EQ(g.direction, identity3());
+}
+
+TEST(SliceStack, ObliqueOrientationGivesItsDirectionColumns) {
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  auto r = slice_stack(stack(3, 2, {c, s, 0, 0, 0, -1}));
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  const Mat3& d = r->geometry.direction;
+  EXPECT_EQ((Vec3{d[0][0], d[1][0], d[2][0]}), (Vec3{c, s, 0}));
+  EXPECT_EQ((Vec3{d[0][1], d[1][1], d[2][1]}), (Vec3{0, 0, -1}));
+  const Vec3 n = cross({c, s, 0}, {0, 0, -1});
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(d[i][2], n[i]);
+  EXPECT_NEAR(r->geometry.spacing_mm[2], 2, 1e-12);
+}
+
+TEST(SliceStack, SingleSliceTakesTheGivenSpacing) {
+  auto r = slice_stack(stack(1, 0), 5);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->geometry.spacing_mm[2], 5);
+}
+
+TEST(SliceStack, MissingSliceIsNamedWithItsNeighbours) {
+  auto slices = stack(6, 3);
+  slices.erase(slices.begin() + 2);
+  auto r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("1 missing slice(s) between #2 at (-10, 20, 33) and #4 at (-10, 20, 39)"),
+            std::string::npos)
+      << r.status().message();
+}
+
+TEST(SliceStack, IrregularSpacingIsNamed) {
+  auto slices = stack(4, 3);
+  slices[3].position_mm[2] += 1.2;
+  auto r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("irregular slice spacing between #3"), std::string::npos) << r.status().message();
+}
+
+TEST(SliceStack, TwoSlicesAtOnePositionAreRefused) {
+  auto slices = stack(3, 3);
+  slices[2].position_mm = slices[1].position_mm;
+  auto r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("same position"), std::string::npos) << r.status().message();
+}
+
+TEST(SliceStack, InconsistentOrientationOrSizeIsNamed) {
+  auto slices = stack(3, 3);
+  slices[1].orientation = {0, 1, 0, 1, 0, 0};
+  auto r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("slice #2 has a different Image Orientation"), std::string::npos);
+  slices = stack(3, 3);
+  slices[2].rows = 5;
+  r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("slice #3 is 4x5"), std::string::npos) << r.status().message();
+}
+
+TEST(SliceStack, TiltedStackIsRefused) {
+  auto slices = stack(3, 3);
+  for (int k = 0; k < 3; ++k) slices[k].position_mm[1] += 0.5 * k;  // gantry tilt: y drifts with z
+  auto r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("gantry tilt"), std::string::npos) << r.status().message();
+}
+
+}  // namespace
+}  // namespace soiq::dicom
