@@ -19,6 +19,8 @@ struct StsCase {
   std::string patient, modality;  // modality folder: CT, MR_T1, PET
 };
 
+void PrintTo(const StsCase& c, std::ostream* os) { *os << c.patient << "/" << c.modality; }
+
 std::string series_dir(const StsCase& c) {
   const char* env = std::getenv("SOIQ_STS_DICOM_DIR");
   if (env) return std::string(env) + "/" + c.patient + "/" + c.modality;
