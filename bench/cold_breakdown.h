@@ -5,7 +5,8 @@
 // surface blob read and decode, the 1D conversion, the copy of the mesh into StructureInput, volume
 // features, surface features (hull-free: mesh volume + area, all sphericity needs, as the server
 // computes them; and, marked "(before)" and left out of the sum, surface_shape with its convex hull
-// and the mesh copy, as the server did before), the 3 mm shell, the image read and decode
+// and the mesh copy, as the server did before: timed on one structure in 10, totals extrapolated),
+// the 3 mm shell, the image read and decode
 // (once per study, as the server caches images), resampling, intensity features, and the cache
 // write (one transaction per structure, as the server does it).
 // `db_path` is written to (cache entries): pass a copy. Errors: the store's and the parts'.
