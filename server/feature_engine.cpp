@@ -161,7 +161,8 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   // Empty names ask structure_features for everything: ask for a cheap one instead.
   if (request.names.empty()) request.names.push_back("voxel_count");
   const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
-    return is_hull_free_surface_name(n) || needs_hull(n);
+    // mask_* names are the mask surface's values beside a stored surface's: they need the mesh too.
+    return is_hull_free_surface_name(n) || needs_hull(n) || n.rfind("mask_", 0) == 0;
   });
 
   std::vector<std::shared_ptr<const Image>> images;

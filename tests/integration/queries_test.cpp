@@ -99,6 +99,32 @@ TEST_F(QueryTest, FeaturesEqualTheOfflineOnesAndComeFromTheCacheTheSecondTime) {
     EXPECT_EQ(second->features(i).value(0), first->features(i).value(0));  // bitwise: stored as float64
 }
 
+TEST_F(QueryTest, TheMaskSurfaceValuesOfAStoredSurfaceAreServedAlone) {
+  // Asked alone, a mask_ feature still needs the stored surface beside the mask (the server may
+  // otherwise leave the mesh out of the computation).
+  const CohortStructure& s = cohort_.structures[2];
+  v1::FeaturesRequest req;
+  req.set_structure_id(s.id);
+  req.mutable_grid()->set_spacing_mm(1);
+  req.mutable_grid()->set_margin_voxels(kMargin);
+  req.add_features("mask_sphericity");
+  Result<v1::FeaturesResponse> r = client_->compute_features(req);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  ASSERT_EQ(r->features_size(), 1);
+  Result<TriangleMesh> mesh = read_mesh(s.mesh_path);
+  ASSERT_TRUE(mesh.ok());
+  Result<ImageGeometry> g = grid_around(*mesh, {1, 1, 1}, kMargin);
+  ASSERT_TRUE(g.ok());
+  Result<Voxelization> v = voxelize_1d(*mesh, *g);
+  ASSERT_TRUE(v.ok());
+  FeatureRequest request;
+  request.names = {"mask_sphericity"};
+  Result<FeatureReport> offline = structure_features({v->volume, *mesh}, request);
+  ASSERT_TRUE(offline.ok()) << offline.status().to_string();
+  ASSERT_EQ(offline->features.size(), 1u);
+  EXPECT_DOUBLE_EQ(r->features(0).value(0), offline->features[0].value[0]);
+}
+
 TEST_F(QueryTest, AQueryEqualsABruteForceEvaluationColdAndWarm) {
   // Women aged 40+, hippocampi, volume over 1000 mm3 and a bright shell; ordered by the mean inside.
   v1::QueryRequest q;
