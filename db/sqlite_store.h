@@ -56,6 +56,7 @@ class SqliteStore : public Store {
 
   Result<AddedStructure> add_structure(const NewStructure& s) override;
   Result<bool> put_series(const NewSeries& s) override;
+  Result<ImportedBatch> import_batch(const ImportBatch& b) override;
 
   Result<PatientRecord> get_patient(const std::string& patient_id) override;
   Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;

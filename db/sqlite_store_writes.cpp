@@ -1,4 +1,4 @@
-// SqliteStore's writes: structures, series, deletes. Each public method is one write transaction
+// SqliteStore's writes: structures, series, import batches, deletes. Each public method is one write transaction
 // (SqliteStore::write), so any error leaves the database as it was.
 #include <sqlite3.h>
 
@@ -186,53 +186,18 @@ Result<StructureRecord> structure_by_id(Connection& c, int64_t id) {
   return read_structure(q, 0);
 }
 
-}  // namespace
-
-Result<AddedStructure> SqliteStore::add_structure(const NewStructure& s) {
+// Validates a structure or series before any write (the caller returns the error unchanged).
+Status validate_new_structure(const NewStructure& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
   if (s.name.empty()) return invalid_argument("structure name is empty");
   SOIQ_RETURN_IF_ERROR(validate_laterality(s.laterality));
   SOIQ_RETURN_IF_ERROR(validate_sha256(s.surface.sha256, "surface"));
   if (s.surface_blob.empty()) return invalid_argument("surface blob is empty");
-
-  AddedStructure out;
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO surfaces(sha256, vertex_count, triangle_count, "
-                                                     "min_x, min_y, min_z, max_x, max_y, max_z, blob) VALUES (?1, "
-                                                     "?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10) ON CONFLICT(sha256) DO "
-                                                     "NOTHING"));
-      ins.bind(1, s.surface.sha256);
-      ins.bind(2, s.surface.vertex_count);
-      ins.bind(3, s.surface.triangle_count);
-      for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
-      ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
-      SOIQ_RETURN_IF_ERROR(ins.run());
-      out.surface_already_stored = sqlite3_changes64(c.handle()) == 0;
-    }
-    int64_t id = 0;
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO structures(study_pk, name, laterality, robust, "
-                                                     "surface_sha256) VALUES (?1, ?2, ?3, ?4, ?5) RETURNING id"));
-      ins.bind(1, keys.study_pk);
-      ins.bind(2, s.name);
-      ins.bind(3, s.laterality);
-      ins.bind(4, int64_t{s.robust});
-      ins.bind(5, s.surface.sha256);
-      SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
-      if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
-      id = ins.int64(0);
-    }
-    SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
-    SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
-    return ok_status();
-  }));
-  return out;
+  return ok_status();
 }
 
-Result<bool> SqliteStore::put_series(const NewSeries& s) {
+Status validate_new_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
   if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
@@ -243,68 +208,145 @@ Result<bool> SqliteStore::put_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_geometry(s.series.geometry));
   SOIQ_RETURN_IF_ERROR(validate_sha256(s.series.sha256, "image"));
   if (s.image_blob.empty()) return invalid_argument("image blob is empty");
+  return ok_status();
+}
 
+// The inserts of add_structure and put_series inside the caller's transaction.
+Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
+  AddedStructure out;
+  SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO surfaces(sha256, vertex_count, triangle_count, "
+                                                   "min_x, min_y, min_z, max_x, max_y, max_z, blob) VALUES (?1, "
+                                                   "?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10) ON CONFLICT(sha256) DO "
+                                                   "NOTHING"));
+    ins.bind(1, s.surface.sha256);
+    ins.bind(2, s.surface.vertex_count);
+    ins.bind(3, s.surface.triangle_count);
+    for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
+    ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
+    SOIQ_RETURN_IF_ERROR(ins.run());
+    out.surface_already_stored = sqlite3_changes64(c.handle()) == 0;
+  }
+  int64_t id = 0;
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO structures(study_pk, name, laterality, robust, "
+                                                   "surface_sha256) VALUES (?1, ?2, ?3, ?4, ?5) RETURNING id"));
+    ins.bind(1, keys.study_pk);
+    ins.bind(2, s.name);
+    ins.bind(3, s.laterality);
+    ins.bind(4, int64_t{s.robust});
+    ins.bind(5, s.surface.sha256);
+    SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
+    if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
+    id = ins.int64(0);
+  }
+  SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+  SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
+  return out;
+}
+
+Result<bool> insert_series(Connection& c, const NewSeries& s) {
+  bool replaced = false;
+  SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO image_blobs(sha256, blob) VALUES (?1, ?2) ON "
+                                                   "CONFLICT(sha256) DO NOTHING"));
+    ins.bind(1, s.series.sha256);
+    ins.bind_blob(2, s.image_blob.data(), s.image_blob.size());
+    SOIQ_RETURN_IF_ERROR(ins.run());
+  }
+  std::optional<std::string> old_sha;
+  std::optional<int64_t> old_patient_pk;
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT se.image_sha256, st.patient_pk FROM series se JOIN "
+                                                 "studies st ON st.pk = se.study_pk WHERE se.series_uid = ?1"));
+    q.bind(1, s.series.series_uid);
+    SOIQ_ASSIGN_OR_RETURN(replaced, q.step());
+    if (replaced) {
+      old_sha = q.text(0);
+      old_patient_pk = q.int64(1);
+    }
+  }
+  {
+    // An upsert keeps the series' pk stable when it is replaced.
+    SOIQ_ASSIGN_OR_RETURN(
+        Statement up,
+        c.prepare("INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, "
+                  "spacing_y, spacing_z, dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, "
+                  "image_sha256) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
+                  "?17, ?18, ?19, ?20, ?21, ?22) ON CONFLICT(series_uid) DO UPDATE SET study_pk = "
+                  "excluded.study_pk, modality = excluded.modality, origin_x = excluded.origin_x, origin_y = "
+                  "excluded.origin_y, origin_z = excluded.origin_z, spacing_x = excluded.spacing_x, spacing_y = "
+                  "excluded.spacing_y, spacing_z = excluded.spacing_z, dim_x = excluded.dim_x, dim_y = "
+                  "excluded.dim_y, dim_z = excluded.dim_z, d00 = excluded.d00, d01 = excluded.d01, d02 = "
+                  "excluded.d02, d10 = excluded.d10, d11 = excluded.d11, d12 = excluded.d12, d20 = excluded.d20, "
+                  "d21 = excluded.d21, d22 = excluded.d22, image_sha256 = excluded.image_sha256"));
+    const ImageGeometry& g = s.series.geometry;
+    up.bind(1, s.series.series_uid);
+    up.bind(2, keys.study_pk);
+    up.bind(3, s.series.modality);
+    for (int a = 0; a < 3; ++a) {
+      up.bind(4 + a, g.origin_mm[a]);
+      up.bind(7 + a, g.spacing_mm[a]);
+      up.bind(10 + a, g.dims[a]);
+    }
+    for (int r = 0; r < 3; ++r) {
+      for (int col = 0; col < 3; ++col) up.bind(13 + 3 * r + col, g.direction[r][col]);
+    }
+    up.bind(22, s.series.sha256);
+    SOIQ_RETURN_IF_ERROR(up.run());
+  }
+  if (old_sha && *old_sha != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, *old_sha));
+  // The series' modality counts for its study's structures; a series moved from another
+  // patient's study changes that patient's rows too.
+  SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+  if (old_patient_pk && *old_patient_pk != keys.patient_pk) {
+    SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, *old_patient_pk));
+  }
+  return replaced;
+}
+
+}  // namespace
+
+Result<AddedStructure> SqliteStore::add_structure(const NewStructure& s) {
+  SOIQ_RETURN_IF_ERROR(validate_new_structure(s));
+  AddedStructure out;
+  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(out, insert_structure(c, s));
+    return ok_status();
+  }));
+  return out;
+}
+
+Result<bool> SqliteStore::put_series(const NewSeries& s) {
+  SOIQ_RETURN_IF_ERROR(validate_new_series(s));
   bool replaced = false;
   SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO image_blobs(sha256, blob) VALUES (?1, ?2) ON "
-                                                     "CONFLICT(sha256) DO NOTHING"));
-      ins.bind(1, s.series.sha256);
-      ins.bind_blob(2, s.image_blob.data(), s.image_blob.size());
-      SOIQ_RETURN_IF_ERROR(ins.run());
-    }
-    std::optional<std::string> old_sha;
-    std::optional<int64_t> old_patient_pk;
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT se.image_sha256, st.patient_pk FROM series se JOIN "
-                                                   "studies st ON st.pk = se.study_pk WHERE se.series_uid = ?1"));
-      q.bind(1, s.series.series_uid);
-      SOIQ_ASSIGN_OR_RETURN(replaced, q.step());
-      if (replaced) {
-        old_sha = q.text(0);
-        old_patient_pk = q.int64(1);
-      }
-    }
-    {
-      // An upsert keeps the series' pk stable when it is replaced.
-      SOIQ_ASSIGN_OR_RETURN(
-          Statement up,
-          c.prepare("INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, "
-                    "spacing_y, spacing_z, dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, "
-                    "image_sha256) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                    "?17, ?18, ?19, ?20, ?21, ?22) ON CONFLICT(series_uid) DO UPDATE SET study_pk = "
-                    "excluded.study_pk, modality = excluded.modality, origin_x = excluded.origin_x, origin_y = "
-                    "excluded.origin_y, origin_z = excluded.origin_z, spacing_x = excluded.spacing_x, spacing_y = "
-                    "excluded.spacing_y, spacing_z = excluded.spacing_z, dim_x = excluded.dim_x, dim_y = "
-                    "excluded.dim_y, dim_z = excluded.dim_z, d00 = excluded.d00, d01 = excluded.d01, d02 = "
-                    "excluded.d02, d10 = excluded.d10, d11 = excluded.d11, d12 = excluded.d12, d20 = excluded.d20, "
-                    "d21 = excluded.d21, d22 = excluded.d22, image_sha256 = excluded.image_sha256"));
-      const ImageGeometry& g = s.series.geometry;
-      up.bind(1, s.series.series_uid);
-      up.bind(2, keys.study_pk);
-      up.bind(3, s.series.modality);
-      for (int a = 0; a < 3; ++a) {
-        up.bind(4 + a, g.origin_mm[a]);
-        up.bind(7 + a, g.spacing_mm[a]);
-        up.bind(10 + a, g.dims[a]);
-      }
-      for (int r = 0; r < 3; ++r) {
-        for (int col = 0; col < 3; ++col) up.bind(13 + 3 * r + col, g.direction[r][col]);
-      }
-      up.bind(22, s.series.sha256);
-      SOIQ_RETURN_IF_ERROR(up.run());
-    }
-    if (old_sha && *old_sha != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, *old_sha));
-    // The series' modality counts for its study's structures; a series moved from another
-    // patient's study changes that patient's rows too.
-    SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
-    if (old_patient_pk && *old_patient_pk != keys.patient_pk) {
-      SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, *old_patient_pk));
-    }
+    SOIQ_ASSIGN_OR_RETURN(replaced, insert_series(c, s));
     return ok_status();
   }));
   return replaced;
+}
+
+Result<ImportedBatch> SqliteStore::import_batch(const ImportBatch& b) {
+  for (const NewSeries& s : b.series) SOIQ_RETURN_IF_ERROR(validate_new_series(s));
+  for (const NewStructure& s : b.structures) SOIQ_RETURN_IF_ERROR(validate_new_structure(s));
+  ImportedBatch out;
+  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+    out = {};  // write() may run this again after ABORTED
+    // Series first: a structure's study then already has its series' modalities for stage 1.
+    for (const NewSeries& s : b.series) {
+      SOIQ_ASSIGN_OR_RETURN(const bool replaced, insert_series(c, s));
+      out.series_replaced.push_back(replaced);
+    }
+    for (const NewStructure& s : b.structures) {
+      SOIQ_ASSIGN_OR_RETURN(AddedStructure added, insert_structure(c, s));
+      out.structures.push_back(std::move(added));
+    }
+    return ok_status();
+  }));
+  return out;
 }
 
 Result<int64_t> SqliteStore::delete_structure(int64_t id) {

@@ -91,6 +91,18 @@ struct NewSeries {
   std::string image_blob;  // encoded (db/image_blob.h)
 };
 
+// Everything one DICOM import adds (server/dicom_import.h), written by import_batch in one
+// transaction: either all of it is stored or, on any error, none of it.
+struct ImportBatch {
+  std::vector<NewSeries> series;
+  std::vector<NewStructure> structures;
+};
+
+struct ImportedBatch {
+  std::vector<bool> series_replaced;        // by index of ImportBatch::series
+  std::vector<AddedStructure> structures;  // by index of ImportBatch::structures
+};
+
 template <typename T>
 struct Page {
   std::vector<T> items;
@@ -156,6 +168,8 @@ class Store {
   virtual Result<AddedStructure> add_structure(const NewStructure& s) = 0;
   // Inserts or replaces the series (same uid) and its image blob. Returns true when replaced.
   virtual Result<bool> put_series(const NewSeries& s) = 0;
+  // put_series for each series, then add_structure for each structure, all in one transaction.
+  virtual Result<ImportedBatch> import_batch(const ImportBatch& b) = 0;
 
   virtual Result<PatientRecord> get_patient(const std::string& patient_id) = 0;
   virtual Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) = 0;
