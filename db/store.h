@@ -99,7 +99,7 @@ struct ImportBatch {
 };
 
 struct ImportedBatch {
-  std::vector<bool> series_replaced;        // by index of ImportBatch::series
+  std::vector<bool> series_replaced;       // by index of ImportBatch::series
   std::vector<AddedStructure> structures;  // by index of ImportBatch::structures
 };
 
