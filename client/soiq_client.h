@@ -23,6 +23,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "client/retry.h"
 #include "core/status.h"
@@ -80,6 +81,12 @@ class Client {
   Result<soiq::v1::UploadImageResponse> upload_image_bytes(const soiq::v1::UploadImageHeader& header,
                                                            std::string_view bytes,
                                                            const ProgressFn& progress = {}) const;
+
+  // Imports DICOM files and folders (walked recursively, client/dicom_files_to_send.h) through the
+  // server's ImportDicom; progress counts bytes. Not retried: an import the server committed
+  // before the connection failed would be stored twice.
+  Result<soiq::v1::ImportDicomResponse> import_dicom(const std::vector<std::string>& paths,
+                                                     const ProgressFn& progress = {}) const;
 
   Result<soiq::v1::ListPatientsResponse> list_patients(const soiq::v1::ListPatientsRequest& request) const;
   Result<soiq::v1::Patient> get_patient(const std::string& patient_id) const;

@@ -10,9 +10,12 @@
 #include "core/structure_features.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
+#include "server/dicom_import.h"
 #include "server/grpc_status.h"
 #include "server/log.h"
 #include "server/proto_records.h"
+#include "server/received_dicom_files.h"
+#include "server/temp_dir.h"
 #include "server/temp_file.h"
 #include "server/uploaded_files.h"
 
@@ -164,6 +167,19 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
     SOIQ_ASSIGN_OR_RETURN(bool replaced, store_.put_series(s));
     *response->mutable_series() = to_proto(s.series);
     response->set_replaced(replaced);
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerReader<v1::ImportDicomRequest>* reader,
+                                      v1::ImportDicomResponse* response) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
+    SOIQ_ASSIGN_OR_RETURN(ReceivedFiles files, receive_dicom_files(*reader, dir.path(), config_.max_upload_bytes));
+    SOIQ_ASSIGN_OR_RETURN(*response, on_pool<v1::ImportDicomResponse>([&] {
+      return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels);
+    }));
+    response->set_bytes_received(files.bytes);
     return ok_status();
   });
 }

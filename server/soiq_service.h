@@ -26,6 +26,8 @@ class SoiqService final : public v1::Soiq::Service {
                              v1::UploadSurfaceResponse* response) override;
   grpc::Status UploadImage(grpc::ServerContext* ctx, grpc::ServerReader<v1::UploadImageRequest>* reader,
                            v1::UploadImageResponse* response) override;
+  grpc::Status ImportDicom(grpc::ServerContext* ctx, grpc::ServerReader<v1::ImportDicomRequest>* reader,
+                           v1::ImportDicomResponse* response) override;
   grpc::Status ListPatients(grpc::ServerContext* ctx, const v1::ListPatientsRequest* request,
                             v1::ListPatientsResponse* response) override;
   grpc::Status GetPatient(grpc::ServerContext* ctx, const v1::GetPatientRequest* request,

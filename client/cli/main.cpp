@@ -12,6 +12,7 @@
 #include "client/cli/exit_code.h"
 #include "client/cli/features_command.h"
 #include "client/cli/health_command.h"
+#include "client/cli/import_command.h"
 #include "client/cli/info_command.h"
 #include "client/cli/ls_command.h"
 #include "client/cli/mesh_command.h"
@@ -50,6 +51,9 @@ constexpr const char* kHelp =
     "  soiq upload-image IMAGE --patient ID --study UID --series UID --modality PT [--sex ..] [--birth-date ..]\n"
     "               [--study-date ..] [--description D]\n"
     "      stores an image series (.nii .nii.gz .nrrd .mha): a target grid and the image of intensity features\n"
+    "  soiq import PATH... [--format table|json|csv]\n"
+    "      sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT\n"
+    "      Structure Set ROIs structures on their series' grid; prints what was imported, problems on stderr\n"
     "  soiq ls [patients|studies|structures] [--patient ID|GLOB] [--study UID] [--name GLOB] [--laterality L|R]\n"
     "               [--sex M|F|O] [--format table|json|csv] [--all | --page-size N]\n"
     "  soiq show patient ID | study UID | structure ID [--format text|json]\n"
@@ -126,6 +130,7 @@ int main(int argc, char** argv) {
   if (command == "mesh") return run_mesh_command(n, args);
   if (command == "upload") return run_upload_command(n, args, *remote);
   if (command == "upload-image") return run_upload_image_command(n, args, *remote);
+  if (command == "import") return run_import_command(n, args, *remote);
   if (command == "ls") return run_ls_command(n, args, *remote);
   if (command == "show") return run_show_command(n, args, *remote);
   if (command == "rm") return run_rm_command(n, args, *remote);

@@ -1,0 +1,35 @@
+#pragma once
+// A folder of received DICOM files -> stored series and structures (ImportDicom, issue 5
+// deliverable 2). Reads everything with dicom::import_dicom, converts and encodes it all first,
+// then writes it with Store::import_batch in one transaction: an import that fails stores nothing.
+//
+// Inputs   dir: the folder the files were received into (server/received_dicom_files.h); sent:
+//          their relative paths; max_voxels: per image and per structure grid.
+// Output   The response of ImportDicom:
+//          - series: each CT, MR and PET series as an image, in its DICOM study and patient
+//            (sex, birth and study dates kept when valid, age at study from dicom/; no names);
+//          - structures: one per RT Structure Set ROI with a non-empty volume, named as the ROI,
+//            in the study of the series it references (so features on "CT" or "PT" of that study
+//            use the images it was drawn on); laterality "L" or "R" only when the name ends in
+//            "_L", " L", "_R" or " R" (upper case), else "". The surface is the marching-cubes
+//            surface of the ROI's volume on the referenced grid;
+//          - problems: unreadable files, unusable series, skipped or empty ROIs, non-DICOM files,
+//            with paths relative to `dir`.
+// Errors   INVALID_ARGUMENT when nothing at all can be imported (the message names the first
+//          problem or file). Any Store error unchanged (nothing stored then).
+// Cost     O(files + voxels + contour points) reads, then one write transaction.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "db/store.h"
+#include "soiq/v1/soiq.pb.h"
+
+namespace soiq::server {
+
+Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
+                                                    const std::vector<std::string>& sent, int64_t max_voxels);
+
+}  // namespace soiq::server

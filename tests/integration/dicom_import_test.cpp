@@ -1,0 +1,150 @@
+// ImportDicom through a real soiqd: the STS_002 CT and PET with their RT Structure Sets, features on
+// the patient's own grids and images, problems that do not stop an import, and a failed import that
+// stores nothing.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/io/read_image.h"
+#include "tests/integration/service_fixture.h"
+
+namespace soiq::testing {
+namespace {
+
+std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
+
+const v1::Series* series_of_modality(const v1::ImportDicomResponse& r, const std::string& modality) {
+  for (const v1::Series& s : r.series())
+    if (s.modality() == modality) return &s;
+  return nullptr;
+}
+
+TEST_F(ServiceTest, ImportsSts002WithItsSeriesAndStructures) {
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  for (const v1::ImportProblem& p : r->problems()) ADD_FAILURE() << p.path() << ": " << p.message();
+  ASSERT_EQ(r->patients_size(), 1);
+  EXPECT_EQ(r->patients(0).patient_id(), "STS_002");
+  EXPECT_EQ(r->files_received(), 98);
+  ASSERT_EQ(r->series_size(), 2);
+  const v1::Series* ct = series_of_modality(*r, "CT");
+  const v1::Series* pt = series_of_modality(*r, "PT");
+  ASSERT_TRUE(ct && pt);
+  ASSERT_EQ(r->structures_size(), 2);  // one GTV per structure set, on CT and on PET
+  for (const v1::ImportedStructure& s : r->structures()) {
+    EXPECT_EQ(s.structure().name().rfind("GTV_Mass", 0), 0u) << s.structure().name();
+    EXPECT_EQ(s.structure().patient_id(), "STS_002");
+    EXPECT_GT(s.voxel_count(), 0);
+  }
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->series(), 2);
+  EXPECT_EQ(info->structures(), 2);
+}
+
+TEST_F(ServiceTest, ImportedCtStructureHasTheMaskVolumeOnCtAndPetUptake) {
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  const v1::Series* ct = series_of_modality(*r, "CT");
+  ASSERT_NE(ct, nullptr);
+  const v1::ImportedStructure* on_ct = nullptr;
+  for (const v1::ImportedStructure& s : r->structures())
+    if (s.referenced_series_uid() == ct->series_uid()) on_ct = &s;
+  ASSERT_NE(on_ct, nullptr);
+
+  Result<Image> mask = read_image(data("sts/STS_002/CT_mask.nii.gz"));
+  ASSERT_TRUE(mask.ok()) << mask.status().to_string();
+  int64_t inside = 0;
+  for (float v : mask->voxels) inside += v != 0;
+  ASSERT_GT(inside, 0);
+  EXPECT_EQ(on_ct->voxel_count(), inside);
+
+  v1::FeaturesRequest f;
+  f.set_structure_id(on_ct->structure().id());
+  f.mutable_grid()->set_series_modality("CT");
+  f.add_features("voxel_volume_mm3");
+  f.add_features("mean");
+  f.add_regions("inside");
+  f.add_images("PT");
+  Result<v1::FeaturesResponse> features = client_->compute_features(f);
+  ASSERT_TRUE(features.ok()) << features.status().to_string();
+  const v1::ImageGeometry& g = features->geometry();
+  const double voxel_mm3 = g.spacing(0) * g.spacing(1) * g.spacing(2);
+  bool volume_seen = false, mean_seen = false;
+  for (const v1::FeatureValue& v : features->features()) {
+    if (v.name() == "voxel_volume_mm3") {
+      volume_seen = true;
+      // The marching-cubes surface re-converted on its own grid gives back exactly the mask's voxels.
+      EXPECT_EQ(v.value(0), double(inside) * voxel_mm3);
+    }
+    if (v.name() == "mean" && v.image() == "PT") {
+      mean_seen = true;
+      EXPECT_GT(v.value(0), 0.0);  // SUV inside a PET-avid sarcoma
+    }
+  }
+  EXPECT_TRUE(volume_seen && mean_seen);
+
+  v1::QueryRequest q;
+  q.mutable_stage1()->set_structure_name_glob("GTV*");
+  v1::FeatureRef* mean = q.add_select();
+  mean->set_name("mean");
+  mean->set_region("inside");
+  mean->set_image("PT");
+  int rows = 0;
+  client::QueryHandlers h;
+  h.on_row = [&](const v1::QueryRow& row) {
+    EXPECT_EQ(row.patient().patient_id(), "STS_002");
+    ++rows;
+    return true;
+  };
+  Result<v1::QuerySummary> s = client_->query(q, h);
+  ASSERT_TRUE(s.ok()) << s.status().to_string();
+  EXPECT_GE(rows, 1);
+  EXPECT_EQ(s->failed(), 0);
+}
+
+TEST_F(ServiceTest, ImportOfMixedFilesReportsProblemsWithoutFailing) {
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("dicom")});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_GT(r->series_size(), 0);
+  EXPECT_GT(r->problems_size(), 0);  // the CR series, README files, the DICOMDIR variants' failures...
+  for (const v1::ImportProblem& p : r->problems()) {
+    // Problems name files as sent (relative to the folder), never the server's temporary folder.
+    EXPECT_EQ(p.message().find("soiqd-import-"), std::string::npos) << p.message();
+    EXPECT_EQ(p.path().find("soiqd-import-"), std::string::npos) << p.path();
+  }
+}
+
+TEST_F(ServiceTest, ImportOfACorruptFileAloneIsInvalidAndStoresNothing) {
+  const std::string path = dir_.file("broken.dcm");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << std::string(128, '\0') << "DICM" << std::string(40, '\xff') << "garbage";
+  }
+  Result<v1::ServerInfo> before = client_->server_info();
+  ASSERT_TRUE(before.ok());
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({path});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("broken.dcm"), std::string::npos) << r.status().message();
+  Result<v1::ServerInfo> after = client_->server_info();
+  ASSERT_TRUE(after.ok());
+  EXPECT_EQ(after->patients(), before->patients());
+  EXPECT_EQ(after->series(), before->series());
+  EXPECT_EQ(after->structures(), before->structures());
+}
+
+TEST_F(ServiceTest, ImportOverTheUploadLimitIsResourceExhausted) {
+  start({"--max-upload-bytes", "100000"});
+  client_ = std::make_unique<client::Client>(connect());
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->series(), 0);
+}
+
+}  // namespace
+}  // namespace soiq::testing
