@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The remote `soiq` commands end to end against a real soiqd: upload (and deduplication),
-# upload-image, ls, show, features and convert (checked against the offline commands on the same
+# upload-image, import (DICOM), ls, show, features and convert (checked against the offline commands on the same
 # data), download, query (rows, summary, a malformed expression), rm, the demo cohort, and each
 # error with its exit code and one line: unknown id 3, open mesh 4, bad usage 2, no token 7,
 # server down 6.
@@ -96,6 +96,19 @@ grep -q "loaded 2 patients, 2 MR images, 12 structures" "$tmp/demo" || fail "dem
 "$soiq" query --name amygdala --laterality L --select 'asym(voxel_volume_mm3)' --format csv >"$tmp/a.csv" 2>/dev/null ||
   fail "asymmetry query"
 [ "$(wc -l <"$tmp/a.csv")" -eq 3 ] || fail "asymmetry rows: $(cat "$tmp/a.csv")"
+
+# DICOM import: STS_002's CT and PET with their structure sets, then a query on the PET uptake.
+"$soiq" import "$data/sts/STS_002/dicom" --format csv >"$tmp/imp.csv" 2>"$tmp/imp.err" ||
+  fail "import: $(cat "$tmp/imp.err")"
+grep -q "^patient,STS_002," "$tmp/imp.csv" || fail "import lacks the patient: $(cat "$tmp/imp.csv")"
+[ "$(grep -c "^series," "$tmp/imp.csv")" -eq 2 ] || fail "import series: $(cat "$tmp/imp.csv")"
+grep -q "^structure,.*GTV_Mass_CT" "$tmp/imp.csv" || fail "import lacks GTV_Mass_CT: $(cat "$tmp/imp.csv")"
+grep -q "imported 2 series and 2 structures from 98 files" "$tmp/imp.err" || fail "import summary: $(cat "$tmp/imp.err")"
+"$soiq" query --patient STS_002 --name 'GTV*' --select 'mean[inside,PT]' --series-modality CT --format csv \
+  >"$tmp/pet.csv" 2>/dev/null || fail "query on imported structures"
+[ "$(wc -l <"$tmp/pet.csv")" -eq 3 ] || fail "PET uptake rows: $(cat "$tmp/pet.csv")"
+printf 'not dicom' >"$tmp/plain.txt"
+expect 2 "plain.txt" -- "$soiq" import "$tmp/plain.txt"
 
 # Authentication: a server with a token refuses a client without it.
 echo "0123456789abcdef0123456789abcdef" >"$tmp/token"
