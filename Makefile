@@ -25,7 +25,7 @@ test: build
 
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs this too).
 test-sanitize:
-	$(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DSOIQ_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DSOIQ_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
 
 bench: build
 	bench/run $(BUILD)
