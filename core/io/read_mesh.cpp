@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <mutex>
 
 #include "core/io/check_ply_structure.h"
 #include "core/io/file_extension.h"
@@ -24,6 +25,7 @@
 #include "core/io/legacy_vtk_geometry.h"
 #include "core/io/read_file_bytes.h"
 #include "core/io/vtk_messages.h"
+#include "core/io/vtk_ply_lock.h"
 
 namespace soiq {
 namespace {
@@ -195,7 +197,11 @@ Result<TriangleMesh> read_mesh(const std::string& path, bool ras) {
     legacy->ReadFromInputStringOn();
     legacy->SetInputString(vtk_geometry.data(), int(vtk_geometry.size()));
   }
-  reader->Update();
+  {
+    std::unique_lock<std::mutex> ply_lock(vtk_ply_mutex(), std::defer_lock);
+    if (ext == ".ply") ply_lock.lock();
+    reader->Update();
+  }
   vtkPolyData* poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (messages.has_error() || poly == nullptr) {
     const std::string why = messages.last_error();

@@ -18,11 +18,13 @@
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <system_error>
 
 #include "core/io/file_extension.h"
 #include "core/io/header_text.h"
 #include "core/io/vtk_messages.h"
+#include "core/io/vtk_ply_lock.h"
 #include "core/io/write_file_bytes.h"
 
 namespace soiq {
@@ -85,6 +87,8 @@ unsigned long write_with(const std::string& ext, const std::string& file, vtkPol
   }
   vtkSmartPointer<vtkWriter> w = make_writer(ext, file);
   w->SetInputData(poly);
+  std::unique_lock<std::mutex> ply_lock(vtk_ply_mutex(), std::defer_lock);
+  if (ext == ".ply") ply_lock.lock();
   const int ok = w->Write();
   return ok == 1 ? w->GetErrorCode() : std::max<unsigned long>(w->GetErrorCode(), vtkErrorCode::UnknownError);
 }
