@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -207,7 +208,10 @@ class WorkDir {
       fs::create_directories(path_);
       return;
     }
-    std::string pattern = "/var/tmp/soiq-bench-query-XXXXXX";
+    // $SOIQ_BENCH_TMP, else $TMPDIR, else the system's temporary folder: the database needs ~1 GiB.
+    const char* base = std::getenv("SOIQ_BENCH_TMP");
+    if (!base || !*base) base = std::getenv("TMPDIR");
+    std::string pattern = ((base && *base) ? fs::path(base) : fs::temp_directory_path()) / "soiq-bench-query-XXXXXX";
     if (mkdtemp(pattern.data())) path_ = pattern;
   }
   ~WorkDir() {
@@ -234,7 +238,7 @@ Status check_meshes(const CohortPatient& p, const QueryCohortSize& size, int64_t
 
 Status run(const Options& o) {
   const WorkDir work(o.dir);
-  if (work.path().empty()) return internal_error("cannot create a work folder under /var/tmp");
+  if (work.path().empty()) return internal_error("cannot create a work folder (set SOIQ_BENCH_TMP or --dir)");
   const std::string pristine = work.path() + "/cohort.db";
 
   note("soiq-bench query: cohort of %s patients\n", std::to_string(o.size.patients));

@@ -10,7 +10,8 @@
 //   - concurrent clients (1, 2, 4, 8) repeating the warm query: queries/s, p50, p95;
 //   - where the cold time goes (cold_breakdown.h).
 // Options: --small (10,000 patients, 10 matched, 10k-20k triangles; well under a minute),
-// --dir DIR (work folder, default a fresh one under /var/tmp, removed at the end), --soiqd PATH,
+// --dir DIR (work folder, default a fresh one under $SOIQ_BENCH_TMP, $TMPDIR or /tmp, removed at
+// the end), --soiqd PATH,
 // --workers N (soiqd's, default 2), --runs N (cold repeats, default 3), --seconds S (per client
 // count, default 3), --patients N, --matched N.
 // Exit codes: 0 ok, 2 bad options, 1 any failure (the message says which step).
