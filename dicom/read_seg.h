@@ -20,6 +20,8 @@
 //          segment number, or one that does not fit grid (message names the frame, from 1, and
 //          what differs).
 // Cost     O(frames x rows x columns + lines of grid) per segment. Thread-safe.
+// Caveats  grid carries no Frame of Reference: the caller checks SegObject.frame_of_reference_uid
+//          against the series'. FRACTIONAL SEGs and concatenations are not read.
 
 #include <cstdint>
 #include <string>

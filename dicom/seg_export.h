@@ -20,8 +20,9 @@
 //          spacing_mm[2]). The Referenced Series Sequence lists the slices that frames derive from.
 // Errors   INVALID_ARGUMENT, naming the segment or field: an invalid source geometry, dims[0] or
 //          dims[1] over 65535, slice uid count != dims[2], an empty study/series/frame of
-//          reference/SOP class uid, no segments, an empty label, a segment volume whose geometry
-//          differs from source.geometry, a segment with no voxels. RESOURCE_EXHAUSTED over
+//          reference/SOP class uid, no segments, an empty label, no algorithm name unless MANUAL, a
+//          segment volume whose geometry differs from source.geometry or whose line_start has the
+//          wrong size, a segment with no voxels ("structure 'X' has no voxels"). RESOURCE_EXHAUSTED over
 //          options.max_frames frames or 2^32 - 2 bytes of pixel data. INTERNAL when DCMTK refuses the
 //          object (its text kept).
 // Cost     O(segments x slices x rows x columns) to build the frames, plus DCMTK's functional

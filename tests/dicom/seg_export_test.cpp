@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <set>
 
@@ -326,6 +327,12 @@ TEST(SegRead, NonSegDicomIsInvalidArgument) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
   EXPECT_NE(r.status().message().find("not a DICOM Segmentation"), std::string::npos) << r.status().to_string();
+}
+
+TEST(SegRead, MissingFileIsNotFound) {
+  auto r = read_seg_file(data_dir("dicom/no_such_seg.dcm"), axis_aligned_grid());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kNotFound) << r.status().to_string();
 }
 
 TEST(SegRead, GarbageBytesAreRefused) {
