@@ -1,0 +1,208 @@
+#pragma once
+// Test support: a real PACS on loopback, DCMTK's dcmqrscp, in a temporary folder, and DCMTK's
+// storescu to load it. Header-only so the tests/dicom glob (*_test.cpp) needs no CMake change.
+//
+// DcmqrscpProcess::start picks a free loopback port, writes a dcmqrscp.cfg with one AE
+// (kAeTitle) whose storage area is in the folder and whose peers are ANY, starts dcmqrscp in
+// its own process group and polls C-ECHO until it answers (bounded). The destructor sends
+// SIGTERM, then SIGKILL, to the whole group (dcmqrscp forks one child per association).
+// Both tools get TCP_NODELAY=1: with Nagle's algorithm each small DIMSE response waits for a
+// delayed ACK, 98 files then take 9 s to load instead of 0.5 s.
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "dicom/pacs_echo.h"
+#include "dicom/pacs_peer.h"
+#include "dicom_test_support.h"
+
+namespace soiq::dicom::testing {
+
+// The absolute path of `name` on PATH, or "" when it is not there.
+inline std::string find_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return "";
+}
+
+// A loopback port nobody listens on right now (bind to port 0, read it, close).
+inline int free_loopback_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return 0;
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = 0;
+  socklen_t len = sizeof addr;
+  int port = 0;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0)
+    port = ntohs(addr.sin_port);
+  ::close(fd);
+  return port;
+}
+
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs argv[0] with stdout+stderr into `log`; returns its exit status (-1 if it could not run).
+// The child gets its own process group so a test's kill of dcmqrscp never reaches it.
+inline int run_tool(const std::vector<std::string>& argv, const std::filesystem::path& log) {
+  const pid_t pid = ::fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+    }
+    ::setenv("TCP_NODELAY", "1", 1);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execv(args[0], args.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class DcmqrscpProcess {
+ public:
+  static constexpr const char* kAeTitle = "SOIQTEST";
+
+  DcmqrscpProcess() = default;
+  DcmqrscpProcess(const DcmqrscpProcess&) = delete;
+  DcmqrscpProcess& operator=(const DcmqrscpProcess&) = delete;
+  ~DcmqrscpProcess() { stop(); }
+
+  // "" when running, else why not (binary missing: starts with "not installed").
+  std::string start() {
+    const std::string binary = find_on_path("dcmqrscp");
+    if (binary.empty()) return "not installed: dcmqrscp is not on PATH (Debian package dcmtk)";
+    const std::filesystem::path storage = dir_.path() / "db" / kAeTitle;
+    std::filesystem::create_directories(storage);
+    // The port can be taken between our probe and dcmqrscp's bind: try a few.
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      port_ = free_loopback_port();
+      const std::filesystem::path cfg = dir_.path() / "dcmqrscp.cfg";
+      std::ofstream(cfg) << "NetworkTCPPort = " << port_ << "\nMaxPDUSize = 65536\nMaxAssociations = 16\n"
+                         << "HostTable BEGIN\nHostTable END\nVendorTable BEGIN\nVendorTable END\n"
+                         << "AETable BEGIN\n"
+                         // Quota: dcmqrscp deletes the oldest studies beyond it; keep it far away.
+                         << kAeTitle << " " << storage.string() << " RW (1000, 1024mb) ANY\n"
+                         << "AETable END\n";
+      pid_ = ::fork();
+      if (pid_ < 0) return "fork failed";
+      if (pid_ == 0) {
+        ::setpgid(0, 0);
+        const int fd = ::open(log_path().c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) {
+          ::dup2(fd, 1);
+          ::dup2(fd, 2);
+        }
+        ::setenv("TCP_NODELAY", "1", 1);
+        const std::string port = std::to_string(port_), cfg_path = cfg.string();
+        ::execl(binary.c_str(), binary.c_str(), "-c", cfg_path.c_str(), port.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+      }
+      ::setpgid(pid_, pid_);  // also from here, so a kill right after fork reaches the group
+      // Bounded wait for the first C-ECHO: 10 s at 20 ms steps.
+      PacsPeer probe = peer();
+      probe.timeout_seconds = 2;
+      for (int i = 0; i < 500; ++i) {
+        if (pacs_echo(probe).ok()) return "";
+        int status = 0;
+        if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+          pid_ = -1;
+          break;  // exited (port taken?): next attempt
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      stop();
+    }
+    return "dcmqrscp did not answer C-ECHO on port " + std::to_string(port_) + "; its output:\n" +
+           read_text(log_path());
+  }
+
+  PacsPeer peer() const {
+    PacsPeer p;
+    p.called_ae = kAeTitle;
+    p.host = "127.0.0.1";
+    p.port = port_;
+    p.calling_ae = "SOIQ";
+    p.timeout_seconds = 10;
+    return p;
+  }
+  int port() const { return port_; }
+
+  // Loads files or folders (recursively) with DCMTK's storescu; "" or its output on failure.
+  std::string load(const std::vector<std::string>& paths) {
+    const std::string binary = find_on_path("storescu");
+    if (binary.empty()) return "storescu is not on PATH";
+    std::vector<std::string> argv = {binary, "-aet", "SOIQLOAD", "-aec",      kAeTitle,
+                                     "-to",  "10",   "-ta",      "10",        "-td",
+                                     "10",   "+sd",  "+r",       "127.0.0.1", std::to_string(port_)};
+    argv.insert(argv.end(), paths.begin(), paths.end());
+    const std::filesystem::path log = dir_.path() / "storescu.log";
+    const int rc = run_tool(argv, log);
+    return rc == 0 ? "" : "storescu exited with " + std::to_string(rc) + ":\n" + read_text(log);
+  }
+
+  // SIGKILL to dcmqrscp and its association children at once: the association breaks mid-flight.
+  void kill_now() {
+    if (pid_ > 0) ::kill(-pid_, SIGKILL);
+  }
+
+  void stop() {
+    if (pid_ <= 0) return;
+    ::kill(-pid_, SIGTERM);
+    int status = 0;
+    bool reaped = false;
+    for (int i = 0; i < 100 && !reaped; ++i) {  // up to 2 s
+      reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
+      if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (!reaped) {
+      ::kill(-pid_, SIGKILL);
+      ::waitpid(pid_, &status, 0);
+    }
+    ::kill(-pid_, SIGKILL);  // association children that outlived their parent
+    pid_ = -1;
+  }
+
+  std::string output() const { return read_text(log_path()); }
+
+ private:
+  std::filesystem::path log_path() const { return dir_.path() / "dcmqrscp.log"; }
+
+  TempDir dir_;
+  pid_t pid_ = -1;
+  int port_ = 0;
+};
+
+}  // namespace soiq::dicom::testing
