@@ -98,7 +98,9 @@ Status rejected_status(const PacsPeer& peer, const std::string& service) {
   if (why.source == 1 && why.reason == 3)
     return Status(StatusCode::kPermissionDenied, msg + "; ask the PACS administrator to register our AE title");
   if (why.source == 1 && why.reason == 7)
-    return failed_precondition(msg + "; check the PACS's AE title ('" + peer.called_ae + "')");
+    return failed_precondition(msg + "; check the PACS's AE title ('" + peer.called_ae +
+                               "') and that the PACS lists ours ('" + peer.calling_ae +
+                               "'): some PACS, dcmqrscp among them, give this reason for both");
   return failed_precondition(msg);
 }
 

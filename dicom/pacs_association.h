@@ -5,12 +5,12 @@
 //
 // Error codes, the same for every pacs_* call:
 //   UNAVAILABLE          the PACS cannot be reached (refused, unresolved, connect timeout), the
-//                        association broke or a message did not come within timeout_seconds.
-//   PERMISSION_DENIED    the PACS rejected the association because it does not know our calling AE.
-//   FAILED_PRECONDITION  rejected for another permanent reason (e.g. its called AE title is not
-//                        the one configured), or none of the proposed presentation contexts was
-//                        accepted.
-//   UNAVAILABLE          rejected transiently (PACS busy, too many associations): retry later.
+//                        association broke, a message did not come within timeout_seconds, or
+//                        the association was rejected transiently (busy, too many): retry later.
+//   PERMISSION_DENIED    rejected with "calling AE title not recognized": register ours there.
+//   FAILED_PRECONDITION  rejected for another permanent reason, e.g. "called AE title not
+//                        recognized" (a wrong called_ae; dcmqrscp also says this when it does
+//                        not list our calling AE), or no proposed presentation context accepted.
 // Messages name the peer ("PACS 'X' at host:port") and keep DCMTK's text.
 
 #include <dcmtk/config/osconfig.h>  // must come first for DCMTK
