@@ -129,10 +129,25 @@ CREATE INDEX stage1_rows_description ON stage1_rows(description);
 CREATE INDEX stage1_rows_name_lower ON stage1_rows(name_lower);
 )sql";
 
+// Version 2: DICOM references (issue 5). A series keeps its Frame of Reference UID, its slices' SOP
+// Class UID and SOP Instance UIDs (by slice, joined with '\\', the DICOM multi-value separator, which
+// a UID cannot contain), so soiq can write a DICOM SEG that references them. A structure keeps
+// the series it was converted on and, when imported, "<RT Structure Set SOP Instance UID>/<ROI
+// number>": unique, so a re-import updates the structure in place (same id) instead of copying it.
+constexpr char kSchemaV2[] = R"sql(
+ALTER TABLE series ADD COLUMN frame_of_reference_uid TEXT NOT NULL DEFAULT '';
+ALTER TABLE series ADD COLUMN sop_class_uid TEXT NOT NULL DEFAULT '';
+ALTER TABLE series ADD COLUMN slice_instance_uids TEXT NOT NULL DEFAULT '';
+ALTER TABLE structures ADD COLUMN source_series_uid TEXT NOT NULL DEFAULT '';
+ALTER TABLE structures ADD COLUMN source_uid TEXT NOT NULL DEFAULT '';
+CREATE UNIQUE INDEX structures_source_uid ON structures(source_uid) WHERE source_uid <> '';
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
       {1, kSchemaV1},
+      {2, kSchemaV2},
   };
   return kMigrations;
 }

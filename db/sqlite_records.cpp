@@ -2,6 +2,27 @@
 
 namespace soiq::db {
 
+std::string join_uid_list(const std::vector<std::string>& uids) {
+  std::string out;
+  for (size_t i = 0; i < uids.size(); ++i) {
+    if (i) out += '\\';
+    out += uids[i];
+  }
+  return out;
+}
+
+std::vector<std::string> split_uid_list(const std::string& joined) {
+  std::vector<std::string> out;
+  if (joined.empty()) return out;
+  size_t start = 0;
+  while (true) {
+    const size_t end = joined.find('\\', start);
+    out.push_back(joined.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return out;
+    start = end + 1;
+  }
+}
+
 PatientRecord read_patient(const Statement& row, int col) {
   PatientRecord p;
   p.patient_id = row.text(col);
@@ -37,6 +58,8 @@ StructureRecord read_structure(const Statement& row, int col) {
   s.surface.vertex_count = row.int64(col + 8);
   s.surface.triangle_count = row.int64(col + 9);
   for (int i = 0; i < 6; ++i) s.surface.bounds_mm[i] = row.real(col + 10 + i);
+  s.source_series_uid = row.text(col + 16);
+  s.source_uid = row.text(col + 17);
   return s;
 }
 
@@ -54,6 +77,9 @@ SeriesRecord read_series(const Statement& row, int col) {
     for (int c = 0; c < 3; ++c) s.geometry.direction[r][c] = row.real(col + 12 + 3 * r + c);
   }
   s.sha256 = row.text(col + 21);
+  s.frame_of_reference_uid = row.text(col + 22);
+  s.sop_class_uid = row.text(col + 23);
+  s.slice_instance_uids = split_uid_list(row.text(col + 24));
   return s;
 }
 

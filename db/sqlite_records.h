@@ -28,14 +28,20 @@ inline constexpr int kStudyColumnCount = 7;
 // StructureRecord with its SurfaceInfo; needs s, st, p, sf.
 inline constexpr char kStructureColumns[] =
     "s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256, "
-    "sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z";
-inline constexpr int kStructureColumnCount = 16;
+    "sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z, "
+    "s.source_series_uid, s.source_uid";
+inline constexpr int kStructureColumnCount = 18;
 
 // SeriesRecord; needs se = series and st.
 inline constexpr char kSeriesColumns[] =
     "se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x, "
     "se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, "
-    "se.d12, se.d20, se.d21, se.d22, se.image_sha256";
+    "se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid, "
+    "se.slice_instance_uids";
+
+// A list of UIDs as one column: joined with '\\' (DICOM's value separator; no UID contains it).
+std::string join_uid_list(const std::vector<std::string>& uids);
+std::vector<std::string> split_uid_list(const std::string& joined);  // "" -> {}
 
 // Each reads its columns starting at `col`.
 PatientRecord read_patient(const Statement& row, int col);

@@ -194,6 +194,7 @@ Status validate_new_structure(const NewStructure& s) {
   SOIQ_RETURN_IF_ERROR(validate_laterality(s.laterality));
   SOIQ_RETURN_IF_ERROR(validate_sha256(s.surface.sha256, "surface"));
   if (s.surface_blob.empty()) return invalid_argument("surface blob is empty");
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.source_series_uid, "source_series_uid"));
   return ok_status();
 }
 
@@ -207,6 +208,16 @@ Status validate_new_series(const NewSeries& s) {
   }
   SOIQ_RETURN_IF_ERROR(validate_geometry(s.series.geometry));
   SOIQ_RETURN_IF_ERROR(validate_sha256(s.series.sha256, "image"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.frame_of_reference_uid, "frame_of_reference_uid"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.sop_class_uid, "sop_class_uid"));
+  for (const std::string& uid : s.series.slice_instance_uids)
+    SOIQ_RETURN_IF_ERROR(validate_uid(uid, "slice instance uid"));
+  if (!s.series.slice_instance_uids.empty() &&
+      int64_t(s.series.slice_instance_uids.size()) != s.series.geometry.dims[2]) {
+    return invalid_argument("series '" + s.series.series_uid + "' has " +
+                            std::to_string(s.series.slice_instance_uids.size()) + " slice instance uids for " +
+                            std::to_string(s.series.geometry.dims[2]) + " slices");
+  }
   if (s.image_blob.empty()) return invalid_argument("image blob is empty");
   return ok_status();
 }
@@ -228,15 +239,48 @@ Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
     SOIQ_RETURN_IF_ERROR(ins.run());
     out.surface_already_stored = sqlite3_changes64(c.handle()) == 0;
   }
+  // A re-imported structure (same source_uid) keeps its id; its old surface goes if orphaned.
+  std::optional<int64_t> old_patient_pk;
+  if (!s.source_uid.empty()) {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT s.id, s.surface_sha256, st.patient_pk FROM structures s JOIN "
+                                                 "studies st ON st.pk = s.study_pk WHERE s.source_uid = ?1"));
+    q.bind(1, s.source_uid);
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    if (row) {
+      const int64_t id = q.int64(0);
+      const std::string old_sha = q.text(1);
+      old_patient_pk = q.int64(2);
+      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare("UPDATE structures SET study_pk = ?2, name = ?3, laterality = ?4, "
+                                                    "robust = ?5, surface_sha256 = ?6, source_series_uid = ?7 "
+                                                    "WHERE id = ?1"));
+      up.bind(1, id);
+      up.bind(2, keys.study_pk);
+      up.bind(3, s.name);
+      up.bind(4, s.laterality);
+      up.bind(5, int64_t{s.robust});
+      up.bind(6, s.surface.sha256);
+      up.bind(7, s.source_series_uid);
+      SOIQ_RETURN_IF_ERROR(up.run());
+      if (old_sha != s.surface.sha256) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, old_sha));
+      out.replaced = true;
+      SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+      if (*old_patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, *old_patient_pk));
+      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
+      return out;
+    }
+  }
   int64_t id = 0;
   {
     SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO structures(study_pk, name, laterality, robust, "
-                                                   "surface_sha256) VALUES (?1, ?2, ?3, ?4, ?5) RETURNING id"));
+                                                   "surface_sha256, source_series_uid, source_uid) VALUES (?1, ?2, "
+                                                   "?3, ?4, ?5, ?6, ?7) RETURNING id"));
     ins.bind(1, keys.study_pk);
     ins.bind(2, s.name);
     ins.bind(3, s.laterality);
     ins.bind(4, int64_t{s.robust});
     ins.bind(5, s.surface.sha256);
+    ins.bind(6, s.source_series_uid);
+    ins.bind(7, s.source_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
     if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
     id = ins.int64(0);
@@ -274,14 +318,17 @@ Result<bool> insert_series(Connection& c, const NewSeries& s) {
         Statement up,
         c.prepare("INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, "
                   "spacing_y, spacing_z, dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, "
-                  "image_sha256) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                  "?17, ?18, ?19, ?20, ?21, ?22) ON CONFLICT(series_uid) DO UPDATE SET study_pk = "
+                  "image_sha256, frame_of_reference_uid, sop_class_uid, slice_instance_uids) VALUES (?1, ?2, ?3, "
+                  "?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, "
+                  "?25) ON CONFLICT(series_uid) DO UPDATE SET study_pk = "
                   "excluded.study_pk, modality = excluded.modality, origin_x = excluded.origin_x, origin_y = "
                   "excluded.origin_y, origin_z = excluded.origin_z, spacing_x = excluded.spacing_x, spacing_y = "
                   "excluded.spacing_y, spacing_z = excluded.spacing_z, dim_x = excluded.dim_x, dim_y = "
                   "excluded.dim_y, dim_z = excluded.dim_z, d00 = excluded.d00, d01 = excluded.d01, d02 = "
                   "excluded.d02, d10 = excluded.d10, d11 = excluded.d11, d12 = excluded.d12, d20 = excluded.d20, "
-                  "d21 = excluded.d21, d22 = excluded.d22, image_sha256 = excluded.image_sha256"));
+                  "d21 = excluded.d21, d22 = excluded.d22, image_sha256 = excluded.image_sha256, "
+                  "frame_of_reference_uid = excluded.frame_of_reference_uid, sop_class_uid = "
+                  "excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids"));
     const ImageGeometry& g = s.series.geometry;
     up.bind(1, s.series.series_uid);
     up.bind(2, keys.study_pk);
@@ -295,6 +342,9 @@ Result<bool> insert_series(Connection& c, const NewSeries& s) {
       for (int col = 0; col < 3; ++col) up.bind(13 + 3 * r + col, g.direction[r][col]);
     }
     up.bind(22, s.series.sha256);
+    up.bind(23, s.series.frame_of_reference_uid);
+    up.bind(24, s.series.sop_class_uid);
+    up.bind(25, join_uid_list(s.series.slice_instance_uids));
     SOIQ_RETURN_IF_ERROR(up.run());
   }
   if (old_sha && *old_sha != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, *old_sha));

@@ -46,6 +46,11 @@ struct SeriesRecord {
   std::string modality;
   ImageGeometry geometry;
   std::string sha256;  // of the image blob
+  // DICOM references, for writing objects derived from the series (DICOM SEG); "" and empty for
+  // series that did not come from DICOM.
+  std::string frame_of_reference_uid;
+  std::string sop_class_uid;                     // of its slices
+  std::vector<std::string> slice_instance_uids;  // SOP Instance UID of slice k, by k
 };
 
 struct SurfaceInfo {
@@ -64,6 +69,12 @@ struct StructureRecord {
   bool robust = false;
   std::string created_at;  // ISO 8601 UTC, set by the store
   SurfaceInfo surface;
+  // Where an imported structure came from; "" for uploads. source_series_uid: the image series
+  // whose grid its volume was converted on (DICOM SEG export writes on it). source_uid: the
+  // RT Structure Set's SOP Instance UID + "/" + the ROI number, unique in the store, so importing
+  // the same structure set again updates its structures instead of adding copies.
+  std::string source_series_uid;
+  std::string source_uid;
 };
 
 // A new structure with its surface blob. The patient and study are inserted or updated (non-empty
@@ -76,12 +87,15 @@ struct NewStructure {
   std::string laterality;
   bool robust = false;
   SurfaceInfo surface;
-  std::string surface_blob;  // encoded (db/surface_blob.h)
+  std::string surface_blob;       // encoded (db/surface_blob.h)
+  std::string source_series_uid;  // see StructureRecord
+  std::string source_uid;         // non-empty: replaces the structure with this source_uid, if any
 };
 
 struct AddedStructure {
   StructureRecord structure;
   bool surface_already_stored = false;
+  bool replaced = false;  // an existing structure with the same source_uid was updated (same id)
 };
 
 struct NewSeries {

@@ -23,6 +23,13 @@ Status validate_sha256(const std::string& sha256, const std::string& what) {
   return invalid_argument(what + " sha256 '" + sha256 + "' is not 64 lower-case hex digits");
 }
 
+Status validate_uid(const std::string& uid, const std::string& what) {
+  bool ok = uid.size() <= 64;
+  for (char c : uid) ok = ok && ((c >= '0' && c <= '9') || c == '.');
+  if (ok) return ok_status();
+  return invalid_argument(what + " '" + uid + "' is not a DICOM UID (at most 64 digits and dots)");
+}
+
 Status validate_patient(const PatientRecord& p) {
   if (p.patient_id.empty()) return invalid_argument("patient_id is empty");
   SOIQ_RETURN_IF_ERROR(validate_sex(p.sex));

@@ -82,7 +82,17 @@ Result<Planned> plan(const dicom::DicomImport& in, const Relative& rel, v1::Impo
     db::NewSeries s;
     SOIQ_RETURN_IF_ERROR(records_of(in.scan, image.series_uid, s.patient, s.study));
     SOIQ_ASSIGN_OR_RETURN(db::EncodedImage encoded, db::encode_image(image.image));
-    s.series = {image.series_uid, s.study.study_uid, image.modality, image.image.geometry, encoded.sha256};
+    s.series.series_uid = image.series_uid;
+    s.series.study_uid = s.study.study_uid;
+    s.series.modality = image.modality;
+    s.series.geometry = image.image.geometry;
+    s.series.sha256 = encoded.sha256;
+    // The DICOM references a SEG derived from this series needs (dicom/seg_export.h).
+    if (const dicom::DicomSeries* scanned = in.scan.find_series(image.series_uid)) {
+      s.series.frame_of_reference_uid = scanned->frame_of_reference_uid;
+      if (!scanned->instances.empty()) s.series.sop_class_uid = scanned->instances.front().sop_class_uid;
+    }
+    s.series.slice_instance_uids = image.slice_sop_instance_uids;
     s.image_blob = std::move(encoded.blob);
     out.batch.series.push_back(std::move(s));
   }
@@ -104,6 +114,8 @@ Result<Planned> plan(const dicom::DicomImport& in, const Relative& rel, v1::Impo
       SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, s.patient, s.study));
       s.name = name;
       s.laterality = laterality_of(name);
+      s.source_series_uid = set.referenced_series_uid;
+      s.source_uid = set.sop_instance_uid + "/" + std::to_string(roi.roi_number);
       SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(roi.surface));
       s.surface = encoded.info;
       s.surface_blob = std::move(encoded.blob);
@@ -163,6 +175,7 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
     *s->mutable_structure() = to_proto(stored.structures[i].structure);
     s->set_referenced_series_uid(planned.referenced_series[i]);
     s->set_voxel_count(planned.voxel_counts[i]);
+    s->set_replaced(stored.structures[i].replaced);
   }
   r.set_milliseconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return r;

@@ -45,6 +45,9 @@ v1::Series to_proto(const db::SeriesRecord& r) {
   s.set_modality(r.modality);
   *s.mutable_geometry() = to_proto(r.geometry);
   s.set_sha256(r.sha256);
+  s.set_frame_of_reference_uid(r.frame_of_reference_uid);
+  s.set_sop_class_uid(r.sop_class_uid);
+  s.set_slice_instance_count(int64_t(r.slice_instance_uids.size()));
   return s;
 }
 
@@ -61,6 +64,8 @@ v1::Structure to_proto(const db::StructureRecord& r) {
   for (double b : r.surface.bounds_mm) s.add_bounds_mm(b);
   s.set_robust(r.robust);
   s.set_created_at(r.created_at);
+  s.set_source_series_uid(r.source_series_uid);
+  s.set_source_uid(r.source_uid);
   return s;
 }
 

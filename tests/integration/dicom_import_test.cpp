@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 
 #include "core/io/read_image.h"
 #include "tests/integration/service_fixture.h"
@@ -41,6 +42,37 @@ TEST_F(ServiceTest, ImportsSts002WithItsSeriesAndStructures) {
   ASSERT_TRUE(info.ok());
   EXPECT_EQ(info->series(), 2);
   EXPECT_EQ(info->structures(), 2);
+}
+
+TEST_F(ServiceTest, ImportKeepsDicomReferencesAndAReimportUpdatesInPlace) {
+  Result<v1::ImportDicomResponse> first = client_->import_dicom({data("sts/STS_002/dicom")});
+  ASSERT_TRUE(first.ok()) << first.status().to_string();
+  const v1::Series* ct = series_of_modality(*first, "CT");
+  ASSERT_NE(ct, nullptr);
+  // What a DICOM SEG on this series must reference.
+  EXPECT_FALSE(ct->frame_of_reference_uid().empty());
+  EXPECT_EQ(ct->sop_class_uid(), "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
+  EXPECT_EQ(ct->slice_instance_count(), ct->geometry().dims(2));
+  std::map<std::string, int64_t> ids;  // by source uid
+  for (const v1::ImportedStructure& s : first->structures()) {
+    EXPECT_FALSE(s.replaced());
+    EXPECT_EQ(s.structure().source_series_uid(), s.referenced_series_uid());
+    ASSERT_NE(s.structure().source_uid().find('/'), std::string::npos) << s.structure().source_uid();
+    ids[s.structure().source_uid()] = s.structure().id();
+  }
+  ASSERT_EQ(ids.size(), 2u);
+
+  Result<v1::ImportDicomResponse> again = client_->import_dicom({data("sts/STS_002/dicom")});
+  ASSERT_TRUE(again.ok()) << again.status().to_string();
+  ASSERT_EQ(again->structures_size(), 2);
+  for (const v1::ImportedStructure& s : again->structures()) {
+    EXPECT_TRUE(s.replaced()) << s.structure().name();
+    EXPECT_EQ(s.structure().id(), ids[s.structure().source_uid()]);
+  }
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->structures(), 2);
+  EXPECT_EQ(info->series(), 2);
 }
 
 TEST_F(ServiceTest, ImportedCtStructureHasTheMaskVolumeOnCtAndPetUptake) {
