@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "client/cancel_watcher.h"
@@ -213,6 +214,72 @@ Result<v1::QuerySummary> Client::query(const v1::QueryRequest& request, const Qu
   if (!s.ok()) return s;
   if (!summary) return data_loss("soiqd at " + options_.address + " ended the query without its summary");
   return *summary;
+}
+
+Result<v1::SegInfo> Client::export_seg(const v1::ExportSegRequest& request, const std::string& out_path) const {
+  std::optional<v1::SegInfo> info;
+  int64_t written = 0;
+  bool delivered = false;
+  Status local;  // a failure writing the file
+  const Status s = with_retries(
+      options_.retry,
+      [&]() -> Status {
+        info.reset();
+        written = 0;
+        std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
+        if (!out) return not_found("cannot write '" + out_path + "'");
+        auto ctx = context(options_.stream_deadline);
+        auto reader = stub_->ExportSeg(ctx.get(), request);
+        bool stopped = false;
+        const grpc::Status g = drain(
+            *reader, *ctx,
+            [&](const v1::ExportSegResponse& r) {
+              if (r.has_info()) {
+                info = r.info();
+                return true;
+              }
+              out.write(r.chunk().data(), std::streamsize(r.chunk().size()));
+              written += int64_t(r.chunk().size());
+              if (!out) local = data_loss("error writing '" + out_path + "' (disk full?)");
+              return bool(out);
+            },
+            delivered, stopped);
+        if (!local.ok()) return local;
+        return map(g, options_.stream_deadline);
+      },
+      [&] { return !delivered; });
+  Status result = s;
+  if (result.ok() && !info) result = data_loss("soiqd at " + options_.address + " sent the SEG without its summary");
+  if (result.ok() && written != info->size_bytes())
+    result = data_loss("soiqd at " + options_.address + " announced a SEG of " + std::to_string(info->size_bytes()) +
+                       " bytes but sent " + std::to_string(written));
+  if (!result.ok()) {
+    std::remove(out_path.c_str());
+    return result;
+  }
+  return *info;
+}
+
+Result<v1::ImportDicomResponse> Client::pacs_pull(const v1::PacsPullRequest& request,
+                                                  const std::function<bool(const v1::PacsPullProgress&)>& on_progress,
+                                                  const std::atomic<bool>* cancel) const {
+  std::optional<v1::ImportDicomResponse> imported;
+  auto ctx = context(options_.stream_deadline);
+  CancelWatcher watcher(cancel, ctx.get());
+  auto reader = stub_->PacsPull(ctx.get(), request);
+  bool delivered = false, stopped = false;
+  const grpc::Status g = drain(
+      *reader, *ctx,
+      [&](const v1::PacsPullEvent& e) {
+        if (e.has_imported()) imported = e.imported();
+        if (e.has_progress()) return !on_progress || on_progress(e.progress());
+        return true;
+      },
+      delivered, stopped);
+  if (stopped || watcher.fired()) return cancelled_by_client("pull");
+  SOIQ_RETURN_IF_ERROR(map(g, options_.stream_deadline));
+  if (!imported) return data_loss("soiqd at " + options_.address + " ended the pull without the import result");
+  return *imported;
 }
 
 }  // namespace soiq::client

@@ -82,15 +82,17 @@ Status Client::map(const grpc::Status& status, std::chrono::milliseconds deadlin
 }
 
 // `call(stub, context, response)` performs one attempt and returns gRPC's status.
+// `long_running`: the stream deadline (calls that wait on a PACS or convert), else the unary one.
 template <typename Response, typename Call>
-Result<Response> Client::unary(Call call, bool retry) const {
+Result<Response> Client::unary(Call call, bool retry, bool long_running) const {
   Response response;
   RetryPolicy policy = options_.retry;
   if (!retry) policy.attempts = 1;
+  const std::chrono::milliseconds deadline = long_running ? options_.stream_deadline : options_.deadline;
   const Status s = with_retries(policy, [&]() -> Status {
     response.Clear();
-    auto ctx = context(options_.deadline);
-    return map(call(*stub_, ctx.get(), &response), options_.deadline);
+    auto ctx = context(deadline);
+    return map(call(*stub_, ctx.get(), &response), deadline);
   });
   if (!s.ok()) return s;
   return response;
@@ -158,6 +160,27 @@ Result<v1::DeleteResponse> Client::delete_patient(const std::string& patient_id)
   return unary<v1::DeleteResponse>([&](v1::Soiq::Stub& stub, grpc::ClientContext* ctx,
                                        v1::DeleteResponse* out) { return stub.DeletePatient(ctx, request, out); },
                                    false);
+}
+
+Result<v1::PacsEchoResponse> Client::pacs_echo() const {
+  const v1::PacsEchoRequest request;
+  return unary<v1::PacsEchoResponse>([&](v1::Soiq::Stub& stub, grpc::ClientContext* ctx,
+                                         v1::PacsEchoResponse* out) { return stub.PacsEcho(ctx, request, out); },
+                                     true, true);
+}
+
+Result<v1::PacsFindResponse> Client::pacs_find(const v1::PacsFindRequest& request) const {
+  return unary<v1::PacsFindResponse>([&](v1::Soiq::Stub& stub, grpc::ClientContext* ctx,
+                                         v1::PacsFindResponse* out) { return stub.PacsFind(ctx, request, out); },
+                                     true, true);
+}
+
+Result<v1::PacsPushResponse> Client::pacs_push(const v1::PacsPushRequest& request) const {
+  // Retried: storing the same SEG again is harmless, but each attempt makes a new SOP instance, so
+  // only UNAVAILABLE before the server answered is retried (with_retries' rule).
+  return unary<v1::PacsPushResponse>([&](v1::Soiq::Stub& stub, grpc::ClientContext* ctx,
+                                         v1::PacsPushResponse* out) { return stub.PacsPush(ctx, request, out); },
+                                     false, true);
 }
 
 Result<v1::ServerInfo> Client::server_info() const {

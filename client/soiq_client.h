@@ -113,13 +113,27 @@ class Client {
   // Streams progress and rows to the handlers; returns the closing summary.
   Result<soiq::v1::QuerySummary> query(const soiq::v1::QueryRequest& request, const QueryHandlers& handlers) const;
 
+  // DICOM out and the PACS soiqd is configured with (its --pacs). Long calls: stream_deadline.
+  // The SEG of imported structures written to `out_path` (replaced; removed again on failure).
+  Result<soiq::v1::SegInfo> export_seg(const soiq::v1::ExportSegRequest& request, const std::string& out_path) const;
+  Result<soiq::v1::PacsEchoResponse> pacs_echo() const;
+  Result<soiq::v1::PacsFindResponse> pacs_find(const soiq::v1::PacsFindRequest& request) const;
+  // Pulls studies into soiq; `on_progress` after each instance (false cancels: nothing is stored).
+  // Not retried: the server may have stored the import before the connection failed.
+  Result<soiq::v1::ImportDicomResponse> pacs_pull(
+      const soiq::v1::PacsPullRequest& request,
+      const std::function<bool(const soiq::v1::PacsPullProgress&)>& on_progress = {},
+      const std::atomic<bool>* cancel = nullptr) const;
+  // Not retried: every attempt would store a new SEG instance on the PACS.
+  Result<soiq::v1::PacsPushResponse> pacs_push(const soiq::v1::PacsPushRequest& request) const;
+
  private:
   Client(ClientOptions options, std::string token, std::shared_ptr<grpc::Channel> channel);
   // A fresh context per attempt: deadline and authorization.
   std::unique_ptr<grpc::ClientContext> context(std::chrono::milliseconds deadline) const;
   Status map(const grpc::Status& status, std::chrono::milliseconds deadline) const;
   template <typename Response, typename Call>
-  Result<Response> unary(Call call, bool retry) const;
+  Result<Response> unary(Call call, bool retry, bool long_running = false) const;
   template <typename Request, typename Response, typename Header>
   Result<Response> upload(const Header& header, std::string_view bytes, const ProgressFn& progress,
                           const char* what) const;

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <thread>
 
+#include "server/pacs_address.h"
+
 namespace soiq::server {
 namespace {
 
@@ -28,9 +30,11 @@ const char* server_usage() {
   return "usage: soiqd [--listen HOST:PORT] [--db PATH] [--port-file PATH] [--max-upload-bytes N]\n"
          "             [--max-grid-voxels N] [--workers N] [--query-result-cap N] [--stage1-cap N]\n"
          "             [--tls-cert PEM --tls-key PEM] [--token-file PATH]\n"
+         "             [--pacs AE@HOST:PORT [--pacs-calling-ae AE] [--pacs-timeout SECONDS]]\n"
          "Every flag has an environment default: SOIQ_LISTEN, SOIQ_DB, SOIQ_PORT_FILE, SOIQ_MAX_UPLOAD_BYTES,\n"
          "SOIQ_MAX_GRID_VOXELS, SOIQ_WORKERS, SOIQ_QUERY_RESULT_CAP, SOIQ_STAGE1_CAP, SOIQ_TLS_CERT,\n"
-         "SOIQ_TLS_KEY, SOIQ_TOKEN_FILE. Port 0 binds any free port (see --port-file).\n";
+         "SOIQ_TLS_KEY, SOIQ_TOKEN_FILE, SOIQ_PACS, SOIQ_PACS_CALLING_AE, SOIQ_PACS_TIMEOUT. Port 0 binds any free "
+         "port (see --port-file).\n";
 }
 
 Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
@@ -63,6 +67,9 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--tls-cert", "SOIQ_TLS_CERT", text(c.tls_cert)},
       {"--tls-key", "SOIQ_TLS_KEY", text(c.tls_key)},
       {"--token-file", "SOIQ_TOKEN_FILE", text(c.token_file)},
+      {"--pacs", "SOIQ_PACS", text(c.pacs)},
+      {"--pacs-calling-ae", "SOIQ_PACS_CALLING_AE", text(c.pacs_calling_ae)},
+      {"--pacs-timeout", "SOIQ_PACS_TIMEOUT", count(c.pacs_timeout_seconds, 1, 3600)},
   };
   for (const Option& o : options) {
     if (const char* v = getenv(o.env)) SOIQ_RETURN_IF_ERROR(o.set(v, std::string("environment variable ") + o.env));
@@ -92,6 +99,11 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
   }
   if (c.tls_cert.empty() != c.tls_key.empty())
     return invalid_argument("--tls-cert and --tls-key go together: give both or neither");
+  if (!c.pacs.empty()) {
+    Result<dicom::PacsPeer> peer = parse_pacs_address(c.pacs, c.pacs_calling_ae, c.pacs_timeout_seconds);
+    if (!peer.ok()) return invalid_argument("--pacs: " + peer.status().message());
+    c.pacs_peer = *peer;
+  }
   if (c.workers == 0) c.workers = std::max(1u, std::thread::hardware_concurrency());
   return c;
 }

@@ -13,14 +13,19 @@
 //   --stage1-cap N              SOIQ_STAGE1_CAP            100000 candidate structures
 //   --tls-cert PEM --tls-key PEM SOIQ_TLS_CERT/SOIQ_TLS_KEY none (plaintext)
 //   --token-file PATH           SOIQ_TOKEN_FILE            none (no authentication)
+//   --pacs AE@HOST:PORT         SOIQ_PACS                  none (the Pacs* calls are refused)
+//   --pacs-calling-ae AE        SOIQ_PACS_CALLING_AE       SOIQ (soiq's AE title towards the PACS)
+//   --pacs-timeout SECONDS      SOIQ_PACS_TIMEOUT          30 (connect, each association and DIMSE message)
 //
 // Errors: INVALID_ARGUMENT naming the flag or variable and what it accepts.
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "core/status.h"
+#include "dicom/pacs_peer.h"
 
 namespace soiq::server {
 
@@ -35,6 +40,10 @@ struct ServerConfig {
   int64_t stage1_cap = 100000;
   std::string tls_cert, tls_key;
   std::string token_file;
+  std::string pacs;  // AE@HOST:PORT as given
+  std::string pacs_calling_ae = "SOIQ";
+  int pacs_timeout_seconds = 30;
+  std::optional<dicom::PacsPeer> pacs_peer;  // parsed from the three above; nullopt without --pacs
 };
 
 // `getenv` is injectable for tests; `help` is set when --help was given.

@@ -3,7 +3,6 @@
 #include <openssl/crypto.h>
 
 #include <chrono>
-#include <future>
 
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
@@ -15,6 +14,7 @@
 #include "server/log.h"
 #include "server/proto_records.h"
 #include "server/received_dicom_files.h"
+#include "server/rpc_handling.h"
 #include "server/temp_dir.h"
 #include "server/temp_file.h"
 #include "server/uploaded_files.h"
@@ -23,18 +23,6 @@ namespace soiq::server {
 namespace {
 
 constexpr size_t kChunkBytes = 1 << 20;  // download chunks: well under gRPC's 4 MiB message limit
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-void log_rpc(const char* method, const Status& status, double ms) {
-  char t[32];
-  std::snprintf(t, sizeof t, "%.1f", ms);
-  std::vector<std::pair<std::string, std::string>> fields = {
-      {"event", "rpc"}, {"method", method}, {"code", status_code_name(status.code())}, {"ms", t}};
-  if (!status.ok()) fields.emplace_back("error", status.message());
-  log_event(status.ok() ? "info" : "warn", fields);
-}
 
 db::PageRequest page_of(int32_t size, const std::string& token) {
   db::PageRequest p;
@@ -84,24 +72,6 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
       features_(store, config.max_grid_voxels),
       pool_(config.workers),
       queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}) {}
-
-template <typename Body>
-grpc::Status SoiqService::handle(const char* method, const grpc::ServerContext& ctx, Body&& body) {
-  const Clock::time_point start = Clock::now();
-  Status status = authorize(ctx);
-  if (status.ok()) status = body();
-  log_rpc(method, status, ms_since(start));
-  return to_grpc(status);
-}
-
-template <typename T>
-Result<T> SoiqService::on_pool(const std::function<Result<T>()>& work) {
-  // The promise is shared: the worker may still be inside set_value when get() returns.
-  auto done = std::make_shared<std::promise<Result<T>>>();
-  std::future<Result<T>> result = done->get_future();
-  pool_.submit([done, &work] { done->set_value(work()); });
-  return result.get();  // `work` is only used before set_value, while this call waits
-}
 
 Status SoiqService::authorize(const grpc::ServerContext& ctx) const {
   if (token_.empty()) return ok_status();
@@ -406,6 +376,7 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_surfaces(c.surfaces);
     response->set_series(c.series);
     response->set_cached_features(c.cached_features);
+    if (config_.pacs_peer) response->set_pacs(dicom::describe_pacs_peer(*config_.pacs_peer));
     return ok_status();
   });
 }

@@ -53,9 +53,22 @@ class SoiqService final : public v1::Soiq::Service {
                      grpc::ServerWriter<v1::QueryEvent>* writer) override;
   grpc::Status GetServerInfo(grpc::ServerContext* ctx, const v1::GetServerInfoRequest* request,
                              v1::ServerInfo* response) override;
+  // DICOM SEG export and the PACS (server/soiq_service_dicom.cpp).
+  grpc::Status ExportSeg(grpc::ServerContext* ctx, const v1::ExportSegRequest* request,
+                         grpc::ServerWriter<v1::ExportSegResponse>* writer) override;
+  grpc::Status PacsEcho(grpc::ServerContext* ctx, const v1::PacsEchoRequest* request,
+                        v1::PacsEchoResponse* response) override;
+  grpc::Status PacsFind(grpc::ServerContext* ctx, const v1::PacsFindRequest* request,
+                        v1::PacsFindResponse* response) override;
+  grpc::Status PacsPull(grpc::ServerContext* ctx, const v1::PacsPullRequest* request,
+                        grpc::ServerWriter<v1::PacsPullEvent>* writer) override;
+  grpc::Status PacsPush(grpc::ServerContext* ctx, const v1::PacsPushRequest* request,
+                        v1::PacsPushResponse* response) override;
 
  private:
   Status authorize(const grpc::ServerContext& ctx) const;
+  // The configured PACS, or FAILED_PRECONDITION naming --pacs.
+  Result<dicom::PacsPeer> pacs() const;
   // Every handler: authorize, run `body` (returns soiq::Status), log, and map once to gRPC.
   // Runs `work` on the worker pool and waits: conversions and features from every RPC share the
   // pool, so --workers bounds how many run at once.

@@ -10,12 +10,14 @@
 #include "client/cli/demo_load_command.h"
 #include "client/cli/download_command.h"
 #include "client/cli/exit_code.h"
+#include "client/cli/export_seg_command.h"
 #include "client/cli/features_command.h"
 #include "client/cli/health_command.h"
 #include "client/cli/import_command.h"
 #include "client/cli/info_command.h"
 #include "client/cli/ls_command.h"
 #include "client/cli/mesh_command.h"
+#include "client/cli/pacs_command.h"
 #include "client/cli/query_command.h"
 #include "client/cli/remote_convert_command.h"
 #include "client/cli/remote_features_command.h"
@@ -54,6 +56,13 @@ constexpr const char* kHelp =
     "  soiq import PATH... [--format table|json|csv]\n"
     "      sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT\n"
     "      Structure Set ROIs structures on their series' grid; prints what was imported, problems on stderr\n"
+    "  soiq export-seg ID... -o OUT.dcm [--description TEXT]\n"
+    "      imported structures as one binary DICOM SEG on the image series they were drawn on\n"
+    "  soiq pacs echo | find [--level study|patient] [--patient ID] [--name NAME] [--study-date D|D1-D2]\n"
+    "               [--modality CT] [--study UID] [--accession A] [--max N] [--format ..]\n"
+    "             | pull (--study UID... | --patient ID) [--format ..] | push ID... [--description TEXT]\n"
+    "      the PACS soiqd was started with (soiqd --pacs AE@HOST:PORT): C-ECHO, C-FIND, C-GET into soiq\n"
+    "      (imported like 'soiq import', all or nothing), a SEG of structures C-STOREd back\n"
     "  soiq ls [patients|studies|structures] [--patient ID|GLOB] [--study UID] [--name GLOB] [--laterality L|R]\n"
     "               [--sex M|F|O] [--format table|json|csv] [--all | --page-size N]\n"
     "  soiq show patient ID | study UID | structure ID [--format text|json]\n"
@@ -138,6 +147,8 @@ int main(int argc, char** argv) {
   if (command == "query") return run_query_command(n, args, *remote);
   if (command == "info") return run_info_command(n, args, *remote);
   if (command == "health") return run_health_command(n, args, *remote);
+  if (command == "export-seg") return run_export_seg_command(n, args, *remote);
+  if (command == "pacs") return run_pacs_command(n, args, *remote);
   if (command == "demo-load") return run_demo_load_command(n, args, *remote);
   std::fprintf(stderr, "soiq: unknown command '%s' (try 'soiq help')\n", command.c_str());
   return kExitUsage;

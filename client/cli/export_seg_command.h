@@ -1,0 +1,14 @@
+#pragma once
+// `soiq export-seg ID... -o OUT.dcm [--description TEXT]`: imported structures as one binary DICOM
+// Segmentation on the image series they were converted on, one segment per id in order (soiqd's
+// ExportSeg). Prints one line: SOP instance, segments, frames, bytes, the referenced series.
+// Exit 4 for an uploaded structure or structures of different series; nothing is left at OUT on
+// failure.
+
+#include "client/soiq_client.h"
+
+namespace soiq::cli {
+
+int run_export_seg_command(int argc, char** argv, const client::ClientOptions& remote);
+
+}  // namespace soiq::cli
