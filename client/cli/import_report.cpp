@@ -1,6 +1,7 @@
 #include "client/cli/import_report.h"
 
 #include <cstdio>
+#include <string>
 
 #include "client/cli/row_printer.h"
 
@@ -72,11 +73,11 @@ void print_import_report(const v1::ImportDicomResponse& r, const std::string& fo
   }
   int updated = 0;
   for (const v1::ImportedStructure& i : r.structures()) updated += i.replaced() ? 1 : 0;
-  std::fprintf(stderr,
-               "imported %d series and %d structures (%d of them already there, updated) from %lld files (%.1f MB) in "
-               "%.1f s; %d problems\n",
-               r.series_size(), r.structures_size(), updated, (long long)r.files_received(),
-               double(r.bytes_received()) / 1e6, r.milliseconds() / 1000.0, r.problems_size());
+  const std::string reimported =
+      updated == 0 ? "" : ", " + std::to_string(updated) + " of the structures were there already and were updated";
+  std::fprintf(stderr, "imported %d series and %d structures from %lld files (%.1f MB) in %.1f s; %d problems%s\n",
+               r.series_size(), r.structures_size(), (long long)r.files_received(), double(r.bytes_received()) / 1e6,
+               r.milliseconds() / 1000.0, r.problems_size(), reimported.c_str());
 }
 
 }  // namespace soiq::cli

@@ -85,6 +85,7 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("max_upload_bytes", std::to_string(i.max_upload_bytes()));
   line("max_grid_voxels", std::to_string(i.max_grid_voxels()));
   line("max_conversions", std::to_string(i.max_concurrent_conversions()));
+  line("pacs", i.pacs().empty() ? "none (soiqd --pacs AE@HOST:PORT)" : i.pacs());
   line("query_result_cap", std::to_string(i.query_result_cap()));
 }
 
