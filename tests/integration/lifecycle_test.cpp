@@ -136,6 +136,20 @@ TEST_F(ServiceTest, BadServerConfigurationIsRefusedAtStart) {
   SoiqdProcess bad_db(not_db);
   EXPECT_FALSE(bad_db.running());
   EXPECT_NE(bad_db.log().find("not.db"), std::string::npos) << bad_db.log();
+  // A PACS address must be AE@HOST:PORT with a valid AE title and port, said at start, not at the first call.
+  const std::vector<std::pair<std::string, std::string>> bad_pacs = {
+      {"127.0.0.1:104", "has no AE title"},
+      {"ORTHANC@127.0.0.1", "has no port"},
+      {"ORTHANC@127.0.0.1:http", "not a number"},
+      {"ORTHANC@127.0.0.1:70000", "outside 1..65535"},
+      {"AN_AE_TITLE_OF_20_CH@127.0.0.1:104", "1 to 16 characters"},
+  };
+  for (const auto& [value, phrase] : bad_pacs) {
+    SoiqdProcess bad_pacs_flag(db_path_, {"--pacs", value});
+    EXPECT_FALSE(bad_pacs_flag.running()) << value;
+    EXPECT_NE(bad_pacs_flag.log().find("--pacs"), std::string::npos) << bad_pacs_flag.log();
+    EXPECT_NE(bad_pacs_flag.log().find(phrase), std::string::npos) << value << ": " << bad_pacs_flag.log();
+  }
 }
 
 }  // namespace
