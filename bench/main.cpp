@@ -7,6 +7,7 @@
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
+//   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
@@ -17,6 +18,7 @@
 #include "bench/convert_bench.h"
 #include "bench/cpu_probe.h"
 #include "bench/features_bench.h"
+#include "bench/import_bench.h"
 #include "bench/query_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
@@ -36,6 +38,7 @@ int usage() {
                "       soiq-bench cpu-probe [--runs N]\n"
                "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
                "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
+               "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
                "                  [--patients N] [--matched N]\n");
   return 2;
 }
@@ -63,5 +66,6 @@ int main(int argc, char** argv) {
   if (command == "cpu-probe") return run_cpu_probe(*args);
   if (command == "features") return run_features_bench(*args);
   if (command == "query") return run_query_bench(*args);
+  if (command == "import") return run_import_bench(*args);
   return usage();
 }
