@@ -67,6 +67,7 @@ void print_rows(const v1::ImportDicomResponse& r, const std::string& format) {
 
 void print_import_report(const v1::ImportDicomResponse& r, const std::string& format) {
   print_rows(r, format);
+  std::fflush(stdout);  // the rows before the problems and the summary on a shared terminal
   for (const v1::ImportProblem& p : r.problems()) {
     std::fprintf(stderr, "problem: %s%s%s: %s\n", p.path().c_str(), p.path().empty() ? "" : ": ", p.code().c_str(),
                  p.message().c_str());

@@ -137,6 +137,7 @@ Status pacs(const PacsArgs& a, const client::ClientOptions& remote) {
   if (a.verb == "find") {
     SOIQ_ASSIGN_OR_RETURN(const v1::PacsFindResponse r, c.pacs_find(a.find));
     print_matches(r, a.format, a.find.level() == v1::PACS_LEVEL_PATIENT);
+    std::fflush(stdout);  // the rows before the summary line on a shared terminal
     std::fprintf(stderr, "%d match%s on %s\n", r.matches_size(), r.matches_size() == 1 ? "" : "es", r.pacs().c_str());
     return ok_status();
   }
