@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "dicom/dcmtk_file.h"
+#include "dicom/decompress_pixels.h"
 #include "dicom/pet_suv.h"
 #include "dicom/slice_stack.h"
 
@@ -95,10 +96,7 @@ Result<Slice> read_slice(const DicomInstance& inst, DcmDataset& ds) {
   s.path = path;
   s.sop_instance_uid = inst.sop_instance_uid;
   s.info.label = "'" + path + "' (instance " + std::to_string(inst.instance_number) + ")";
-  const DcmXfer xfer(ds.getOriginalXfer());
-  if (xfer.isEncapsulated())
-    return unimplemented("'" + path + "': compressed pixel data (" + std::string(xfer.getXferName()) +
-                         ") is not supported; decompress it first (e.g. dcmdjpeg)");
+  SOIQ_RETURN_IF_ERROR(decompress_pixels(ds, path));
   if (get_number(ds, DCM_NumberOfFrames).value_or(1) > 1)
     return invalid_argument("'" + path + "': multi-frame images are not supported");
   if (get_us(ds, DCM_SamplesPerPixel, 1) != 1)
