@@ -113,6 +113,16 @@ OFList<OFString> uncompressed_transfer_syntaxes() {
   return out;
 }
 
+OFList<OFString> decodable_transfer_syntaxes() {
+  OFList<OFString> out = uncompressed_transfer_syntaxes();
+  for (const char* uid :
+       {UID_JPEGProcess14SV1TransferSyntax, UID_JPEGProcess14TransferSyntax, UID_JPEGLSLosslessTransferSyntax,
+        UID_RLELosslessTransferSyntax, UID_JPEGProcess1TransferSyntax, UID_JPEGProcess2_4TransferSyntax,
+        UID_JPEGLSLossyTransferSyntax})
+    out.push_back(uid);
+  return out;
+}
+
 void configure_scu(DcmSCU& scu, const PacsPeer& peer) {
   set_up_dcmnet_once();
   scu.setAETitle(peer.calling_ae.c_str());

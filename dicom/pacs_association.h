@@ -26,6 +26,10 @@ namespace soiq::dicom {
 // The transfer syntaxes proposed for queries, retrieves and received instances: Explicit VR
 // Little Endian first, Implicit VR Little Endian (the one every SCP must support) second.
 OFList<OFString> uncompressed_transfer_syntaxes();
+// The uncompressed ones first, then every compressed syntax dicom/decompress_pixels.h decodes
+// (JPEG baseline, extended and lossless; JPEG-LS lossless and near-lossless; RLE): what a C-GET
+// accepts, so a PACS that stores compressed images need not (and often cannot) convert them.
+OFList<OFString> decodable_transfer_syntaxes();
 
 // Sets AE titles, address and timeouts (connect, ACSE, DIMSE in non-blocking mode, so no read
 // waits forever). At the first call in the process it also silences dcmnet's logger (failures

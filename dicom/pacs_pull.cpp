@@ -154,7 +154,7 @@ Result<PacsPullResult> pacs_pull(const PacsPeer& peer, const std::string& study_
   scu.addPresentationContext(UID_GETPatientRootQueryRetrieveInformationModel, uncompressed_transfer_syntaxes());
   // We are the SCP of the C-STORE sub-operations: role selection tells the PACS so (PS3.7 D.3.3.4).
   for (const char* sop_class : kStorageClasses)
-    scu.addPresentationContext(sop_class, uncompressed_transfer_syntaxes(), ASC_SC_ROLE_SCP);
+    scu.addPresentationContext(sop_class, decodable_transfer_syntaxes(), ASC_SC_ROLE_SCP);
   SOIQ_RETURN_IF_ERROR(open_association(scu, peer, "C-GET"));
 
   // Study Root needs only the study uid at STUDY level; Patient Root is the fallback for a PACS

@@ -11,7 +11,9 @@
 //          Accepted instances: CT, MR, PET (also Enhanced and Legacy Converted Enhanced), RT
 //          Structure Set, Dose and Plan, Segmentation, Spatial Registration, Secondary Capture,
 //          NM, CR, DX, US, XA, presentation states, SR, Key Objects and encapsulated PDF, in
-//          Explicit or Implicit VR Little Endian (the PACS converts compressed ones or fails).
+//          Explicit or Implicit VR Little Endian or a compressed syntax the import decodes
+//          (decodable_transfer_syntaxes in dicom/pacs_association.h); others the PACS must
+//          convert, or the sub-operation fails.
 // Output   PacsPullResult: the PACS's final sub-operation counts and the paths written, sorted.
 // Errors   INVALID_ARGUMENT for a bad peer, study_uid or a dest_dir that cannot be created.
 //          NOT_FOUND when the PACS completes the C-GET with no instance ("study X has no

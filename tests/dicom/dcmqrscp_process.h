@@ -100,8 +100,9 @@ class DcmqrscpProcess {
   DcmqrscpProcess& operator=(const DcmqrscpProcess&) = delete;
   ~DcmqrscpProcess() { stop(); }
 
-  // "" when running, else why not (binary missing: starts with "not installed").
-  std::string start() {
+  // "" when running, else why not (binary missing: starts with "not installed"). `extra_args` go
+  // to dcmqrscp before the port, e.g. {"+xt"}: accept (and store) JPEG-LS lossless.
+  std::string start(const std::vector<std::string>& extra_args = {}) {
     const std::string binary = find_on_path("dcmqrscp");
     if (binary.empty()) return "not installed: dcmqrscp is not on PATH (Debian package dcmtk)";
     const std::filesystem::path storage = dir_.path() / "db" / kAeTitle;
@@ -126,8 +127,13 @@ class DcmqrscpProcess {
           ::dup2(fd, 2);
         }
         ::setenv("TCP_NODELAY", "1", 1);
-        const std::string port = std::to_string(port_), cfg_path = cfg.string();
-        ::execl(binary.c_str(), binary.c_str(), "-c", cfg_path.c_str(), port.c_str(), static_cast<char*>(nullptr));
+        std::vector<std::string> argv = {binary, "-c", cfg.string()};
+        argv.insert(argv.end(), extra_args.begin(), extra_args.end());
+        argv.push_back(std::to_string(port_));
+        std::vector<char*> args;
+        for (std::string& a : argv) args.push_back(a.data());
+        args.push_back(nullptr);
+        ::execv(binary.c_str(), args.data());
         ::_exit(127);
       }
       ::setpgid(pid_, pid_);  // also from here, so a kill right after fork reaches the group
@@ -161,12 +167,14 @@ class DcmqrscpProcess {
   int port() const { return port_; }
 
   // Loads files or folders (recursively) with DCMTK's storescu; "" or its output on failure.
-  std::string load(const std::vector<std::string>& paths) {
+  // `extra_args` go to storescu, e.g. {"-xt"}: propose JPEG-LS lossless (send as stored).
+  std::string load(const std::vector<std::string>& paths, const std::vector<std::string>& extra_args = {}) {
     const std::string binary = find_on_path("storescu");
     if (binary.empty()) return "storescu is not on PATH";
     std::vector<std::string> argv = {binary, "-aet", "SOIQLOAD", "-aec",      kAeTitle,
                                      "-to",  "10",   "-ta",      "10",        "-td",
                                      "10",   "+sd",  "+r",       "127.0.0.1", std::to_string(port_)};
+    argv.insert(argv.end() - 2, extra_args.begin(), extra_args.end());  // options before host and port
     argv.insert(argv.end(), paths.begin(), paths.end());
     const std::filesystem::path log = dir_.path() / "storescu.log";
     const int rc = run_tool(argv, log);

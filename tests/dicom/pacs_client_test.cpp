@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/run_length_volume.h"
 #include "dcmqrscp_process.h"
 #include "dicom/import_dicom.h"
 #include "dicom_test_support.h"
@@ -390,6 +391,43 @@ TEST(PacsBroken, PullWhenThePacsDiesMidwayIsUnavailable) {
 }
 
 // --- C-STORE ----------------------------------------------------------------------------------
+
+// A PACS that stores JPEG-LS (dcmqrscp +xt keeps what it receives) and cannot convert it: the C-GET
+// accepts it as it is, and the pulled series imports with the voxels of the original files.
+TEST(PacsCompressed, JpegLsStudyIsPulledAsStoredAndImportsExactly) {
+  DcmqrscpProcess pacs;
+  const std::string error = pacs.start({"+xt"});
+  if (error.rfind("not installed", 0) == 0) GTEST_SKIP() << error;
+  ASSERT_EQ(error, "");
+  const std::string compressed = data_dir("sts/STS_008/dicom_jpegls/CT");
+  ASSERT_EQ(pacs.load({compressed}, {"-xt"}), "");
+  auto studies = pacs_find(pacs.peer(), PacsQuery{});
+  ASSERT_TRUE(studies.ok()) << studies.status().to_string();
+  ASSERT_EQ(studies->size(), 1u);
+  TempDir dest;
+  auto pulled = pacs_pull(pacs.peer(), studies->front().study_uid, dest.file("study"));
+  ASSERT_TRUE(pulled.ok()) << pulled.status().to_string() << "\n" << pacs.output();
+  EXPECT_EQ(pulled->failed, 0);
+  DcmFileFormat first;
+  ASSERT_TRUE(first.loadFile(pulled->paths.front().c_str()).good());
+  const bool any_compressed = std::any_of(pulled->paths.begin(), pulled->paths.end(), [](const std::string& p) {
+    DcmFileFormat f;
+    return f.loadFile(p.c_str()).good() && DcmXfer(f.getDataset()->getOriginalXfer()).isEncapsulated();
+  });
+  EXPECT_TRUE(any_compressed) << "the PACS sent no compressed instance: the test proves nothing";
+  auto from_pacs = import_dicom({dest.file("study")});
+  auto from_files = import_dicom({compressed});
+  ASSERT_TRUE(from_pacs.ok()) << from_pacs.status().to_string();
+  ASSERT_TRUE(from_files.ok()) << from_files.status().to_string();
+  for (const auto& p : from_pacs->problems) ADD_FAILURE() << p.status.to_string();
+  ASSERT_EQ(from_pacs->images.size(), 1u);
+  ASSERT_EQ(from_files->images.size(), 1u);
+  EXPECT_EQ(from_pacs->images[0].image.geometry, from_files->images[0].image.geometry);
+  EXPECT_EQ(from_pacs->images[0].image.voxels, from_files->images[0].image.voxels);
+  ASSERT_EQ(from_pacs->structure_sets.size(), 1u);
+  EXPECT_EQ(voxel_count(from_pacs->structure_sets[0].converted.structures.at(0).volume),
+            voxel_count(from_files->structure_sets[0].converted.structures.at(0).volume));
+}
 
 TEST(PacsStore, StoredFileIsFoundAndPulledBack) {
   DcmqrscpProcess pacs;
