@@ -11,7 +11,10 @@ Result<std::string> deflate_bytes(const void* data, size_t size) {
   // One compress2 call needs the input length as uLong and the whole output at once; blobs are
   // far below 4 GB in practice but the stream API keeps us honest for any size.
   z_stream z{};
-  if (deflateInit(&z, Z_DEFAULT_COMPRESSION) != Z_OK) return internal_error("zlib deflateInit failed");
+  // Z_BEST_SPEED: level 6 spent 65 % of soiqd's DICOM import in deflate, for blobs only 2-10 %
+  // smaller (STS PET and CT voxels); inflating is as fast either way, and the stored format (a zlib
+  // stream) and the sha256 (of the canonical bytes) do not change.
+  if (deflateInit(&z, Z_BEST_SPEED) != Z_OK) return internal_error("zlib deflateInit failed");
   std::string out;
   out.resize(deflateBound(&z, static_cast<uLong>(std::min<size_t>(size, UINT_MAX))) + 64);
   const unsigned char* in = static_cast<const unsigned char*>(data);
