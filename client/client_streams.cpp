@@ -116,13 +116,11 @@ Result<v1::UploadImageResponse> Client::upload_image(v1::UploadImageHeader heade
   return upload_image_bytes(header, bytes, progress);
 }
 
-Result<int64_t> Client::download_surface(v1::DownloadSurfaceRequest request, const std::string& out_path) const {
-  if (request.format().empty()) request.set_format(format_from_path(out_path));
-  if (request.format().empty() || request.format() == "nii" || request.format() == "nii.gz" ||
-      request.format() == "nrrd" || request.format() == "mha") {
-    return invalid_argument("output '" + out_path + "' needs a mesh extension: .stl, .obj, .ply, .vtk or .vtp");
-  }
-  int64_t written = 0;
+template <typename Message>
+Status Client::stream_to_file(
+    const std::string& out_path,
+    const std::function<std::unique_ptr<grpc::ClientReader<Message>>(grpc::ClientContext*)>& start,
+    const std::function<const std::string*(const Message&)>& bytes_of, int64_t& written) const {
   bool delivered = false;
   Status local;  // a failure writing the file
   const Status s = with_retries(
@@ -132,13 +130,15 @@ Result<int64_t> Client::download_surface(v1::DownloadSurfaceRequest request, con
         std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
         if (!out) return not_found("cannot write '" + out_path + "'");
         auto ctx = context(options_.stream_deadline);
-        auto reader = stub_->DownloadSurface(ctx.get(), request);
+        auto reader = start(ctx.get());
         bool stopped = false;
         const grpc::Status g = drain(
             *reader, *ctx,
-            [&](const v1::DataChunk& chunk) {
-              out.write(chunk.data().data(), std::streamsize(chunk.data().size()));
-              written += int64_t(chunk.data().size());
+            [&](const Message& m) {
+              const std::string* data = bytes_of(m);
+              if (data == nullptr) return true;
+              out.write(data->data(), std::streamsize(data->size()));
+              written += int64_t(data->size());
               if (!out) local = data_loss("error writing '" + out_path + "' (disk full?)");
               return bool(out);
             },
@@ -147,10 +147,20 @@ Result<int64_t> Client::download_surface(v1::DownloadSurfaceRequest request, con
         return map(g, options_.stream_deadline);
       },
       [&] { return !delivered; });
-  if (!s.ok()) {
-    std::remove(out_path.c_str());
-    return s;
+  if (!s.ok()) std::remove(out_path.c_str());
+  return s;
+}
+
+Result<int64_t> Client::download_surface(v1::DownloadSurfaceRequest request, const std::string& out_path) const {
+  if (request.format().empty()) request.set_format(format_from_path(out_path));
+  if (request.format().empty() || request.format() == "nii" || request.format() == "nii.gz" ||
+      request.format() == "nrrd" || request.format() == "mha") {
+    return invalid_argument("output '" + out_path + "' needs a mesh extension: .stl, .obj, .ply, .vtk or .vtp");
   }
+  int64_t written = 0;
+  SOIQ_RETURN_IF_ERROR(stream_to_file<v1::DataChunk>(
+      out_path, [&](grpc::ClientContext* ctx) { return stub_->DownloadSurface(ctx, request); },
+      [](const v1::DataChunk& chunk) { return &chunk.data(); }, written));
   return written;
 }
 
@@ -219,43 +229,22 @@ Result<v1::QuerySummary> Client::query(const v1::QueryRequest& request, const Qu
 Result<v1::SegInfo> Client::export_seg(const v1::ExportSegRequest& request, const std::string& out_path) const {
   std::optional<v1::SegInfo> info;
   int64_t written = 0;
-  bool delivered = false;
-  Status local;  // a failure writing the file
-  const Status s = with_retries(
-      options_.retry,
-      [&]() -> Status {
-        info.reset();
-        written = 0;
-        std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
-        if (!out) return not_found("cannot write '" + out_path + "'");
-        auto ctx = context(options_.stream_deadline);
-        auto reader = stub_->ExportSeg(ctx.get(), request);
-        bool stopped = false;
-        const grpc::Status g = drain(
-            *reader, *ctx,
-            [&](const v1::ExportSegResponse& r) {
-              if (r.has_info()) {
-                info = r.info();
-                return true;
-              }
-              out.write(r.chunk().data(), std::streamsize(r.chunk().size()));
-              written += int64_t(r.chunk().size());
-              if (!out) local = data_loss("error writing '" + out_path + "' (disk full?)");
-              return bool(out);
-            },
-            delivered, stopped);
-        if (!local.ok()) return local;
-        return map(g, options_.stream_deadline);
+  SOIQ_RETURN_IF_ERROR(stream_to_file<v1::ExportSegResponse>(
+      out_path, [&](grpc::ClientContext* ctx) { return stub_->ExportSeg(ctx, request); },
+      [&](const v1::ExportSegResponse& r) -> const std::string* {
+        if (!r.has_info()) return &r.chunk();
+        info = r.info();
+        return nullptr;
       },
-      [&] { return !delivered; });
-  Status result = s;
-  if (result.ok() && !info) result = data_loss("soiqd at " + options_.address + " sent the SEG without its summary");
-  if (result.ok() && written != info->size_bytes())
-    result = data_loss("soiqd at " + options_.address + " announced a SEG of " + std::to_string(info->size_bytes()) +
-                       " bytes but sent " + std::to_string(written));
-  if (!result.ok()) {
+      written));
+  Status check;
+  if (!info) check = data_loss("soiqd at " + options_.address + " sent the SEG without its summary");
+  if (check.ok() && written != info->size_bytes())
+    check = data_loss("soiqd at " + options_.address + " announced a SEG of " + std::to_string(info->size_bytes()) +
+                      " bytes but sent " + std::to_string(written));
+  if (!check.ok()) {
     std::remove(out_path.c_str());
-    return result;
+    return check;
   }
   return *info;
 }

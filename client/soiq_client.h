@@ -134,6 +134,12 @@ class Client {
   Status map(const grpc::Status& status, std::chrono::milliseconds deadline) const;
   template <typename Response, typename Call>
   Result<Response> unary(Call call, bool retry, bool long_running = false) const;
+  // A server stream written to `out_path` (replaced; removed on failure), retried while nothing
+  // was received. `bytes_of` gives a message's file bytes, or nullptr for one it took otherwise.
+  template <typename Message>
+  Status stream_to_file(const std::string& out_path,
+                        const std::function<std::unique_ptr<grpc::ClientReader<Message>>(grpc::ClientContext*)>& start,
+                        const std::function<const std::string*(const Message&)>& bytes_of, int64_t& written) const;
   template <typename Request, typename Response, typename Header>
   Result<Response> upload(const Header& header, std::string_view bytes, const ProgressFn& progress,
                           const char* what) const;
