@@ -1,10 +1,16 @@
 #include "dicom/import_dicom.h"
 
+#include "dicom/import_seg.h"
 #include "dicom/read_rt_struct.h"
 #include "dicom/referenced_series.h"
 #include "dicom/scan_dicom.h"
 
 namespace soiq::dicom {
+namespace {
+
+constexpr char kSegmentationStorageUid[] = "1.2.840.10008.5.1.4.1.1.66.4";
+
+}  // namespace
 
 bool is_volume_modality(const std::string& m) { return m == "CT" || m == "MR" || m == "PT"; }
 
@@ -56,6 +62,17 @@ Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t 
           rs->path, rs->sop_instance_uid,        rs->series_uid, rs->study_uid, rs->patient_id, rs->label,
           *ref,     std::move(converted).value()};
       out.structure_sets.push_back(std::move(set));
+    }
+  }
+  for (const DicomSeries& series : out.scan.series) {
+    for (const DicomInstance& inst : series.instances) {
+      if (inst.sop_class_uid != kSegmentationStorageUid) continue;
+      auto seg = import_seg(inst, out.scan, out.images);
+      if (!seg.ok()) {
+        out.problems.push_back({inst.path, seg.status()});
+        continue;
+      }
+      out.structure_sets.push_back(std::move(seg).value());
     }
   }
   return out;

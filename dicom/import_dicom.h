@@ -1,8 +1,10 @@
 #pragma once
 // Everything soiq takes from a set of DICOM files, ready to store (issue 5 deliverable 1): the
 // records of dicom/scan_dicom.h, each CT, MR and PET series as an image (read_image_series.h),
-// and each RT Structure Set converted on its referenced series' grid (referenced_series.h,
-// convert_rt_struct.h). The store is the caller's business (db/), this module only reads.
+// each RT Structure Set converted on its referenced series' grid (referenced_series.h,
+// convert_rt_struct.h), and each binary DICOM Segmentation read on its referenced series' grid
+// (import_seg.h; its segments become structures like ROIs). The store is the caller's business
+// (db/), this module only reads.
 //
 // Inputs   paths: files, folders and DICOMDIRs as scan_dicom takes them.
 //          max_voxels: per image and per structure grid (RESOURCE_EXHAUSTED beyond).
@@ -24,6 +26,8 @@
 
 namespace soiq::dicom {
 
+// An RT Structure Set or a DICOM SEG (then roi_number is the Segment Number and label the SEG's
+// Series Description).
 struct ImportedStructureSet {
   std::string path;
   std::string sop_instance_uid;
@@ -33,6 +37,7 @@ struct ImportedStructureSet {
   std::string label;
   std::string referenced_series_uid;  // the image series the volumes are on
   ConvertedStructureSet converted;
+  bool segmentation = false;  // a DICOM SEG: its "ROIs" are segments
 };
 
 struct DicomImport {

@@ -98,16 +98,16 @@ Result<Planned> plan(const dicom::DicomImport& in, const Relative& rel, v1::Impo
   }
   for (const dicom::ImportedStructureSet& set : in.structure_sets) {
     const std::string path = rel(set.path);
+    const std::string what = set.segmentation ? "segment" : "ROI";
     for (const dicom::SkippedRoi& roi : set.converted.skipped) {
       add_problem(r, path, StatusCode::kInvalidArgument,
-                  "ROI '" + roi.name + "' (number " + std::to_string(roi.roi_number) + ") skipped: " + roi.reason);
+                  what + " '" + roi.name + "' (number " + std::to_string(roi.roi_number) + ") skipped: " + roi.reason);
     }
     for (const dicom::ImportedStructure& roi : set.converted.structures) {
-      const std::string name = roi.name.empty() ? "ROI " + std::to_string(roi.roi_number) : roi.name;
+      const std::string name = roi.name.empty() ? what + " " + std::to_string(roi.roi_number) : roi.name;
       if (roi.surface.triangles.empty()) {
-        add_problem(
-            r, path, StatusCode::kInvalidArgument,
-            "ROI '" + name + "' skipped: its contours cover no voxel centre of series " + set.referenced_series_uid);
+        add_problem(r, path, StatusCode::kInvalidArgument,
+                    what + " '" + name + "' skipped: it covers no voxel centre of series " + set.referenced_series_uid);
         continue;
       }
       db::NewStructure s;

@@ -13,6 +13,8 @@
 //            use the images it was drawn on); laterality "L" or "R" only when the name ends in
 //            "_L", " L", "_R" or " R" (upper case), else "". The surface is the marching-cubes
 //            surface of the ROI's volume on the referenced grid;
+//          - structures also from each binary DICOM SEG, one per non-empty segment, named by its
+//            Segment Label, on the series it references (dicom/import_seg.h);
 //          - problems: unreadable files, unusable series, skipped or empty ROIs, non-DICOM files,
 //            with paths relative to `dir`.
 // Errors   INVALID_ARGUMENT when nothing at all can be imported (the message names the first

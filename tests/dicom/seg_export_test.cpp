@@ -20,6 +20,7 @@
 #include "dicom/import_dicom.h"
 #include "dicom/read_seg.h"
 #include "dicom_test_support.h"
+#include "seg_source_of.h"
 
 namespace soiq::dicom {
 namespace {
@@ -199,29 +200,9 @@ TEST(SegExport, StsGtvOnItsCtRoundTripsAndDcmtkAcceptsIt) {
   const ImportedStructureSet& set = imported->structure_sets[0];
   ASSERT_EQ(set.converted.structures.size(), 1u);
   const ImportedStructure& gtv = set.converted.structures[0];
-  const SeriesImage* ct = imported->find_image(set.referenced_series_uid);
-  ASSERT_NE(ct, nullptr);
-  const DicomSeries* series = imported->scan.find_series(ct->series_uid);
-  ASSERT_NE(series, nullptr);
-  const DicomStudy* study = imported->scan.find_study(series->study_uid);
-  ASSERT_NE(study, nullptr);
-  const DicomPatient* patient = imported->scan.find_patient(study->patient_id);
-  ASSERT_NE(patient, nullptr);
-
-  SegSource source;
-  source.patient_id = patient->patient_id;
-  source.patient_sex = patient->sex;
-  source.patient_birth_date = patient->birth_date;
-  source.study_uid = study->study_uid;
-  source.study_date = study->study_date;
-  source.study_id = study->study_id;
-  source.accession_number = study->accession_number;
-  source.series_uid = series->series_uid;
-  source.frame_of_reference_uid = series->frame_of_reference_uid;
-  source.modality = series->modality;
-  source.sop_class_uid = series->instances.at(0).sop_class_uid;
-  source.slice_sop_instance_uids = ct->slice_sop_instance_uids;
-  source.geometry = ct->image.geometry;
+  Result<SegSource> made = testing::seg_source_of(*imported, set.referenced_series_uid);
+  ASSERT_TRUE(made.ok()) << made.status().to_string();
+  const SegSource& source = *made;
   SegSegment segment = segment_of(gtv.name, gtv.volume);
   segment.category = {"49755003", "SCT", "Morphologically Altered Structure"};
   segment.type = {"4147007", "SCT", "Mass"};
@@ -243,7 +224,7 @@ TEST(SegExport, StsGtvOnItsCtRoundTripsAndDcmtkAcceptsIt) {
   ASSERT_EQ(back->segments.size(), 1u);
   EXPECT_EQ(back->segments[0].label, gtv.name);
   expect_same_voxels(back->segments[0].volume, gtv.volume);
-  EXPECT_EQ(back->referenced_series_uid, ct->series_uid);
+  EXPECT_EQ(back->referenced_series_uid, source.series_uid);
 
   DcmSegmentation* raw = nullptr;
   const OFCondition loaded = DcmSegmentation::loadFile(path.c_str(), raw);
@@ -261,13 +242,13 @@ TEST(SegExport, StsGtvOnItsCtRoundTripsAndDcmtkAcceptsIt) {
   ASSERT_TRUE(ds.findAndGetOFString(DCM_Modality, value).good());
   EXPECT_EQ(value, "SEG");
   ASSERT_TRUE(ds.findAndGetOFString(DCM_StudyInstanceUID, value).good());
-  EXPECT_EQ(value, OFString(study->study_uid.c_str()));
+  EXPECT_EQ(value, OFString(source.study_uid.c_str()));
   ASSERT_TRUE(ds.findAndGetOFString(DCM_FrameOfReferenceUID, value).good());
-  EXPECT_EQ(value, OFString(series->frame_of_reference_uid.c_str()));
+  EXPECT_EQ(value, OFString(source.frame_of_reference_uid.c_str()));
   DcmItem* referenced = nullptr;
   ASSERT_TRUE(ds.findAndGetSequenceItem(DCM_ReferencedSeriesSequence, referenced, 0).good());
   ASSERT_TRUE(referenced->findAndGetOFString(DCM_SeriesInstanceUID, value).good());
-  EXPECT_EQ(value, OFString(ct->series_uid.c_str()));
+  EXPECT_EQ(value, OFString(source.series_uid.c_str()));
 }
 
 // --- bad inputs ---

@@ -303,6 +303,20 @@ TEST_F(PacsServiceTest, ExportedSegHoldsExactlyTheShippedMaskAndPushedItIsFoundA
     EXPECT_EQ(c->only_a + c->only_b, 0);
   }
   EXPECT_TRUE(seen) << "the pushed SEG " << pushed->seg().sop_instance_uid() << " was not pulled back";
+
+  // And through soiq: pulling the study again imports the SEG as one more structure, the same voxels.
+  Result<v1::ImportDicomResponse> again = pull_sts();
+  ASSERT_TRUE(again.ok()) << again.status().to_string();
+  for (const v1::ImportProblem& p : again->problems()) ADD_FAILURE() << p.path() << ": " << p.message();
+  ASSERT_EQ(again->structures_size(), 3);
+  const v1::ImportedStructure* from_seg = nullptr;
+  for (const v1::ImportedStructure& i : again->structures())
+    if (i.structure().source_uid() == pushed->seg().sop_instance_uid() + "/1") from_seg = &i;
+  ASSERT_NE(from_seg, nullptr);
+  EXPECT_FALSE(from_seg->replaced());
+  EXPECT_EQ(from_seg->structure().name(), ct->structure().name());
+  EXPECT_EQ(from_seg->referenced_series_uid(), ct->referenced_series_uid());
+  EXPECT_EQ(from_seg->voxel_count(), ct->voxel_count());
 }
 
 TEST_F(PacsServiceTest, SegOfUploadedOrMixedOrUnknownStructuresIsRefusedClearly) {
