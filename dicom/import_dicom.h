@@ -16,6 +16,8 @@
 // Errors   NOT_FOUND when a path does not exist.
 // Cost     O(files + voxels + contour points); single-threaded.
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,7 +40,19 @@ struct ImportedStructureSet {
   std::string referenced_series_uid;  // the image series the volumes are on
   ConvertedStructureSet converted;
   bool segmentation = false;  // a DICOM SEG: its "ROIs" are segments
+  // The referenced series was not among the files but is one the caller already holds
+  // (FindKnownSeries): the volumes are on its grid, its patient and study are the caller's.
+  bool on_known_series = false;
 };
+
+// An image series the caller already holds (soiqd: its store), so that an RT Structure Set or a
+// SEG sent without its images (drawn later, by another system) still finds its grid.
+struct KnownSeries {
+  std::string series_uid, study_uid, patient_id, frame_of_reference_uid;
+  ImageGeometry geometry;
+};
+// nullopt when the caller does not hold `series_uid`.
+using FindKnownSeries = std::function<std::optional<KnownSeries>(const std::string& series_uid)>;
 
 struct DicomImport {
   DicomScan scan;
@@ -52,6 +66,11 @@ struct DicomImport {
 // True for the modalities imported as volumes: CT, MR, PT.
 bool is_volume_modality(const std::string& modality);
 
-Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t max_voxels = kDefaultMaxVoxels);
+// `known`: consulted for a structure set or SEG whose referenced series (named by uid) is not among
+// the files. Such a set is refused (INVALID_ARGUMENT problem) when its frame of reference or its
+// patient id differs from the known series': a structure drawn on one patient's images must never
+// land on another's.
+Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t max_voxels = kDefaultMaxVoxels,
+                                 const FindKnownSeries& known = {});
 
 }  // namespace soiq::dicom

@@ -1,6 +1,7 @@
 #include "dicom/import_seg.h"
 
 #include "dicom/dcmtk_file.h"
+#include "dicom/known_series_check.h"
 #include "dicom/read_seg.h"
 #include "dicom/volume_surface.h"
 
@@ -47,7 +48,7 @@ Result<std::string> series_by_frame_of_reference(const SegHeader& h, const std::
 }  // namespace
 
 Result<ImportedStructureSet> import_seg(const DicomInstance& inst, const DicomScan& scan,
-                                        const std::vector<SeriesImage>& images) {
+                                        const std::vector<SeriesImage>& images, const FindKnownSeries& known) {
   const std::string& path = inst.path;
   SOIQ_ASSIGN_OR_RETURN(const SegHeader h, read_header(path));
   std::string ref = h.referenced_series_uid;
@@ -57,18 +58,23 @@ Result<ImportedStructureSet> import_seg(const DicomInstance& inst, const DicomSc
   const SeriesImage* image = nullptr;
   for (const SeriesImage& i : images)
     if (i.series_uid == ref) image = &i;
-  if (image == nullptr)
+  std::optional<KnownSeries> held;
+  if (image == nullptr && known) held = known(ref);
+  if (image == nullptr && !held)
     return not_found("SEG '" + path + "': its image series " + ref +
-                     " is not among the imported series (send it with the SEG, or see the problem reported for it)");
+                     " is neither among the imported series nor stored (send it with the SEG, or see the problem "
+                     "reported for it)");
   const DicomSeries* series = scan.find_series(ref);
-  if (series && !series->frame_of_reference_uid.empty() && !h.frame_of_reference_uid.empty() &&
-      series->frame_of_reference_uid != h.frame_of_reference_uid)
+  const std::string series_frame = held ? held->frame_of_reference_uid : series ? series->frame_of_reference_uid : "";
+  if (!series_frame.empty() && !h.frame_of_reference_uid.empty() && series_frame != h.frame_of_reference_uid)
     return invalid_argument("SEG '" + path + "' is in frame of reference " + h.frame_of_reference_uid +
-                            " but its series " + ref + " is in " + series->frame_of_reference_uid);
-  SOIQ_ASSIGN_OR_RETURN(SegObject seg, read_seg_file(path, image->image.geometry));
+                            " but its series " + ref + " is in " + series_frame);
+  if (held) SOIQ_RETURN_IF_ERROR(check_same_patient_and_frame("SEG '" + path + "'", h.patient_id, {}, *held));
+  const ImageGeometry& grid = held ? held->geometry : image->image.geometry;
+  SOIQ_ASSIGN_OR_RETURN(SegObject seg, read_seg_file(path, grid));
 
   ImportedStructureSet out{path, h.sop_instance_uid, h.series_uid, h.study_uid, h.patient_id, h.description, ref, {},
-                           true};
+                           true, held.has_value()};
   for (ReadSegment& segment : seg.segments) {
     const std::string name =
         segment.label.empty() ? "segment " + std::to_string(segment.segment_number) : segment.label;

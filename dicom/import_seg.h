@@ -4,7 +4,9 @@
 // exports (dicom/seg_export.h), come back in as volumes on the image series they were drawn on.
 //
 // Inputs   inst: a scanned instance of SOP class Segmentation Storage. scan: everything scanned
-//          with it. images: the image series imported from the same files.
+//          with it. images: the image series imported from the same files. known: series the caller
+//          holds, used when the referenced series is not among `images` (then on_known_series, and
+//          the SEG must have that series' patient and frame of reference, known_series_check.h).
 // Output   An ImportedStructureSet: label = the SEG's Series Description; one ImportedStructure per
 //          segment with at least one voxel (roi_number = Segment Number, name = Segment Label or
 //          "segment N", contour_count 0, volume = read_seg's on the referenced series' grid,
@@ -27,6 +29,6 @@
 namespace soiq::dicom {
 
 Result<ImportedStructureSet> import_seg(const DicomInstance& inst, const DicomScan& scan,
-                                        const std::vector<SeriesImage>& images);
+                                        const std::vector<SeriesImage>& images, const FindKnownSeries& known = {});
 
 }  // namespace soiq::dicom

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 
 #include "core/run_length_volume.h"
 #include "db/image_blob.h"
@@ -70,13 +71,33 @@ Status records_of(const dicom::DicomScan& scan, const std::string& series_uid, d
   return ok_status();
 }
 
+// The stored patient and study of a stored series (a structure set or SEG sent without its images).
+Status stored_records_of(db::Store& store, const std::string& series_uid, db::PatientRecord& patient,
+                         db::StudyRecord& study) {
+  SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord series, store.get_series(series_uid));
+  SOIQ_ASSIGN_OR_RETURN(study, store.get_study(series.study_uid));
+  SOIQ_ASSIGN_OR_RETURN(patient, store.get_patient(study.patient_id));
+  return ok_status();
+}
+
+// Series soiq already stores, for dicom::import_dicom's FindKnownSeries.
+dicom::FindKnownSeries stored_series(db::Store& store) {
+  return [&store](const std::string& uid) -> std::optional<dicom::KnownSeries> {
+    Result<db::SeriesRecord> s = store.get_series(uid);
+    if (!s.ok()) return std::nullopt;
+    Result<db::StudyRecord> study = store.get_study(s->study_uid);
+    if (!study.ok()) return std::nullopt;
+    return dicom::KnownSeries{s->series_uid, s->study_uid, study->patient_id, s->frame_of_reference_uid, s->geometry};
+  };
+}
+
 struct Planned {
   db::ImportBatch batch;
   std::vector<std::string> referenced_series;  // by structure
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(const dicom::DicomImport& in, const Relative& rel, v1::ImportDicomResponse& r) {
+Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, v1::ImportDicomResponse& r) {
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
     db::NewSeries s;
@@ -111,7 +132,11 @@ Result<Planned> plan(const dicom::DicomImport& in, const Relative& rel, v1::Impo
         continue;
       }
       db::NewStructure s;
-      SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, s.patient, s.study));
+      if (set.on_known_series) {
+        SOIQ_RETURN_IF_ERROR(stored_records_of(store, set.referenced_series_uid, s.patient, s.study));
+      } else {
+        SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, s.patient, s.study));
+      }
       s.name = name;
       s.laterality = laterality_of(name);
       s.source_series_uid = set.referenced_series_uid;
@@ -148,7 +173,7 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
                                                     const std::vector<std::string>& sent, int64_t max_voxels) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
-  SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in, dicom::import_dicom({dir}, max_voxels));
+  SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in, dicom::import_dicom({dir}, max_voxels, stored_series(store)));
   v1::ImportDicomResponse r;
   r.set_files_received(int64_t(sent.size()));
   r.set_dicom_files_read(in.scan.files_read);
@@ -157,7 +182,7 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
     add_problem(r, "", StatusCode::kInvalidArgument,
                 std::to_string(in.scan.non_dicom_skipped) + " of the files sent are not DICOM and were skipped");
   }
-  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(in, rel, r));
+  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, r));
   if (planned.batch.series.empty() && planned.batch.structures.empty()) {
     const std::string why = r.problems_size() > 0 && !r.problems(0).path().empty()
                                 ? r.problems(0).path() + ": " + r.problems(0).message()

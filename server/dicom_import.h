@@ -15,6 +15,9 @@
 //            surface of the ROI's volume on the referenced grid;
 //          - structures also from each binary DICOM SEG, one per non-empty segment, named by its
 //            Segment Label, on the series it references (dicom/import_seg.h);
+//          - a structure set or SEG whose series is not among the files but already stored is
+//            converted on the stored series' grid and filed in its study (same patient and frame
+//            of reference required, else a problem);
 //          - problems: unreadable files, unusable series, skipped or empty ROIs, non-DICOM files,
 //            with paths relative to `dir`.
 // Errors   INVALID_ARGUMENT when nothing at all can be imported (the message names the first

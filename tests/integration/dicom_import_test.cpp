@@ -180,3 +180,42 @@ TEST_F(ServiceTest, ImportOverTheUploadLimitIsResourceExhausted) {
 
 }  // namespace
 }  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+std::string sts(const std::string& relative) {
+  return std::string(SOIQ_TEST_DATA_DIR) + "/sts/STS_002/dicom/" + relative;
+}
+
+TEST_F(ServiceTest, StructureSetSentAfterItsImagesLandsOnTheStoredSeries) {
+  Result<v1::ImportDicomResponse> images = client_->import_dicom({sts("CT/image")});
+  ASSERT_TRUE(images.ok()) << images.status().to_string();
+  ASSERT_EQ(images->series_size(), 1);
+  EXPECT_EQ(images->structures_size(), 0);
+  const v1::Series& ct = images->series(0);
+
+  Result<v1::ImportDicomResponse> later = client_->import_dicom({sts("CT/mask")});
+  ASSERT_TRUE(later.ok()) << later.status().to_string();
+  for (const v1::ImportProblem& p : later->problems()) ADD_FAILURE() << p.path() << ": " << p.message();
+  EXPECT_EQ(later->series_size(), 0);
+  ASSERT_EQ(later->structures_size(), 1);
+  const v1::ImportedStructure& s = later->structures(0);
+  EXPECT_EQ(s.referenced_series_uid(), ct.series_uid());
+  EXPECT_EQ(s.structure().study_uid(), ct.study_uid());
+  EXPECT_EQ(s.structure().patient_id(), "STS_002");
+  EXPECT_EQ(s.voxel_count(), 17090);  // as when imported with its images
+
+  // Its PET structure set references a series soiq does not have: nothing to import, said so.
+  Result<v1::ImportDicomResponse> orphan = client_->import_dicom({sts("PET/mask")});
+  ASSERT_FALSE(orphan.ok());
+  EXPECT_EQ(orphan.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(orphan.status().message().find("not among the imported files"), std::string::npos)
+      << orphan.status().message();
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->structures(), 1);
+}
+
+}  // namespace
+}  // namespace soiq::testing
