@@ -9,8 +9,11 @@ namespace soiq::bench {
 
 namespace {
 
-// A dependency chain of multiply-adds: compute-bound, cache-resident, ~3 ns per step.
-double kernel(long steps, double seed) {
+// A dependency chain of multiply-adds: compute-bound, cache-resident, ~1.5 ns per step.
+// noinline: both threads must run the same machine code. Inlined into run_cpu_probe, GCC 12 gave
+// the main thread's copy a loop 2.5x slower than the helper's, and the probe reported 0.79x (and
+// 1.07-1.26x in earlier runs) on a machine whose two cores scale 1.99x.
+__attribute__((noinline)) double kernel(long steps, double seed) {
   double s = seed;
   for (long i = 0; i < steps; ++i) s = s * 0.9999999 + 1e-7 * double(i & 7);
   return s;
