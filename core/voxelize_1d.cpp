@@ -8,6 +8,7 @@
 #include "core/exact_predicates.h"
 #include "core/line_fill.h"
 #include "core/parallel_for.h"
+#include "core/run_tasks.h"
 #include "core/three_axis_vote.h"
 
 namespace soiq {
@@ -106,10 +107,7 @@ SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int th
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool) t.join();
+  run_tasks(workers, workers, [&](int64_t w) { work(int(w)); });
   return b;
 }
 
@@ -238,22 +236,11 @@ LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
   slabs.count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 4));
   const SlabTriangles slab_triangles = triangles_by_slab(p, slabs, threads);
   std::vector<LineRuns> results(static_cast<size_t>(slabs.count));
-  std::atomic<int64_t> next{0};
-  auto work = [&] {
-    for (int64_t s; (s = next.fetch_add(1)) < slabs.count;) {
-      results[size_t(s)] = scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced);
-    }
-  };
-  if (slabs.count == 1) {
-    work();
-    return std::move(results[0]);
-  }
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-  }
+  // Slabs are handed out one at a time, so a slab heavy with surface does not hold up the rest.
+  run_tasks(slabs.count, threads, [&](int64_t s) {
+    results[size_t(s)] = scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced);
+  });
+  if (slabs.count == 1) return std::move(results[0]);
   // Concatenate in slice order; each slab copies its own part in parallel.
   std::vector<int64_t> run_base(size_t(slabs.count + 1), 0);
   LineRuns out;
