@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <thread>
 
 #include "core/exact_predicates.h"
@@ -76,24 +77,38 @@ struct Slabs {
 };
 
 // The lattice slices each triangle reaches, and, with several slabs, the triangles each slab must
-// visit: built in parallel, one list per (worker, slab), so no slab ever scans every triangle and
-// no serial sort stands in front of the threads. The order of triangles in a slab is irrelevant:
+// visit, in one flat array grouped by slab: counted, then placed, both passes in parallel over
+// chunks of triangles, so no slab ever scans every triangle, nothing grows, and no serial sort
+// stands in front of the threads. Within a slab the order follows the chunks; it is irrelevant:
 // crossings are grouped by line and sorted afterwards.
 struct SlabTriangles {
-  std::vector<int32_t> k_first, k_last;                  // per triangle, clamped; first > last = none
-  std::vector<std::vector<std::vector<int32_t>>> lists;  // [worker][slab]; empty with one slab
+  std::unique_ptr<int32_t[]> k_first, k_last;  // per triangle, clamped; first > last = none
+  std::vector<int32_t> order;                  // slab s: order[slab_start[s] .. slab_start[s+1])
+  std::vector<int64_t> slab_start;             // empty with one slab: every triangle is visited
 };
 
 SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int threads) {
   const auto& tris = *p.triangles;
+  const size_t n = tris.size();
   SlabTriangles b;
-  b.k_first.resize(tris.size());
-  b.k_last.resize(tris.size());
-  const int workers = slabs.count > 1 ? std::max(threads, 1) : 1;
-  if (slabs.count > 1) b.lists.assign(size_t(workers), std::vector<std::vector<int32_t>>(size_t(slabs.count)));
+  // Not zero-filled: each chunk writes its own triangles, so pages are first touched in parallel.
+  b.k_first.reset(new int32_t[n]);
+  b.k_last.reset(new int32_t[n]);
+  const int64_t chunks = slabs.count > 1 ? std::max(threads, 1) : 1;
+  const int64_t nslabs = slabs.count;
+  // count[c * nslabs + s]: triangles of chunk c reaching slab s; then their first place in `order`.
+  std::vector<int64_t> count(size_t(chunks * nslabs), 0);
   const double last_slice = double(p.nz - 1);
-  auto work = [&](int w) {
-    const size_t begin = tris.size() * size_t(w) / size_t(workers), end = tris.size() * size_t(w + 1) / size_t(workers);
+  // Slab of each slice, looked up: a 64-bit division per triangle end cost more than the counting.
+  std::vector<int32_t> slab_of(size_t(nslabs > 1 ? p.nz : 0));
+  for (int64_t k = 0; k < int64_t(slab_of.size()); ++k) slab_of[size_t(k)] = int32_t(slabs.of_slice(k));
+  auto chunk_range = [&](int64_t c) {
+    return std::pair<size_t, size_t>(n * size_t(c) / size_t(chunks), n * size_t(c + 1) / size_t(chunks));
+  };
+  run_tasks(chunks, int(chunks), [&](int64_t c) {
+    const auto [begin, end] = chunk_range(c);
+    // Counted locally and stored once: neighbouring chunks' counts share cache lines.
+    std::vector<int64_t> mine(size_t(nslabs), 0);
     for (size_t t = begin; t < end; ++t) {
       const double z0 = p.z[size_t(tris[t][0])], z1 = p.z[size_t(tris[t][1])], z2 = p.z[size_t(tris[t][2])];
       const double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
@@ -101,13 +116,33 @@ SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int th
       const bool any = lo <= hi;
       b.k_first[t] = any ? int32_t(lo) : 1;
       b.k_last[t] = any ? int32_t(hi) : 0;
-      if (!any || slabs.count == 1) continue;
-      for (int64_t s = slabs.of_slice(int64_t(lo)); s <= slabs.of_slice(int64_t(hi)); ++s) {
-        b.lists[size_t(w)][size_t(s)].push_back(int32_t(t));
-      }
+      if (!any || nslabs == 1) continue;
+      for (int32_t s = slab_of[size_t(lo)]; s <= slab_of[size_t(hi)]; ++s) ++mine[size_t(s)];
     }
-  };
-  run_tasks(workers, workers, [&](int64_t w) { work(int(w)); });
+    std::copy(mine.begin(), mine.end(), count.begin() + c * nslabs);
+  });
+  if (nslabs == 1) return b;
+  b.slab_start.assign(size_t(nslabs + 1), 0);
+  int64_t at = 0;
+  for (int64_t s = 0; s < nslabs; ++s) {
+    b.slab_start[size_t(s)] = at;
+    for (int64_t c = 0; c < chunks; ++c) {
+      const int64_t k = count[size_t(c * nslabs + s)];
+      count[size_t(c * nslabs + s)] = at;
+      at += k;
+    }
+  }
+  b.slab_start[size_t(nslabs)] = at;
+  b.order.resize(size_t(at));
+  run_tasks(chunks, int(chunks), [&](int64_t c) {
+    const auto [begin, end] = chunk_range(c);
+    std::vector<int64_t> next(count.begin() + c * nslabs, count.begin() + (c + 1) * nslabs);
+    for (size_t t = begin; t < end; ++t) {
+      if (b.k_first[t] > b.k_last[t]) continue;
+      for (int32_t s = slab_of[size_t(b.k_first[t])]; s <= slab_of[size_t(b.k_last[t])]; ++s)
+        b.order[size_t(next[size_t(s)]++)] = int32_t(t);
+    }
+  });
   return b;
 }
 
@@ -217,12 +252,11 @@ LineRuns scan_slab(const ScanProblem& p, const SlabTriangles& slab_triangles, in
     triangle_crossings(p, tris[t], std::max<int64_t>(slab_triangles.k_first[t], k0),
                        std::min<int64_t>(slab_triangles.k_last[t], k1 - 1), k0, crossings);
   };
-  if (slab_triangles.lists.empty()) {
+  if (slab_triangles.slab_start.empty()) {
     for (size_t t = 0; t < tris.size(); ++t) visit(t);
   } else {
-    for (const auto& worker_lists : slab_triangles.lists) {
-      for (int32_t t : worker_lists[size_t(slab)]) visit(size_t(t));
-    }
+    for (int64_t i = slab_triangles.slab_start[size_t(slab)]; i < slab_triangles.slab_start[size_t(slab + 1)]; ++i)
+      visit(size_t(slab_triangles.order[size_t(i)]));
   }
   return fill_lines(crossings, p.ny * (k1 - k0), p.nx, p.rule, drop_unbalanced);
 }
