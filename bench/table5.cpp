@@ -97,7 +97,8 @@ int run_table5(const CliArgs& args) {
   auto ratio = [](const Result<MethodRun>& num, const Result<MethodRun>& den) {
     char buf[32];
     if (!num.ok() || !den.ok() || den->timed.min_ms <= 0) return std::string("n/a");
-    std::snprintf(buf, sizeof buf, "%.1fx", num->timed.min_ms / den->timed.min_ms);
+    // Two decimals: the targets (10x, 50x, 1.6x) are thresholds, and 1.55 must not read as 1.6.
+    std::snprintf(buf, sizeof buf, "%.2fx", num->timed.min_ms / den->timed.min_ms);
     return std::string(buf);
   };
   for (const Row& r : rows) {
