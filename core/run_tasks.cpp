@@ -23,6 +23,7 @@ struct Batch {
   int64_t count = 0;
   int helpers_wanted = 0;
   int helpers_joined = 0;  // under Pool::mutex_
+  int caller_cpu = -1;     // where the caller runs (works) when it queued the batch
   std::atomic<int64_t> next{0};
   std::atomic<int64_t> done{0};
 };
@@ -40,6 +41,9 @@ class Pool {
     batch->task = &task;
     batch->count = count;
     batch->helpers_wanted = int(std::min<int64_t>(threads - 1, count - 1));
+#if defined(__linux__)
+    batch->caller_cpu = sched_getcpu();
+#endif
     {
       std::lock_guard<std::mutex> lock(mutex_);
       grow(batch->helpers_wanted);
@@ -75,47 +79,37 @@ class Pool {
 
   void grow(int helpers) {  // under mutex_
     const int wanted = std::clamp(std::max<int>(helpers, int(std::thread::hardware_concurrency()) - 1), 1, 255);
-    const std::vector<int> cpus = allowed_cpus();
     while (int(workers_) < wanted) {
-      // Worker w keeps to the (w+1)-th CPU the creating thread may use, so the caller (who always
-      // works too) and its helpers start on different cores: left to the scheduler, a woken helper
-      // often stayed on the caller's core for the whole of a millisecond step (table5 measured a
-      // 2-thread conversion slower than 1 thread).
-      const int cpu = cpus.empty() ? -1 : cpus[size_t(workers_ + 1) % cpus.size()];
-      std::thread([this, cpu] {
-        keep_to_cpu(cpu);
-        worker();
-      }).detach();
+      std::thread([this] { worker(); }).detach();
       ++workers_;
     }
   }
 
-  // The CPUs the calling thread may run on, in order; empty where that cannot be asked.
-  static std::vector<int> allowed_cpus() {
-    std::vector<int> out;
 #if defined(__linux__)
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    if (pthread_getaffinity_np(pthread_self(), sizeof set, &set) == 0)
-      for (int c = 0; c < CPU_SETSIZE; ++c)
-        if (CPU_ISSET(c, &set)) out.push_back(c);
-#endif
-    return out;
-  }
-
-  static void keep_to_cpu(int cpu) {
-#if defined(__linux__)
-    if (cpu < 0) return;
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(cpu, &set);
+  // Keeps a helper off the CPU its batch's caller runs on (within the CPUs it may use at all):
+  // left to the scheduler, a woken helper sometimes stayed on the caller's core for a whole
+  // millisecond step, and 2 threads ran slower than 1 (seen in soiq-bench table5). Pinning helpers
+  // to fixed CPUs instead made an unpinned caller collide with them. `excluded`: the CPU left out
+  // of this helper's mask now, -1 for none; the mask changes only when that changes.
+  static void avoid_cpu(const cpu_set_t& base, int cpu, int& excluded) {
+    cpu_set_t set = base;
+    if (cpu >= 0 && CPU_ISSET(cpu, &set) && CPU_COUNT(&set) > 1)
+      CPU_CLR(cpu, &set);
+    else
+      cpu = -1;
+    if (cpu == excluded) return;
     static_cast<void>(pthread_setaffinity_np(pthread_self(), sizeof set, &set));
-#else
-    static_cast<void>(cpu);
-#endif
+    excluded = cpu;
   }
+#endif
 
   void worker() {
+#if defined(__linux__)
+    cpu_set_t base;  // the CPUs this helper may use, as inherited from the thread that made it
+    CPU_ZERO(&base);
+    const bool have_base = pthread_getaffinity_np(pthread_self(), sizeof base, &base) == 0;
+    int excluded = -1;
+#endif
     for (;;) {
       // Spin a little before sleeping: the parallel steps of one conversion come tens of
       // microseconds apart, and waking a sleeping thread on a virtual machine takes about as long
@@ -134,6 +128,9 @@ class Pool {
         if (++b->helpers_joined >= b->helpers_wanted) queue_.pop_front();
         queued_.store(int(queue_.size()), std::memory_order_release);
       }
+#if defined(__linux__)
+      if (have_base) avoid_cpu(base, b->caller_cpu, excluded);
+#endif
       work_on(*b);
     }
   }
