@@ -28,6 +28,32 @@ struct Batch {
   std::atomic<int64_t> done{0};
 };
 
+#if defined(__linux__)
+// Keeps the calling thread on one CPU while it lives, then gives back its own CPU set.
+class CallerOnItsCpu {
+ public:
+  explicit CallerOnItsCpu(int cpu) {
+    CPU_ZERO(&saved_);
+    if (cpu < 0 || pthread_getaffinity_np(pthread_self(), sizeof saved_, &saved_) != 0 || !CPU_ISSET(cpu, &saved_) ||
+        CPU_COUNT(&saved_) < 2)
+      return;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(cpu, &one);
+    pinned_ = pthread_setaffinity_np(pthread_self(), sizeof one, &one) == 0;
+  }
+  ~CallerOnItsCpu() {
+    if (pinned_) static_cast<void>(pthread_setaffinity_np(pthread_self(), sizeof saved_, &saved_));
+  }
+  CallerOnItsCpu(const CallerOnItsCpu&) = delete;
+  CallerOnItsCpu& operator=(const CallerOnItsCpu&) = delete;
+
+ private:
+  cpu_set_t saved_;
+  bool pinned_ = false;
+};
+#endif
+
 class Pool {
  public:
   // Never destroyed: workers sleep until the process exits (no join at static destruction).
@@ -46,10 +72,16 @@ class Pool {
 #endif
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      grow(batch->helpers_wanted);
+      grow(batch->helpers_wanted);  // before the caller is held to one CPU: workers inherit its set
       queue_.push_back(batch);
       queued_.store(int(queue_.size()), std::memory_order_release);
     }
+#if defined(__linux__)
+    // The caller stays on its CPU for the batch and helpers keep off it: otherwise the scheduler
+    // at times moved the caller onto the helper's CPU and kept it there, and a whole process ran
+    // its 2-thread conversions at 1-thread speed.
+    CallerOnItsCpu stay(batch->caller_cpu);
+#endif
     if (batch->helpers_wanted == 1)
       work_cv_.notify_one();
     else

@@ -243,7 +243,11 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
 LineRuns scan_slab(const ScanProblem& p, const SlabTriangles& slab_triangles, int64_t slab, int64_t k0, int64_t k1,
                    bool drop_unbalanced) {
   const auto& tris = *p.triangles;
-  std::vector<LineCrossingAt> crossings;
+  // Each thread keeps its crossing buffer from one slab and conversion to the next: a fresh
+  // megabyte-sized buffer per slab came from mmap (or a trimmed arena) each time, and its page
+  // faults made whole processes run 2-thread conversions at 1-thread speed.
+  thread_local std::vector<LineCrossingAt> crossings;
+  crossings.clear();
   // Enough for a closed surface crossing each line it reaches a few times, so growth (a copy of
   // every crossing) is rare.
   crossings.reserve(size_t(std::max<int64_t>(4 * p.ny * (k1 - k0), int64_t(tris.size()) / 2)));
