@@ -123,9 +123,10 @@ Status run(const CliArgs& args) {
   if (runs < 1) return invalid_argument("--runs must be at least 1");
   const std::string soiqd = args.get("--soiqd", SOIQD_BINARY);
 
-  char pattern[] = "/tmp/soiq-bench-import-XXXXXX";
+  // $SOIQ_BENCH_TMP, else the system's temporary folder ($TMPDIR, else /tmp).
   const char* base = std::getenv("SOIQ_BENCH_TMP");
-  std::string work = base && *base ? std::string(base) + "/soiq-bench-import-XXXXXX" : pattern;
+  std::string work =
+      ((base && *base) ? fs::path(base) : fs::temp_directory_path()).string() + "/soiq-bench-import-XXXXXX";
   if (!mkdtemp(work.data())) return internal_error("cannot create a work folder (set SOIQ_BENCH_TMP)");
   SoiqdChild server(soiqd, work + "/import.db", {"--workers", "2"});
   if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());

@@ -9,6 +9,7 @@
 
 #include "core/io/read_image.h"
 #include "tests/integration/service_fixture.h"
+#include "tests/integration/sts_query.h"
 
 namespace soiq::testing {
 namespace {
@@ -117,23 +118,11 @@ TEST_F(ServiceTest, ImportedCtStructureHasTheMaskVolumeOnCtAndPetUptake) {
   }
   EXPECT_TRUE(volume_seen && mean_seen);
 
-  v1::QueryRequest q;
-  q.mutable_stage1()->set_structure_name_glob("GTV*");
-  v1::FeatureRef* mean = q.add_select();
-  mean->set_name("mean");
-  mean->set_region("inside");
-  mean->set_image("PT");
-  int rows = 0;
-  client::QueryHandlers h;
-  h.on_row = [&](const v1::QueryRow& row) {
-    EXPECT_EQ(row.patient().patient_id(), "STS_002");
-    ++rows;
-    return true;
-  };
-  Result<v1::QuerySummary> s = client_->query(q, h);
+  Result<QueryResult> s = run_query(*client_, gtv_mean_pet_query());
   ASSERT_TRUE(s.ok()) << s.status().to_string();
-  EXPECT_GE(rows, 1);
-  EXPECT_EQ(s->failed(), 0);
+  for (const v1::QueryRow& row : s->rows) EXPECT_EQ(row.patient().patient_id(), "STS_002");
+  EXPECT_GE(s->rows.size(), 1u);
+  EXPECT_EQ(s->summary.failed(), 0);
 }
 
 TEST_F(ServiceTest, ImportOfMixedFilesReportsProblemsWithoutFailing) {

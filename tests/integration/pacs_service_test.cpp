@@ -18,6 +18,7 @@
 #include "dicom/read_seg.h"
 #include "tests/dicom/dcmqrscp_process.h"
 #include "tests/integration/service_fixture.h"
+#include "tests/integration/sts_query.h"
 
 namespace soiq::testing {
 namespace {
@@ -164,24 +165,13 @@ TEST_F(PacsServiceTest, PulledStudyIsStoredAsItsFilesImportAndIsQueried) {
   }
 
   // Stage 1 on the pulled demographics, stage 2 on the pulled images.
-  v1::QueryRequest q;
-  q.mutable_stage1()->set_structure_name_glob("GTV*");
+  v1::QueryRequest q = gtv_mean_pet_query();
   q.mutable_stage1()->set_min_age_years(50);
-  v1::FeatureRef* mean = q.add_select();
-  mean->set_name("mean");
-  mean->set_region("inside");
-  mean->set_image("PT");
-  int rows = 0;
-  client::QueryHandlers h;
-  h.on_row = [&](const v1::QueryRow& row) {
-    EXPECT_EQ(row.patient().patient_id(), "STS_002");
-    ++rows;
-    return true;
-  };
-  Result<v1::QuerySummary> s = client_->query(q, h);
+  Result<QueryResult> s = run_query(*client_, q);
   ASSERT_TRUE(s.ok()) << s.status().to_string();
-  EXPECT_EQ(rows, 2);
-  EXPECT_EQ(s->failed(), 0);
+  for (const v1::QueryRow& row : s->rows) EXPECT_EQ(row.patient().patient_id(), "STS_002");
+  EXPECT_EQ(s->rows.size(), 2u);
+  EXPECT_EQ(s->summary.failed(), 0);
 
   // Pulled again: the same structures, updated in place.
   Result<v1::ImportDicomResponse> again = pull_sts();
