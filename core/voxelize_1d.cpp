@@ -1,10 +1,8 @@
 #include "core/voxelize_1d.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <memory>
-#include <thread>
 
 #include "core/exact_predicates.h"
 #include "core/line_fill.h"
