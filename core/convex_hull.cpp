@@ -1,127 +1,290 @@
 #include "core/convex_hull.h"
 
-extern "C" {
-#include <libqhull_r/qhull_ra.h>
-}
-
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <memory>
 #include <string>
+
+#include "core/exact_predicates.h"
 
 namespace soiq {
 namespace {
 
-// A FILE* that collects everything Qhull writes, so it never reaches stderr and its error text can
-// go into a Status. POSIX open_memstream; the buffer is valid after fclose.
-class MessageStream {
- public:
-  MessageStream() { file_ = open_memstream(&buffer_, &size_); }
-  ~MessageStream() {
-    if (file_ != nullptr) std::fclose(file_);
-    std::free(buffer_);
-  }
-  MessageStream(const MessageStream&) = delete;
-  MessageStream& operator=(const MessageStream&) = delete;
-  FILE* file() const { return file_; }
-  // The first line that names an error ("QH6154 qhull input error: ..."), else the first line.
-  std::string first_error_line() {
-    if (file_ != nullptr) std::fclose(file_), file_ = nullptr;
-    const std::string text = buffer_ != nullptr ? std::string(buffer_, size_) : std::string();
-    size_t start = text.find("QH");
-    if (start == std::string::npos) start = 0;
-    const size_t end = text.find('\n', start);
-    return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
-  }
-
- private:
-  FILE* file_ = nullptr;
-  char* buffer_ = nullptr;
-  size_t size_ = 0;
+// A triangle of the current hull, counter-clockwise seen from outside. adj[e] is the face across
+// edge e = (v[e], v[e + 1 mod 3]). Its outside set (points strictly above it, not yet on the hull)
+// is a linked list through Quickhull::next_.
+struct Face {
+  int32_t v[3];
+  int32_t adj[3];
+  Vec3 normal;    // (v1 - v0) x (v2 - v0), unnormalised: only ranks distances within the face
+  double offset;  // normal . v0
+  int32_t outside = -1, furthest = -1;
+  double furthest_distance = 0;
+  uint32_t mark = 0;  // visit epoch of the visibility search
+  bool visible = false, alive = true;
 };
 
-// Owns one reentrant Qhull context and frees all of its memory, whatever happened.
-class QhullContext {
+class Quickhull {
  public:
-  explicit QhullContext(FILE* err) : qh_(std::make_unique<qhT>()) { qh_zero(qh_.get(), err); }
-  ~QhullContext() {
-    int curlong = 0, totlong = 0;
-    qh_freeqhull(qh_.get(), !qh_ALL);
-    qh_memfreeshort(qh_.get(), &curlong, &totlong);
+  explicit Quickhull(const std::vector<Vec3>& p) : p_(p), next_(p.size(), -1) {}
+
+  Status run() {
+    SOIQ_RETURN_IF_ERROR(initial_tetrahedron());
+    for (size_t top = 0; top < pending_.size(); ++top) {
+      const int32_t f = pending_[top];
+      if (!faces_[size_t(f)].alive || faces_[size_t(f)].outside < 0) continue;
+      add_point(f);
+    }
+    return ok_status();
   }
-  QhullContext(const QhullContext&) = delete;
-  QhullContext& operator=(const QhullContext&) = delete;
-  qhT* get() const { return qh_.get(); }
+
+  ConvexHull result() const;
 
  private:
-  std::unique_ptr<qhT> qh_;
+  bool above(const Face& f, int32_t q) const {
+    return orient3d_sign(p_[size_t(f.v[0])].data(), p_[size_t(f.v[1])].data(), p_[size_t(f.v[2])].data(),
+                         p_[size_t(q)].data()) > 0;
+  }
+
+  int32_t new_face(int32_t a, int32_t b, int32_t c) {
+    Face f;
+    f.v[0] = a, f.v[1] = b, f.v[2] = c;
+    f.normal = cross(p_[size_t(b)] - p_[size_t(a)], p_[size_t(c)] - p_[size_t(a)]);
+    f.offset = dot(f.normal, p_[size_t(a)]);
+    faces_.push_back(f);
+    return int32_t(faces_.size() - 1);
+  }
+
+  // Puts q into the outside set of the first face of [first, last) it lies strictly above; a
+  // point above none is inside or on the hull and is dropped for good.
+  void assign(int32_t q, int32_t first, int32_t last) {
+    for (int32_t f = first; f < last; ++f) {
+      Face& face = faces_[size_t(f)];
+      if (!above(face, q)) continue;
+      const double d = dot(face.normal, p_[size_t(q)]) - face.offset;
+      if (face.outside < 0) pending_.push_back(f);
+      next_[size_t(q)] = face.outside, face.outside = q;
+      if (face.furthest < 0 || d > face.furthest_distance) face.furthest = q, face.furthest_distance = d;
+      return;
+    }
+  }
+
+  Status initial_tetrahedron();
+  void add_point(int32_t start);
+
+  const std::vector<Vec3>& p_;
+  std::vector<int32_t> next_;  // outside-set links, by point
+  std::vector<Face> faces_;
+  std::vector<int32_t> pending_;  // faces that got a non-empty outside set, in order
+  uint32_t epoch_ = 0;
+  std::vector<int32_t> stack_, visible_;
+  struct HorizonEdge {
+    int32_t a, b, beyond;  // edge a -> b of a visible face; `beyond` the invisible face across it
+  };
+  std::vector<HorizonEdge> horizon_;
+  std::vector<int32_t> face_from_;  // by point: the new face whose horizon edge starts there
 };
+
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Three points are collinear iff all three axis projections are.
+  return orient2d_sign(a[0], a[1], b[0], b[1], c[0], c[1]) == 0 &&
+         orient2d_sign(a[1], a[2], b[1], b[2], c[1], c[2]) == 0 &&
+         orient2d_sign(a[2], a[0], b[2], b[0], c[2], c[0]) == 0;
+}
+
+Status Quickhull::initial_tetrahedron() {
+  const size_t n = p_.size();
+  // The farthest pair among the six axis extremes, then the point farthest from their line, then
+  // the one farthest from their plane: a fat start makes most points fall inside at once. The
+  // floating-point choices are only heuristics; degeneracy is decided exactly, over all points.
+  int32_t ext[6] = {0, 0, 0, 0, 0, 0};
+  for (size_t i = 1; i < n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      if (p_[i][a] < p_[size_t(ext[2 * a])][a]) ext[2 * a] = int32_t(i);
+      if (p_[i][a] > p_[size_t(ext[2 * a + 1])][a]) ext[2 * a + 1] = int32_t(i);
+    }
+  }
+  int32_t i0 = ext[0], i1 = ext[1];
+  double best = -1;
+  for (int s = 0; s < 6; ++s) {
+    for (int t = s + 1; t < 6; ++t) {
+      const Vec3 d = p_[size_t(ext[s])] - p_[size_t(ext[t])];
+      if (dot(d, d) > best) best = dot(d, d), i0 = ext[s], i1 = ext[t];
+    }
+  }
+  if (p_[size_t(i0)] == p_[size_t(i1)]) {
+    return invalid_argument("convex hull of " + std::to_string(n) + " points is degenerate: they all coincide");
+  }
+  const Vec3 a = p_[size_t(i0)], axis = p_[size_t(i1)] - a;
+  int32_t i2 = -1;
+  best = -1;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 c = cross(axis, p_[i] - a);
+    if (dot(c, c) > best) best = dot(c, c), i2 = int32_t(i);
+  }
+  if (collinear(a, p_[size_t(i1)], p_[size_t(i2)])) {
+    i2 = -1;
+    for (size_t i = 0; i < n && i2 < 0; ++i) {
+      if (!collinear(a, p_[size_t(i1)], p_[i])) i2 = int32_t(i);
+    }
+    if (i2 < 0) {
+      return invalid_argument("convex hull of " + std::to_string(n) +
+                              " points is degenerate: they are all collinear (no volume)");
+    }
+  }
+  const Vec3 normal = cross(axis, p_[size_t(i2)] - a);
+  int32_t i3 = -1;
+  best = -1;
+  for (size_t i = 0; i < n; ++i) {
+    const double d = std::fabs(dot(normal, p_[i] - a));
+    if (d > best) best = d, i3 = int32_t(i);
+  }
+  auto side = [&](int32_t q) {
+    return orient3d_sign(a.data(), p_[size_t(i1)].data(), p_[size_t(i2)].data(), p_[size_t(q)].data());
+  };
+  if (side(i3) == 0) {
+    i3 = -1;
+    for (size_t i = 0; i < n && i3 < 0; ++i) {
+      if (side(int32_t(i)) != 0) i3 = int32_t(i);
+    }
+    if (i3 < 0) {
+      return invalid_argument("convex hull of " + std::to_string(n) +
+                              " points is degenerate: they are all coplanar (no volume)");
+    }
+  }
+  // Orient so that i3 lies below face (i0, i1, i2); then the other three faces, each an even
+  // permutation of the tetrahedron's vertex order, face outward as well.
+  if (side(i3) > 0) std::swap(i1, i2);
+  const int32_t t[4][3] = {{i0, i1, i2}, {i0, i3, i1}, {i1, i3, i2}, {i2, i3, i0}};
+  for (const auto& f : t) new_face(f[0], f[1], f[2]);
+  for (int32_t f = 0; f < 4; ++f) {  // adjacency: the face holding the reversed edge
+    for (int e = 0; e < 3; ++e) {
+      const int32_t u = faces_[size_t(f)].v[e], w = faces_[size_t(f)].v[(e + 1) % 3];
+      for (int32_t g = 0; g < 4; ++g) {
+        for (int k = 0; k < 3; ++k) {
+          if (faces_[size_t(g)].v[k] == w && faces_[size_t(g)].v[(k + 1) % 3] == u) faces_[size_t(f)].adj[e] = g;
+        }
+      }
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const auto q = int32_t(i);
+    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q, 0, 4);
+  }
+  return ok_status();
+}
+
+// Adds the furthest point of `start`'s outside set: removes the faces it sees, closes the hole
+// with a cone of new faces from the horizon to the point, and hands the removed faces' outside
+// points to the cone.
+void Quickhull::add_point(int32_t start) {
+  const int32_t apex = faces_[size_t(start)].furthest;
+  ++epoch_;
+  visible_.clear(), horizon_.clear(), stack_.assign(1, start);
+  faces_[size_t(start)].mark = epoch_, faces_[size_t(start)].visible = true;
+  // The faces the apex lies strictly above form a disc (exact signs: a face the apex is coplanar
+  // with stays, and its edge becomes a horizon edge): search it from `start` across edges.
+  while (!stack_.empty()) {
+    const int32_t f = stack_.back();
+    stack_.pop_back();
+    visible_.push_back(f);
+    for (int e = 0; e < 3; ++e) {
+      const int32_t g = faces_[size_t(f)].adj[e];
+      Face& other = faces_[size_t(g)];
+      if (other.mark != epoch_) {
+        other.mark = epoch_;
+        other.visible = above(other, apex);
+        if (other.visible) stack_.push_back(g);
+      }
+      if (!other.visible) horizon_.push_back({faces_[size_t(f)].v[e], faces_[size_t(f)].v[(e + 1) % 3], g});
+    }
+  }
+  // The cone: one face (a, b, apex) per horizon edge, linked to the face beyond and, through the
+  // horizon's vertices (each starts exactly one horizon edge of the disc's boundary), to its two
+  // cone neighbours.
+  if (face_from_.size() < p_.size()) face_from_.assign(p_.size(), -1);
+  const auto first = int32_t(faces_.size());
+  for (const HorizonEdge& h : horizon_) {
+    const int32_t f = new_face(h.a, h.b, apex);
+    faces_[size_t(f)].adj[0] = h.beyond;
+    Face& beyond = faces_[size_t(h.beyond)];
+    for (int k = 0; k < 3; ++k) {
+      if (beyond.v[k] == h.b && beyond.v[(k + 1) % 3] == h.a) beyond.adj[k] = f;
+    }
+    face_from_[size_t(h.a)] = f;
+  }
+  const auto last = int32_t(faces_.size());
+  for (int32_t f = first; f < last; ++f) {
+    const int32_t g = face_from_[size_t(faces_[size_t(f)].v[1])];  // the cone face from b: (b, c, apex)
+    faces_[size_t(f)].adj[1] = g;
+    faces_[size_t(g)].adj[2] = f;
+  }
+  for (const int32_t f : visible_) {
+    Face& dead = faces_[size_t(f)];
+    dead.alive = false;
+    for (int32_t q = dead.outside; q >= 0;) {
+      const int32_t after = next_[size_t(q)];
+      if (q != apex) assign(q, first, last);
+      q = after;
+    }
+    dead.outside = -1;
+  }
+}
+
+ConvexHull Quickhull::result() const {
+  ConvexHull hull;
+  // A hull vertex is a corner iff the faces around it lie in at least three distinct planes, i.e.
+  // at least three of its edges are creases (the two faces on an edge are not coplanar): a point
+  // inside a facet has none, a point inside a hull edge two.
+  std::vector<uint8_t> creases(p_.size(), 0);
+  const Vec3 interior = 0.25 * (p_[size_t(faces_[0].v[0])] + p_[size_t(faces_[0].v[1])] + p_[size_t(faces_[0].v[2])] +
+                                p_[size_t(faces_[1].v[1])]);
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    const Face& face = faces_[f];
+    if (!face.alive) continue;
+    hull.triangles.push_back({face.v[0], face.v[1], face.v[2]});
+    const Vec3 &a = p_[size_t(face.v[0])], &b = p_[size_t(face.v[1])], &c = p_[size_t(face.v[2])];
+    hull.volume_mm3 += dot(a - interior, cross(b - interior, c - interior)) / 6;
+    hull.area_mm2 += norm(face.normal) / 2;
+    for (int e = 0; e < 3; ++e) {
+      const auto g = size_t(face.adj[e]);
+      if (g < f) continue;  // each edge once
+      const Face& other = faces_[g];
+      int32_t opposite = other.v[0];
+      for (const int32_t w : other.v) {
+        if (w != face.v[e] && w != face.v[(e + 1) % 3]) opposite = w;
+      }
+      if (orient3d_sign(a.data(), b.data(), c.data(), p_[size_t(opposite)].data()) != 0) {
+        for (const int32_t w : {face.v[e], face.v[(e + 1) % 3]}) {
+          if (creases[size_t(w)] < 3) ++creases[size_t(w)];
+        }
+      }
+    }
+  }
+  for (size_t i = 0; i < p_.size(); ++i) {
+    if (creases[i] >= 3) hull.vertex_indices.push_back(int64_t(i));
+  }
+  return hull;
+}
 
 }  // namespace
 
 Result<ConvexHull> convex_hull(const std::vector<Vec3>& points_mm) {
   const size_t n = points_mm.size();
   if (n < 4) return invalid_argument("convex hull needs at least 4 points, got " + std::to_string(n));
-  if (n > size_t(INT_MAX))
-    return invalid_argument("convex hull of " + std::to_string(n) + " points: too many for Qhull");
-  std::vector<coordT> coords(3 * n);
-  for (size_t p = 0; p < n; ++p) {
+  if (n > size_t(INT32_MAX)) {
+    return invalid_argument("convex hull of " + std::to_string(n) + " points: more than 2^31-1");
+  }
+  for (size_t i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(points_mm[p][a])) {
-        return invalid_argument("convex hull input point " + std::to_string(p) + " has a non-finite coordinate");
+      if (!std::isfinite(points_mm[i][a])) {
+        return invalid_argument("convex hull input point " + std::to_string(i) + " has a non-finite coordinate");
       }
-      coords[3 * p + a] = points_mm[p][a];
     }
   }
-
-  MessageStream messages;
-  if (messages.file() == nullptr) return internal_error("convex hull: cannot open a memory stream for Qhull");
-  QhullContext context(messages.file());
-  qhT* qh = context.get();
-  char command[] = "qhull Qt";  // Qhull wants a mutable string
-  const int exitcode = qh_new_qhull(qh, 3, int(n), coords.data(), False, command, nullptr, messages.file());
-  if (exitcode != 0) {
-    const std::string why = messages.first_error_line();
-    if (exitcode == qh_ERRsingular || exitcode == qh_ERRinput) {
-      return invalid_argument("convex hull of " + std::to_string(n) +
-                              " points is degenerate (coplanar or collinear points?): " + why);
-    }
-    return internal_error("Qhull failed with exit code " + std::to_string(exitcode) + ": " + why);
-  }
-
-  ConvexHull hull;
-  vertexT* vertex = nullptr;
-  FORALLvertices { hull.vertex_indices.push_back(qh_pointid(qh, vertex->point)); }
-  std::sort(hull.vertex_indices.begin(), hull.vertex_indices.end());
-  // An interior reference point: the mean of the hull vertices (strictly inside a 3D hull). Every
-  // tetrahedron (interior, triangle) then has positive volume, which also tells the outward order.
-  Vec3 interior{0, 0, 0};
-  for (const int64_t v : hull.vertex_indices) interior = interior + points_mm[size_t(v)];
-  interior = (1.0 / double(hull.vertex_indices.size())) * interior;
-
-  facetT* facet = nullptr;
-  FORALLfacets {
-    std::array<int64_t, 3> t{};
-    int count = 0;
-    vertexT** vertexp = nullptr;
-    FOREACHvertex_(facet->vertices) {
-      if (count < 3) t[count] = qh_pointid(qh, vertex->point);
-      ++count;
-    }
-    // 'Qt' makes every facet a triangle; anything else would be a Qhull contract violation.
-    if (count != 3) return internal_error("Qhull returned a facet with " + std::to_string(count) + " vertices");
-    const Vec3& a = points_mm[size_t(t[0])];
-    const Vec3 normal = cross(points_mm[size_t(t[1])] - a, points_mm[size_t(t[2])] - a);
-    const double six_volume = dot(normal, a - interior);
-    if (six_volume < 0) std::swap(t[1], t[2]);
-    hull.volume_mm3 += std::fabs(six_volume) / 6;
-    hull.area_mm2 += norm(normal) / 2;
-    hull.triangles.push_back(t);
-  }
-  return hull;
+  Quickhull quickhull(points_mm);
+  SOIQ_RETURN_IF_ERROR(quickhull.run());
+  return quickhull.result();
 }
 
 }  // namespace soiq

@@ -1,21 +1,21 @@
 #pragma once
 // The convex hull of a 3D point set, for the maximum 3D diameter and the convex-hull densities of
-// a structure (DESIGN.md "Features"; IBSI L0JK, R3ER, 7T7F). Built by Qhull's reentrant library
-// (Barber, Dobkin & Huhdanpaa, "The Quickhull algorithm for convex hulls", ACM TOMS 22(4), 1996)
-// with facet merging and triangulated output ("qhull Qt").
+// a structure (DESIGN.md "Features"; IBSI L0JK, R3ER, 7T7F). Quickhull (Barber, Dobkin &
+// Huhdanpaa, "The Quickhull algorithm for convex hulls", ACM TOMS 22(4), 1996) decided by exact
+// orientation signs (exact_predicates.h), so lattice inputs with many coplanar points, the usual
+// case for marching-cubes and contour surfaces, need no merging and no tolerance.
 //
 // Inputs   points in LPS mm (any frame), finite; at least 4 and not all coplanar.
-// Output   vertex_indices  indices into `points` of the hull's vertices, ascending. Points within
-//                          Qhull's round-off (~1e-13 relative) of a facet may be left out, so
-//                          lengths computed from the vertices err by at most that much.
-//          triangles       the hull's boundary as index triples into `points`, facing outward.
-//          volume_mm3, area_mm2  of the hull, summed over those triangles.
+// Output   vertex_indices  indices into `points` of the hull's extreme points (its corners),
+//                          ascending, one index per distinct position: a point on a hull edge or
+//                          inside a hull facet is not listed. Exact.
+//          triangles       the hull's boundary as index triples into `points`, facing outward. A
+//                          planar facet comes triangulated, possibly using points inside it.
+//          volume_mm3, area_mm2  of the hull, summed over those triangles (double rounding only).
 // Errors   INVALID_ARGUMENT  fewer than 4 points, a non-finite coordinate, more than 2^31-1
-//                            points, or a degenerate set (all coplanar/collinear: Qhull QH6154
-//                            and friends); the message carries Qhull's first error line.
-//          INTERNAL          any other Qhull failure, with its message.
-//          Qhull never prints (its messages go to a memory stream) and never exits the process.
-// Cost     O(n log n) expected time, O(n) memory. Thread-safe (one Qhull context per call).
+//                            points, or a degenerate set (all points coplanar or collinear).
+// Cost     O(n log n) expected for points in general position, O(n h) worst case (h hull
+//          vertices); O(n) memory. Thread-safe, no global state.
 
 #include <array>
 #include <cstdint>

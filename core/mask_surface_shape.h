@@ -13,13 +13,13 @@
 //                    positions enter through their corner sums (exact in integers; one rounding
 //                    when scaled to mm3);
 //            area    sum over cases of cube count x the case's area on this grid's spacing;
-//            hull    Qhull over a shortlist of the vertices: a vertex of the 3D hull is a vertex of
+//            hull    the exact hull (convex_hull.h) of a shortlist of the vertices: a vertex of the 3D hull is a vertex of
 //                    the 2D hull of its plane of constant X, of constant Y and of constant Z, so
 //                    only vertices on all three of those exact lattice hulls are passed;
 //            diameter  point_set_diameter over the hull's vertices;
 //            box     the vertices span (hi - lo + 1) voxels along each grid axis exactly.
-// Errors   INVALID_ARGUMENT  an empty sweep; INTERNAL a Qhull failure (convex_hull.h).
-// Cost     O(cases + planes x hull size) plus Qhull over the shortlist (typically a few % of the
+// Errors   INVALID_ARGUMENT  an empty sweep.
+// Cost     O(cases + planes x hull size) plus the hull of the shortlist (typically a few % of the
 //          vertices). Thread-safe.
 
 #include "core/cube_case_table.h"

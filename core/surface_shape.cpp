@@ -52,10 +52,10 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
                             " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
   }
 
-  // Qhull over the shortlist only: its hull is the vertices' hull (hull_vertex_candidates.h).
+  // The hull of the shortlist only: it is the vertices' hull (hull_vertex_candidates.h).
   std::vector<Vec3> candidates;
   for (const int64_t v : hull_vertex_candidates(points)) candidates.push_back(points[size_t(v)]);
-  if (candidates.size() < 4) candidates = points;  // a degenerate set: Qhull names the problem
+  if (candidates.size() < 4) candidates = points;  // a degenerate set: convex_hull names the problem
   SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(candidates));
   // The farthest pair of a set is a pair of its hull's vertices.
   std::vector<Vec3> hull_points;

@@ -25,10 +25,9 @@
 //            area_density_convex_hull    A / hull area (7T7F)
 // Errors   INVALID_ARGUMENT  no triangles, an index out of range, a non-finite vertex or axis,
 //                            V <= 0 (inward-facing or open surface), a flat vertex set (no hull).
-//          INTERNAL          a Qhull failure (see convex_hull).
 // Cost     O(T + V) for the measures and the hull shortlist (hull_vertex_candidates.h: exact, it
-//          keeps every hull vertex; on marching-cubes or contour surfaces a few % of V), Qhull
-//          over the shortlist, and the diameter search over the h hull vertices (about
+//          keeps every hull vertex; on marching-cubes or contour surfaces a few % of V), the
+//          exact hull of the shortlist (convex_hull.h), and the diameter search over the h hull vertices (about
 //          O(h log h), O(h^2) worst case). Thread-safe.
 // Caveats  Closedness is not checked (mesh_defects does that, O(T log T)); on an open surface V
 //          depends on the origin and the ratios are meaningless. The 2D diameters need the grid:
