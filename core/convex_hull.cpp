@@ -1,6 +1,7 @@
 #include "core/convex_hull.h"
 
 #include <algorithm>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <string>
@@ -24,9 +25,30 @@ struct Face {
   bool visible = false, alive = true;
 };
 
+// True when one power of two 2^k makes every coordinate an integer below 2^15 in magnitude (the
+// half-voxel lattice of marching-cubes and mask surfaces, in index or in mm units). Then the plain
+// double evaluation of an orientation determinant is exact: scaled by 2^k, which changes no
+// rounding, differences stay below 2^16, 2x2 minors below 2^33 and the determinant below 3 * 2^49,
+// all integers under 2^53. Coplanar points, which such sets are full of, then cost no expansion.
+bool on_small_dyadic_lattice(const std::vector<Vec3>& points) {
+  int fraction_bits = 0;
+  double largest = 0;
+  for (const Vec3& p : points) {
+    for (const double x : p) {
+      if (x == 0) continue;
+      int exponent = 0;
+      const double mantissa = std::frexp(std::fabs(x), &exponent);  // |x| = mantissa 2^exponent
+      const auto bits = uint64_t(std::ldexp(mantissa, 53));        // exact: 53 significant bits
+      fraction_bits = std::max(fraction_bits, 53 - std::countr_zero(bits) - exponent);
+      largest = std::max(largest, std::fabs(x));
+    }
+  }
+  return fraction_bits <= 64 && std::ldexp(largest, fraction_bits) < 32768.0;
+}
+
 class Quickhull {
  public:
-  explicit Quickhull(const std::vector<Vec3>& p) : p_(p), next_(p.size(), -1) {}
+  explicit Quickhull(const std::vector<Vec3>& p) : p_(p), next_(p.size(), -1), lattice_(on_small_dyadic_lattice(p)) {}
 
   Status run() {
     SOIQ_RETURN_IF_ERROR(initial_tetrahedron());
@@ -41,10 +63,14 @@ class Quickhull {
   ConvexHull result() const;
 
  private:
-  bool above(const Face& f, int32_t q) const {
-    return orient3d_sign(p_[size_t(f.v[0])].data(), p_[size_t(f.v[1])].data(), p_[size_t(f.v[2])].data(),
-                         p_[size_t(q)].data()) > 0;
+  // The sign of det[b - a; c - a; d - a] (orient3d_sign), exact either way.
+  int orient(int32_t a, int32_t b, int32_t c, int32_t d) const {
+    const Vec3 &pa = p_[size_t(a)], &pb = p_[size_t(b)], &pc = p_[size_t(c)], &pd = p_[size_t(d)];
+    if (!lattice_) return orient3d_sign(pa.data(), pb.data(), pc.data(), pd.data());
+    const double det = dot(pb - pa, cross(pc - pa, pd - pa));
+    return (det > 0) - (det < 0);
   }
+  bool above(const Face& f, int32_t q) const { return orient(f.v[0], f.v[1], f.v[2], q) > 0; }
 
   int32_t new_face(int32_t a, int32_t b, int32_t c) {
     Face f;
@@ -74,6 +100,7 @@ class Quickhull {
 
   const std::vector<Vec3>& p_;
   std::vector<int32_t> next_;  // outside-set links, by point
+  bool lattice_;               // on_small_dyadic_lattice
   std::vector<Face> faces_;
   std::vector<int32_t> pending_;  // faces that got a non-empty outside set, in order
   uint32_t epoch_ = 0;
@@ -139,9 +166,7 @@ Status Quickhull::initial_tetrahedron() {
     const double d = std::fabs(dot(normal, p_[i] - a));
     if (d > best) best = d, i3 = int32_t(i);
   }
-  auto side = [&](int32_t q) {
-    return orient3d_sign(a.data(), p_[size_t(i1)].data(), p_[size_t(i2)].data(), p_[size_t(q)].data());
-  };
+  auto side = [&](int32_t q) { return orient(i0, i1, i2, q); };
   if (side(i3) == 0) {
     i3 = -1;
     for (size_t i = 0; i < n && i3 < 0; ++i) {
@@ -254,7 +279,7 @@ ConvexHull Quickhull::result() const {
       for (const int32_t w : other.v) {
         if (w != face.v[e] && w != face.v[(e + 1) % 3]) opposite = w;
       }
-      if (orient3d_sign(a.data(), b.data(), c.data(), p_[size_t(opposite)].data()) != 0) {
+      if (orient(face.v[0], face.v[1], face.v[2], opposite) != 0) {
         for (const int32_t w : {face.v[e], face.v[(e + 1) % 3]}) {
           if (creases[size_t(w)] < 3) ++creases[size_t(w)];
         }
