@@ -1,11 +1,11 @@
 #include "core/convex_hull.h"
 
 #include <algorithm>
-#include <bit>
 #include <climits>
 #include <cmath>
 #include <string>
 
+#include "core/dyadic_lattice.h"
 #include "core/exact_predicates.h"
 
 namespace soiq {
@@ -25,30 +25,10 @@ struct Face {
   bool visible = false, alive = true;
 };
 
-// True when one power of two 2^k makes every coordinate an integer below 2^15 in magnitude (the
-// half-voxel lattice of marching-cubes and mask surfaces, in index or in mm units). Then the plain
-// double evaluation of an orientation determinant is exact: scaled by 2^k, which changes no
-// rounding, differences stay below 2^16, 2x2 minors below 2^33 and the determinant below 3 * 2^49,
-// all integers under 2^53. Coplanar points, which such sets are full of, then cost no expansion.
-bool on_small_dyadic_lattice(const std::vector<Vec3>& points) {
-  int fraction_bits = 0;
-  double largest = 0;
-  for (const Vec3& p : points) {
-    for (const double x : p) {
-      if (x == 0) continue;
-      int exponent = 0;
-      const double mantissa = std::frexp(std::fabs(x), &exponent);  // |x| = mantissa 2^exponent
-      const auto bits = uint64_t(std::ldexp(mantissa, 53));        // exact: 53 significant bits
-      fraction_bits = std::max(fraction_bits, 53 - std::countr_zero(bits) - exponent);
-      largest = std::max(largest, std::fabs(x));
-    }
-  }
-  return fraction_bits <= 64 && std::ldexp(largest, fraction_bits) < 32768.0;
-}
-
 class Quickhull {
  public:
-  explicit Quickhull(const std::vector<Vec3>& p) : p_(p), next_(p.size(), -1), lattice_(on_small_dyadic_lattice(p)) {}
+  explicit Quickhull(const std::vector<Vec3>& p)
+      : p_(p), next_(p.size(), -1), lattice_(dyadic_lattice_exponent(p).has_value()) {}
 
   Status run() {
     SOIQ_RETURN_IF_ERROR(initial_tetrahedron());
@@ -70,7 +50,13 @@ class Quickhull {
     const double det = dot(pb - pa, cross(pc - pa, pd - pa));
     return (det > 0) - (det < 0);
   }
-  bool above(const Face& f, int32_t q) const { return orient(f.v[0], f.v[1], f.v[2], q) > 0; }
+  // On the lattice a face's normal and offset are exact (integers of at most 33 and 50 bits after
+  // scaling), and so is normal . q - offset (a normal's components, < 2^33, times a point's,
+  // < 2^15): one dot product decides.
+  bool above(const Face& f, int32_t q) const {
+    if (lattice_) return dot(f.normal, p_[size_t(q)]) > f.offset;
+    return orient(f.v[0], f.v[1], f.v[2], q) > 0;
+  }
 
   int32_t new_face(int32_t a, int32_t b, int32_t c) {
     Face f;
@@ -100,7 +86,7 @@ class Quickhull {
 
   const std::vector<Vec3>& p_;
   std::vector<int32_t> next_;  // outside-set links, by point
-  bool lattice_;               // on_small_dyadic_lattice
+  bool lattice_;               // on a small dyadic lattice (dyadic_lattice.h): plain doubles are exact
   std::vector<Face> faces_;
   std::vector<int32_t> pending_;  // faces that got a non-empty outside set, in order
   uint32_t epoch_ = 0;

@@ -1,9 +1,15 @@
 #include "core/hull_vertex_candidates.h"
 
 #include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
 #include <cstring>
+#include <optional>
 
+#include "core/dyadic_lattice.h"
 #include "core/exact_predicates.h"
+#include "core/lattice_polygon.h"
 
 namespace soiq {
 namespace {
@@ -82,9 +88,77 @@ void mark_plane_hull(const std::vector<End>& ends, std::vector<End>& chain, std:
   }
 }
 
+// The same filter on a small dyadic lattice (dyadic_lattice.h), with integer coordinates and dense
+// tables instead of sorts: per family, each (plane, row) cell keeps its row's least and greatest
+// value and the lowest index holding each, and each plane's hull is taken over its rows' ends in
+// row order. Returns nothing when a family's table would exceed `max_cells`.
+std::optional<std::vector<int64_t>> lattice_candidates(const std::vector<Vec3>& points, int exponent,
+                                                       int64_t max_cells) {
+  const size_t n = points.size();
+  std::vector<std::array<int32_t, 3>> q(n);
+  std::array<int32_t, 3> lo{INT32_MAX, INT32_MAX, INT32_MAX}, hi{INT32_MIN, INT32_MIN, INT32_MIN};
+  const double scale = std::ldexp(1.0, exponent);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t a = 0; a < 3; ++a) {
+      q[i][a] = int32_t(points[i][a] * scale);  // exact: an integer below 2^15
+      lo[a] = std::min(lo[a], q[i][a]), hi[a] = std::max(hi[a], q[i][a]);
+    }
+  }
+  for (size_t a = 0; a < 3; ++a) {
+    if (int64_t(hi[a] - lo[a] + 1) * (hi[(a + 1) % 3] - lo[(a + 1) % 3] + 1) > max_cells) return std::nullopt;
+  }
+  struct Cell {
+    int32_t least = INT32_MAX, greatest = INT32_MIN;  // values along the row
+    int32_t least_index = -1, greatest_index = -1;
+  };
+  std::vector<Cell> cells;
+  std::vector<LatticePoint> ends;
+  std::vector<int32_t> alive(n), next;
+  for (size_t i = 0; i < n; ++i) alive[i] = int32_t(i);
+  std::vector<uint8_t> vertex(n, 0);
+  for (size_t a = 0; a < 3; ++a) {
+    // Planes of constant coordinate a, rows of constant b, values along c. Only the previous
+    // family's survivors take part (they keep every extreme point).
+    const size_t b = (a + 1) % 3, c = (a + 2) % 3;
+    const int64_t rows = hi[b] - lo[b] + 1;
+    cells.assign(size_t((hi[a] - lo[a] + 1) * rows), Cell{});
+    for (const int32_t i : alive) {
+      const auto& p = q[size_t(i)];
+      Cell& cell = cells[size_t((p[a] - lo[a]) * rows + (p[b] - lo[b]))];
+      if (p[c] < cell.least) cell.least = p[c], cell.least_index = i;  // ascending i: the lowest index wins
+      if (p[c] > cell.greatest) cell.greatest = p[c], cell.greatest_index = i;
+    }
+    for (size_t plane = 0; plane < cells.size(); plane += size_t(rows)) {
+      ends.clear();
+      for (int64_t r = 0; r < rows; ++r) {
+        const Cell& cell = cells[plane + size_t(r)];
+        if (cell.least_index < 0) continue;
+        ends.push_back({r, cell.least});
+        if (cell.greatest != cell.least) ends.push_back({r, cell.greatest});
+      }
+      // lattice_hull keeps strict vertices only, each once; back to its point through its row.
+      for (const LatticePoint& v : lattice_hull(ends)) {
+        const Cell& cell = cells[plane + size_t(v.u)];
+        vertex[size_t(v.v == cell.least ? cell.least_index : cell.greatest_index)] = 1;
+      }
+    }
+    next.clear();
+    for (const int32_t i : alive) {
+      if (vertex[size_t(i)]) next.push_back(i), vertex[size_t(i)] = 0;
+    }
+    alive.swap(next);
+  }
+  return std::vector<int64_t>(alive.begin(), alive.end());
+}
+
 }  // namespace
 
 std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
+  if (const std::optional<int> exponent = dyadic_lattice_exponent(points)) {
+    // Dense tables pay when they are not much larger than the set.
+    const int64_t max_cells = 8 * int64_t(points.size()) + (int64_t(1) << 16);
+    if (auto kept = lattice_candidates(points, *exponent, max_cells)) return std::move(*kept);
+  }
   // The survivors of each family go on to the next: a point that is not extreme among the
   // survivors is not extreme in the whole set either (the survivors keep every extreme point).
   std::vector<int64_t> alive(points.size());

@@ -17,8 +17,9 @@
 //          distinct position) and possibly some others. 2D turns are exact (orient2d_sign).
 // Errors   none.
 // Cost     O(n) time and memory: three radix sorts (by x, y, z planes), each over the previous
-//          family's survivors, then one monotone chain per plane over its rows' two ends.
-//          Thread-safe.
+//          family's survivors, then one monotone chain per plane over its rows' two ends. On a
+//          small dyadic lattice (dyadic_lattice.h) whose bounding box's faces hold at most 8n + 2^16
+//          lattice cells, dense per-row tables replace the sorts. Thread-safe.
 
 #include <cstdint>
 #include <vector>

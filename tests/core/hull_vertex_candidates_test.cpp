@@ -35,7 +35,9 @@ double all_pairs_squared_diameter(const std::vector<Vec3>& p) {
 }
 
 // Random clouds of one kind: 0 general position; 1 a lattice ball (coplanar rows and planes); 2 a
-// lattice box with duplicates; 3 a thin lattice slab (two planes); 4 a half-unit lattice shell.
+// lattice box with duplicates; 3 a thin lattice slab (two planes); 4 a half-unit lattice shell;
+// 5 that shell moved far off the origin, out of the small dyadic lattice (dyadic_lattice.h), so
+// the sorting path runs instead of the dense tables.
 std::vector<Vec3> cloud(int kind, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> real(-10, 10);
   std::uniform_int_distribution<int> cell(-6, 6);
@@ -48,10 +50,10 @@ std::vector<Vec3> cloud(int kind, std::mt19937_64& rng) {
     }
     const Vec3 q{double(cell(rng)), double(cell(rng)), double(kind == 3 ? cell(rng) % 2 : cell(rng))};
     if (kind == 1 && dot(q, q) > 30) continue;
-    if (kind == 4) {
+    if (kind >= 4) {
       const Vec3 h = 0.5 * q;
       if (dot(h, h) < 6 || dot(h, h) > 9) continue;
-      p.push_back(h);
+      p.push_back(kind == 5 ? h + Vec3{40000.25, -70000.5, 12345.75} : h);
       continue;
     }
     p.push_back(q);
@@ -63,7 +65,7 @@ std::vector<Vec3> cloud(int kind, std::mt19937_64& rng) {
 
 TEST(HullVertexCandidates, ShortlistHasTheSameHullAndDiameterAsTheWholeCloud) {
   std::mt19937_64 rng(11);
-  for (int kind = 0; kind < 5; ++kind) {
+  for (int kind = 0; kind < 6; ++kind) {
     for (int trial = 0; trial < 8; ++trial) {
       const std::vector<Vec3> points = cloud(kind, rng);
       const std::vector<int64_t> kept = hull_vertex_candidates(points);
@@ -103,13 +105,18 @@ TEST(HullVertexCandidates, LatticeCubeKeepsOnlyItsEightCorners) {
 
 TEST(HullVertexCandidates, DuplicatesKeepTheirLowestIndexOnly) {
   const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {0, 0, 0}};
-  EXPECT_EQ(hull_vertex_candidates(points), (std::vector<int64_t>{0, 1, 2, 3}));
+  EXPECT_EQ(hull_vertex_candidates(points), (std::vector<int64_t>{0, 1, 2, 3}));  // dense tables
+  std::vector<Vec3> off_lattice = points;  // 0.1 is no dyadic number: the sorting path
+  for (Vec3& p : off_lattice) p = p + Vec3{0.1, 0.1, 0.1};
+  EXPECT_EQ(hull_vertex_candidates(off_lattice), (std::vector<int64_t>{0, 1, 2, 3}));
 }
 
 TEST(HullVertexCandidates, CoplanarSetKeepsItsPolygonCorners) {
   std::vector<Vec3> points;
   for (int j = 0; j <= 3; ++j)
     for (int i = 0; i <= 3; ++i) points.push_back({double(i), double(j), 2.0});
+  EXPECT_EQ(hull_vertex_candidates(points).size(), 4u);
+  for (Vec3& p : points) p = p + Vec3{0.1, 0.1, 0.1};
   EXPECT_EQ(hull_vertex_candidates(points).size(), 4u);
   EXPECT_TRUE(hull_vertex_candidates({}).empty());
 }

@@ -111,7 +111,8 @@ TEST(Voxelize1D, OverlappingComponentsUnionUnderNonZeroAndXorUnderEvenOdd) {
 }
 
 TEST(Voxelize1D, HollowShellLeavesTheCavityEmpty) {
-  const TriangleMesh shell = merge(box({0.5, 0.5, 0.5}, {9.5, 9.5, 9.5}), flipped(box({2.5, 2.5, 2.5}, {7.5, 7.5, 7.5})));
+  const TriangleMesh shell =
+      merge(box({0.5, 0.5, 0.5}, {9.5, 9.5, 9.5}), flipped(box({2.5, 2.5, 2.5}, {7.5, 7.5, 7.5})));
   EXPECT_EQ(voxel_count(must_voxelize(shell, cube_grid(11)).volume), 9 * 9 * 9 - 5 * 5 * 5);
 }
 
