@@ -9,7 +9,6 @@
 
 #include "core/convex_hull.h"
 #include "core/hull_vertex_candidates.h"
-#include "core/mesh_defects.h"
 #include "core/point_set_diameter.h"
 
 namespace soiq {
@@ -23,7 +22,11 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   }
   const size_t nv = mesh.vertices_mm.size();
   std::vector<char> used(nv, 0);
-  double area = 0;
+  // Area and volume in one pass over the triangles, from one normal n = (b - a) x (c - a) each:
+  // area |n| / 2, and the tetrahedron against the first vertex o, det(a - o, b - o, c - o) =
+  // (a - o) . n (as signed_volume_mm3 forms it: less cancellation far from the origin).
+  const Vec3 o = mesh.vertices_mm.empty() ? Vec3{0, 0, 0} : mesh.vertices_mm[0];
+  double twice_area = 0, six_volume = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (const int32_t v : mesh.triangles[t]) {
       if (v < 0 || size_t(v) >= nv) {
@@ -34,8 +37,14 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
     }
     const auto& tri = mesh.triangles[t];
     const Vec3& a = mesh.vertices_mm[size_t(tri[0])];
-    area += norm(cross(mesh.vertices_mm[size_t(tri[1])] - a, mesh.vertices_mm[size_t(tri[2])] - a)) / 2;
+    const Vec3 n = cross(mesh.vertices_mm[size_t(tri[1])] - a, mesh.vertices_mm[size_t(tri[2])] - a);
+    twice_area += norm(n);
+    six_volume += dot(a - o, n);
   }
+  const double area = twice_area / 2, volume = six_volume / 6;
+  // The used vertices, and their extents along the box axes (the columns of box_axes).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
   std::vector<Vec3> points;
   points.reserve(nv);
   for (size_t v = 0; v < nv; ++v) {
@@ -45,8 +54,11 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
       return invalid_argument("mesh vertex " + std::to_string(v) + " has a non-finite coordinate");
     }
     points.push_back(p);
+    for (int c = 0; c < 3; ++c) {
+      const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
+      lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
+    }
   }
-  const double volume = signed_volume_mm3(mesh);
   if (!(volume > 0)) {
     return invalid_argument("mesh encloses volume " + std::to_string(volume) +
                             " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
@@ -62,16 +74,6 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   hull_points.reserve(hull.vertex_indices.size());
   for (const int64_t v : hull.vertex_indices) hull_points.push_back(candidates[size_t(v)]);
   const double diameter = point_set_diameter(hull_points);
-
-  // Extents along the box axes (the columns of box_axes).
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-  for (const Vec3& p : points) {
-    for (int c = 0; c < 3; ++c) {
-      const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
-      lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
-    }
-  }
   return surface_shape_from_measures(volume, area, hull, diameter, hi - lo);
 }
 
