@@ -29,8 +29,10 @@ struct Row {
   size_t feature_count = 0;
 };
 
-// Folds "resample PET inside" and the like into the part's kind, so rows share columns.
+// Folds "resample PET inside" and the like into the part's kind, so rows share columns; the
+// intensity-weighted centroid counts as an intensity feature.
 std::string part_kind(const std::string& part) {
+  if (part.rfind("centre of mass shift", 0) == 0) return "intensity";
   for (const char* kind : {"resample", "intensity", "region"}) {
     if (part.rfind(kind, 0) == 0) return kind;
   }

@@ -218,7 +218,9 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
       add_intensity(report, f, rname, img.name, wanted);
       if (spec.kind == RegionKind::kInside && wanted("centre_of_mass_shift_mm") &&
           check_same_grid(img.image->geometry, input.volume.geometry).ok()) {
-        SOIQ_ASSIGN_OR_RETURN(double shift, centre_of_mass_shift_mm(input.volume, *img.image));
+        SOIQ_ASSIGN_OR_RETURN(double shift, timer.run("centre of mass shift " + img.name, [&] {
+          return centre_of_mass_shift_mm(input.volume, *img.image);
+        }));
         report.features.push_back({"centre_of_mass_shift_mm", {shift}, rname, img.name});
       }
     }
