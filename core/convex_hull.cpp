@@ -32,8 +32,9 @@ class Quickhull {
 
   Status run() {
     SOIQ_RETURN_IF_ERROR(initial_tetrahedron());
-    for (size_t top = 0; top < pending_.size(); ++top) {
-      const int32_t f = pending_[top];
+    while (!pending_.empty()) {
+      const int32_t f = pending_.back();
+      pending_.pop_back();
       if (!faces_[size_t(f)].alive || faces_[size_t(f)].outside < 0) continue;
       add_point(f);
     }
@@ -70,10 +71,12 @@ class Quickhull {
   // Puts q into the outside set of the first face of [first, last) it lies strictly above; a
   // point above none is inside or on the hull and is dropped for good.
   void assign(int32_t q, int32_t first, int32_t last) {
+    const Vec3& point = p_[size_t(q)];
     for (int32_t f = first; f < last; ++f) {
       Face& face = faces_[size_t(f)];
-      if (!above(face, q)) continue;
-      const double d = dot(face.normal, p_[size_t(q)]) - face.offset;
+      const double d = dot(face.normal, point) - face.offset;
+      // On the lattice d is exact (see above); elsewhere the sign comes from the exact predicate.
+      if (lattice_ ? !(d > 0) : !above(face, q)) continue;
       if (face.outside < 0) pending_.push_back(f);
       next_[size_t(q)] = face.outside, face.outside = q;
       if (face.furthest < 0 || d > face.furthest_distance) face.furthest = q, face.furthest_distance = d;

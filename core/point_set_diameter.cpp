@@ -8,7 +8,7 @@
 namespace soiq {
 namespace {
 
-constexpr size_t kLeafSize = 16;
+constexpr size_t kLeafSize = 8;  // measured: 8 beats 4, 16 and 32 on marching-cubes hulls
 
 struct Node {
   Vec3 lo, hi;          // bounding box of the node's points
@@ -25,6 +25,9 @@ class DiameterSearch {
 
   double run() {
     best_ = farthest_sweep();
+    // The points in tree order, so that a leaf's points are contiguous for the all-pairs loops.
+    sorted_.resize(order_.size());
+    for (size_t n = 0; n < order_.size(); ++n) sorted_[n] = points_[order_[n]];
     visit(0, 0);
     return std::sqrt(best_);
   }
@@ -92,11 +95,16 @@ class DiameterSearch {
     if (max_squared_between(a, b) * (1 + 1e-12) <= best_) return;
     const bool a_leaf = a.left < 0, b_leaf = b.left < 0;
     if (a_leaf && b_leaf) {
+      double best = best_;
       for (size_t x = a.begin; x < a.end; ++x) {
+        const Vec3 p = sorted_[x];
         for (size_t y = (ia == ib ? x + 1 : b.begin); y < b.end; ++y) {
-          best_ = std::max(best_, squared(order_[x], order_[y]));
+          const Vec3 d = p - sorted_[y];
+          const double s = dot(d, d);
+          best = s > best ? s : best;
         }
       }
+      best_ = best;
       return;
     }
     if (ia == ib) {  // a pair of a node with itself: its children's three pairs
@@ -107,20 +115,24 @@ class DiameterSearch {
     }
     // Split the larger (or the only inner) node.
     const bool split_a = !a_leaf && (b_leaf || a.end - a.begin >= b.end - b.begin);
-    if (split_a) {
-      const int32_t l = a.left, r = a.right;
-      visit(l, ib);
-      visit(r, ib);
-    } else {
-      const int32_t l = b.left, r = b.right;
-      visit(ia, l);
-      visit(ia, r);
+    // The more promising child first: a larger best found early prunes more of the rest.
+    const int32_t keep = split_a ? ib : ia, l = split_a ? a.left : b.left, r = split_a ? a.right : b.right;
+    const Node& other = nodes_[size_t(keep)];
+    const bool left_first =
+        max_squared_between(nodes_[size_t(l)], other) >= max_squared_between(nodes_[size_t(r)], other);
+    for (const int32_t child : {left_first ? l : r, left_first ? r : l}) {
+      if (split_a) {
+        visit(child, ib);
+      } else {
+        visit(ia, child);
+      }
     }
   }
 
   const std::vector<Vec3>& points_;
   std::vector<size_t> order_;
   std::vector<Node> nodes_;
+  std::vector<Vec3> sorted_;
   double best_ = 0;
 };
 
