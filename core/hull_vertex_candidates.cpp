@@ -112,7 +112,7 @@ std::optional<std::vector<int64_t>> lattice_candidates(const std::vector<Vec3>& 
     int32_t least_index = -1, greatest_index = -1;
   };
   std::vector<Cell> cells;
-  std::vector<LatticePoint> ends;
+  std::vector<LatticeRow> ends;
   std::vector<int32_t> alive(n), next;
   for (size_t i = 0; i < n; ++i) alive[i] = int32_t(i);
   std::vector<uint8_t> vertex(n, 0);
@@ -132,12 +132,10 @@ std::optional<std::vector<int64_t>> lattice_candidates(const std::vector<Vec3>& 
       ends.clear();
       for (int64_t r = 0; r < rows; ++r) {
         const Cell& cell = cells[plane + size_t(r)];
-        if (cell.least_index < 0) continue;
-        ends.push_back({r, cell.least});
-        if (cell.greatest != cell.least) ends.push_back({r, cell.greatest});
+        if (cell.least_index >= 0) ends.push_back({r, cell.least, cell.greatest});
       }
-      // lattice_hull keeps strict vertices only, each once; back to its point through its row.
-      for (const LatticePoint& v : lattice_hull(ends)) {
+      // The hull keeps strict vertices only, each once; back to its point through its row.
+      for (const LatticePoint& v : lattice_hull_of_rows(ends)) {
         const Cell& cell = cells[plane + size_t(v.u)];
         vertex[size_t(v.v == cell.least ? cell.least_index : cell.greatest_index)] = 1;
       }

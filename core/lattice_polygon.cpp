@@ -30,6 +30,27 @@ std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& points) 
   return hull;
 }
 
+std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows) {
+  const size_t n = rows.size();
+  if (n == 0) return {};
+  const LatticePoint first{rows[0].u, rows[0].lo}, last{rows[n - 1].u, rows[n - 1].hi};
+  if (n == 1)
+    return rows[0].lo == rows[0].hi ? std::vector<LatticePoint>{first} : std::vector<LatticePoint>{first, last};
+  std::vector<LatticePoint> hull(2 * n + 2);
+  size_t h = 0;
+  auto offer = [&](const LatticePoint& p, size_t keep) {
+    while (h >= keep + 2 && turn(hull[h - 2], hull[h - 1], p) <= 0) --h;
+    hull[h++] = p;
+  };
+  for (const LatticeRow& r : rows) offer({r.u, r.lo}, 0);  // lower chain
+  if (last.v != rows[n - 1].lo) offer(last, 0);
+  const size_t lower = h - 1;  // the upper chain may pop down to the lower chain's last point
+  for (size_t k = n - 1; k-- > 0;) offer({rows[k].u, rows[k].hi}, lower);
+  if (rows[0].hi != rows[0].lo) offer(first, lower);
+  hull.resize(h - 1);  // the last point repeats the first
+  return hull;
+}
+
 double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v) {
   const size_t h = hull.size();
   auto squared = [&](size_t a, size_t b) {

@@ -11,6 +11,15 @@
 //           chain).
 //   Cost    O(n) time and memory. Thread-safe.
 //
+// lattice_hull_of_rows
+//   Input   rows ascending in u, each holding its least and greatest v (lo <= hi): the point set
+//           {(u, lo), (u, hi)} of every row, as the mask sweep and the hull shortlist keep it.
+//   Output  exactly lattice_hull of those points (sorted by (u, v)).
+//   Method  Andrew's chains with each point offered to the one chain it can be on: a row's lo
+//           only to the lower chain, its hi only to the upper one (a hi above its lo is never a
+//           lower-chain vertex but at the last row, nor a lo an upper one but at the first).
+//   Cost    O(rows), half the turns of lattice_hull. Thread-safe.
+//
 // lattice_polygon_diameter
 //   Input   a convex polygon as lattice_hull returns it; scale_u, scale_v > 0: mm per unit along
 //           u and v (a grid's anisotropic spacing, halved for doubled coordinates).
@@ -31,6 +40,12 @@ struct LatticePoint {
 };
 
 std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& sorted_points);
+
+struct LatticeRow {
+  int64_t u = 0, lo = 0, hi = 0;
+};
+
+std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows);
 
 double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v);
 

@@ -1,6 +1,7 @@
 #include "core/mask_surface_sweep.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -127,20 +128,18 @@ class Sweep {
   std::vector<Segment> segments_;
 };
 
-// Each plane's hull from its rows (ascending row, then min before max: sorted by (u, v)).
+// Each plane's hull from its rows' two ends.
 void build_hulls(PlaneFamily& f) {
   f.hulls.assign(size_t(f.planes), {});
   f.on_hull.assign(f.min.size(), 0);
-  std::vector<LatticePoint> points;
+  std::vector<LatticeRow> rows;
   for (int64_t p = 0; p < f.planes; ++p) {
-    points.clear();
+    rows.clear();
     for (int64_t r = 0; r < f.rows; ++r) {
       const size_t n = size_t(p * f.rows + r);
-      if (f.min[n] > f.max[n]) continue;
-      points.push_back({r + f.row_base, f.min[n]});
-      if (f.max[n] != f.min[n]) points.push_back({r + f.row_base, f.max[n]});
+      if (f.min[n] <= f.max[n]) rows.push_back({r + f.row_base, f.min[n], f.max[n]});
     }
-    std::vector<LatticePoint> hull = lattice_hull(points);
+    std::vector<LatticePoint> hull = lattice_hull_of_rows(rows);
     for (const LatticePoint& h : hull) {
       const size_t n = size_t(p * f.rows + (h.u - f.row_base));
       f.on_hull[n] |= uint8_t((h.v == f.min[n] ? 1 : 0) | (h.v == f.max[n] ? 2 : 0));

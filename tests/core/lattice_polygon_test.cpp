@@ -50,6 +50,27 @@ TEST(LatticePolygon, DiameterEqualsAllPairsOnRandomSets) {
   }
 }
 
+TEST(LatticePolygon, HullOfRowsEqualsHullOfTheirPoints) {
+  std::mt19937_64 rng(12);
+  for (int trial = 0; trial < 5000; ++trial) {
+    const int range = 1 + trial % 9;  // small ranges: collinear ends, single-point rows, vertical edges
+    std::uniform_int_distribution<int64_t> value(-range, range);
+    std::vector<LatticeRow> rows;
+    std::vector<LatticePoint> points;
+    for (int64_t u = -3 + trial % 4; u < 1 + int64_t(trial % 7); ++u) {
+      if (rng() % 4 == 0) continue;  // a row without points
+      int64_t lo = value(rng), hi = value(rng);
+      if (lo > hi) std::swap(lo, hi);
+      if (rng() % 3 == 0) hi = lo;
+      rows.push_back({u, lo, hi});
+      points.push_back({u, lo});
+      if (hi != lo) points.push_back({u, hi});
+    }
+    EXPECT_EQ(lattice_hull_of_rows(rows), lattice_hull(points)) << "trial " << trial;
+  }
+  EXPECT_TRUE(lattice_hull_of_rows({}).empty());
+}
+
 TEST(LatticePolygon, CollinearPointsGiveTheirEnds) {
   const auto hull = lattice_hull({{0, 0}, {1, 1}, {2, 2}, {3, 3}});
   ASSERT_EQ(hull.size(), 2u);
