@@ -17,8 +17,9 @@ namespace {
 struct Face {
   int32_t v[3];
   int32_t adj[3];
-  Vec3 normal;    // (v1 - v0) x (v2 - v0), unnormalised: only ranks distances within the face
-  double offset;  // normal . v0
+  Vec3 origin;  // the position of v0
+  Vec3 normal;  // n = u x v with u = v1 - v0, v = v2 - v0 (rounded), unnormalised
+  Vec3 minors;  // |u_y v_z| + |u_z v_y|, and cyclically: the height filter's error scale
   int32_t outside = -1, furthest = -1;
   double furthest_distance = 0;
   uint32_t mark = 0;  // visit epoch of the visibility search
@@ -51,19 +52,41 @@ class Quickhull {
     const double det = dot(pb - pa, cross(pc - pa, pd - pa));
     return (det > 0) - (det < 0);
   }
-  // On the lattice a face's normal and offset are exact (integers of at most 33 and 50 bits after
-  // scaling), and so is normal . q - offset (a normal's components, < 2^33, times a point's,
-  // < 2^15): one dot product decides.
+  // The exact sign of q's height over the face's plane, i.e. of orient3d(v0, v1, v2, q), with the
+  // unnormalised height h = n . (q - v0) (double) in `height`, which ranks points within a face.
+  // On the lattice h is exact: n's components are integers below 2^33 and q - v0's below 2^16
+  // (after scaling), so every product and sum is an integer below 2^53. Elsewhere h differs from
+  // the exact determinant by at most 16 eps sum_i |w_i| minors_i (w = q - v0): the rounded
+  // differences u, v, w perturb each of the determinant's six terms by at most 3 eps relative,
+  // n's components carry at most 3 eps of their two products, and the dot product adds 3 eps of
+  // sum |n_i w_i|; together under 10 eps of that sum, 16 leaves room for the bound's own
+  // rounding. Within the bound the exact predicate decides.
+  int side(const Face& f, int32_t q, double& height) const {
+    const Vec3 w = p_[size_t(q)] - f.origin;
+    height = dot(f.normal, w);
+    if (!lattice_) {
+      constexpr double kHeightError = 16 * 1.1102230246251565e-16;  // 16 eps, eps = 2^-53
+      const double bound = kHeightError * (f.minors[0] * std::fabs(w[0]) + f.minors[1] * std::fabs(w[1]) +
+                                           f.minors[2] * std::fabs(w[2]));
+      if (height > bound) return 1;
+      if (height < -bound) return -1;
+      return orient(f.v[0], f.v[1], f.v[2], q);
+    }
+    return (height > 0) - (height < 0);
+  }
   bool above(const Face& f, int32_t q) const {
-    if (lattice_) return dot(f.normal, p_[size_t(q)]) > f.offset;
-    return orient(f.v[0], f.v[1], f.v[2], q) > 0;
+    double height = 0;
+    return side(f, q, height) > 0;
   }
 
   int32_t new_face(int32_t a, int32_t b, int32_t c) {
     Face f;
     f.v[0] = a, f.v[1] = b, f.v[2] = c;
-    f.normal = cross(p_[size_t(b)] - p_[size_t(a)], p_[size_t(c)] - p_[size_t(a)]);
-    f.offset = dot(f.normal, p_[size_t(a)]);
+    f.origin = p_[size_t(a)];
+    const Vec3 u = p_[size_t(b)] - f.origin, v = p_[size_t(c)] - f.origin;
+    f.normal = cross(u, v);
+    f.minors = {std::fabs(u[1] * v[2]) + std::fabs(u[2] * v[1]), std::fabs(u[2] * v[0]) + std::fabs(u[0] * v[2]),
+                std::fabs(u[0] * v[1]) + std::fabs(u[1] * v[0])};
     faces_.push_back(f);
     return int32_t(faces_.size() - 1);
   }
@@ -71,12 +94,10 @@ class Quickhull {
   // Puts q into the outside set of the first face of [first, last) it lies strictly above; a
   // point above none is inside or on the hull and is dropped for good.
   void assign(int32_t q, int32_t first, int32_t last) {
-    const Vec3& point = p_[size_t(q)];
     for (int32_t f = first; f < last; ++f) {
       Face& face = faces_[size_t(f)];
-      const double d = dot(face.normal, point) - face.offset;
-      // On the lattice d is exact (see above); elsewhere the sign comes from the exact predicate.
-      if (lattice_ ? !(d > 0) : !above(face, q)) continue;
+      double d = 0;
+      if (side(face, q, d) <= 0) continue;
       if (face.outside < 0) pending_.push_back(f);
       next_[size_t(q)] = face.outside, face.outside = q;
       if (face.furthest < 0 || d > face.furthest_distance) face.furthest = q, face.furthest_distance = d;

@@ -10,7 +10,8 @@
 // of such points at once keeps the hull. Exact duplicates keep their first (lowest) index.
 // Marching-cubes and contour surfaces put their vertices on shared planes (the half-voxel lattice,
 // the slice planes), where this drops most points (a 64k-vertex lattice sphere keeps ~2.3k); for
-// points in general position every plane holds one point and nothing is dropped.
+// points in general position every plane holds one point and nothing is dropped (a sample of
+// the x coordinates detects that case, and then every point is returned without sorting).
 //
 // Inputs   points in any frame, finite (not checked: the hull checks).
 // Output   indices into `points`, ascending: every extreme point of conv(points) (one index per

@@ -141,7 +141,9 @@ std::vector<Vec3> cloud(int kind, std::mt19937_64& rng, int n) {
       // predicates decide the same ties.
       const Vec3 q{0.5 * cell(rng), 0.5 * cell(rng), 0.5 * cell(rng)};
       const Vec3 offset = kind == 3 ? Vec3{40000.25, -70000.5, 12345.75} : Vec3{0, 0, 0};
-      if (dot(q, q) <= 9) p.push_back(q + offset);
+      // Kind 4 scales it by 0.1: rounded, the lattice's planes hold points within an ulp of
+      // coplanar, the cases the hull's floating-point filter must hand to the exact predicate.
+      if (dot(q, q) <= 9) p.push_back(kind == 4 ? 0.1 * q : q + offset);
     }
   }
   return p;
@@ -149,12 +151,14 @@ std::vector<Vec3> cloud(int kind, std::mt19937_64& rng, int n) {
 
 TEST(ConvexHull, HullIsExactOnRandomAndLatticeClouds) {
   std::mt19937_64 rng(7);
-  for (int kind = 0; kind < 4; ++kind) {
+  for (int kind = 0; kind < 5; ++kind) {
     for (int trial = 0; trial < 4; ++trial) {
       const std::vector<Vec3> points = cloud(kind, rng, 300);
       const auto hull = convex_hull(points);
       ASSERT_TRUE(hull.ok()) << hull.status().to_string();
       expect_exact_hull(points, *hull);
+      // Qhull's round-off can misjudge the near-ties of kind 4: there the exact checks above stand.
+      if (kind == 4) continue;
       EXPECT_EQ(corner_positions(points, *hull), brute_force_corners(points)) << "kind " << kind;
     }
   }
