@@ -112,7 +112,7 @@ class Quickhull {
   std::vector<int32_t> next_;  // outside-set links, by point
   bool lattice_;               // on a small dyadic lattice (dyadic_lattice.h): plain doubles are exact
   std::vector<Face> faces_;
-  std::vector<int32_t> pending_;  // faces that got a non-empty outside set, in order
+  std::vector<int32_t> pending_;  // faces that got a non-empty outside set; a stack, newest first
   uint32_t epoch_ = 0;
   std::vector<int32_t> stack_, visible_;
   struct HorizonEdge {

@@ -10,45 +10,25 @@
 #include "core/convex_hull.h"
 #include "core/hull_vertex_candidates.h"
 #include "core/point_set_diameter.h"
+#include "core/surface_area_volume.h"
 
 namespace soiq {
 
 Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes) {
-  if (mesh.triangles.empty()) return invalid_argument("surface shape of a mesh without triangles is undefined");
   for (const auto& row : box_axes) {
     for (const double x : row) {
       if (!std::isfinite(x)) return invalid_argument("bounding-box axes are not finite");
     }
   }
+  SOIQ_ASSIGN_OR_RETURN(const SurfaceAreaVolume measures, surface_area_volume(mesh));
   const size_t nv = mesh.vertices_mm.size();
-  std::vector<char> used(nv, 0);
-  // Area and volume in one pass over the triangles, from one normal n = (b - a) x (c - a) each:
-  // area |n| / 2, and the tetrahedron against the first vertex o, det(a - o, b - o, c - o) =
-  // (a - o) . n (as signed_volume_mm3 forms it: less cancellation far from the origin).
-  const Vec3 o = mesh.vertices_mm.empty() ? Vec3{0, 0, 0} : mesh.vertices_mm[0];
-  double twice_area = 0, six_volume = 0;
-  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const int32_t v : mesh.triangles[t]) {
-      if (v < 0 || size_t(v) >= nv) {
-        return invalid_argument("triangle " + std::to_string(t) + " has vertex index " + std::to_string(v) +
-                                " outside [0, " + std::to_string(nv) + ")");
-      }
-      used[size_t(v)] = 1;
-    }
-    const auto& tri = mesh.triangles[t];
-    const Vec3& a = mesh.vertices_mm[size_t(tri[0])];
-    const Vec3 n = cross(mesh.vertices_mm[size_t(tri[1])] - a, mesh.vertices_mm[size_t(tri[2])] - a);
-    twice_area += norm(n);
-    six_volume += dot(a - o, n);
-  }
-  const double area = twice_area / 2, volume = six_volume / 6;
   // The used vertices, and their extents along the box axes (the columns of box_axes).
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
   std::vector<Vec3> points;
   points.reserve(nv);
   for (size_t v = 0; v < nv; ++v) {
-    if (!used[v]) continue;
+    if (!measures.used[v]) continue;
     const Vec3& p = mesh.vertices_mm[v];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
       return invalid_argument("mesh vertex " + std::to_string(v) + " has a non-finite coordinate");
@@ -58,10 +38,6 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
       const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
       lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);
     }
-  }
-  if (!(volume > 0)) {
-    return invalid_argument("mesh encloses volume " + std::to_string(volume) +
-                            " mm3 <= 0: it is inward-facing (use orient_outward) or not closed");
   }
 
   // The hull of the shortlist only: it is the vertices' hull (hull_vertex_candidates.h).
@@ -74,7 +50,7 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   hull_points.reserve(hull.vertex_indices.size());
   for (const int64_t v : hull.vertex_indices) hull_points.push_back(candidates[size_t(v)]);
   const double diameter = point_set_diameter(hull_points);
-  return surface_shape_from_measures(volume, area, hull, diameter, hi - lo);
+  return surface_shape_from_measures(measures.volume_mm3, measures.area_mm2, hull, diameter, hi - lo);
 }
 
 SurfaceShape surface_shape_from_measures(double volume, double area, const ConvexHull& hull, double diameter_mm,

@@ -38,7 +38,7 @@ namespace soiq::server {
 
 // Bump when a feature's definition or its computation changes results: old cache entries are then
 // never read again.
-inline constexpr int kFeatureDefinitionVersion = 1;
+inline constexpr int kFeatureDefinitionVersion = 2;  // 2: own exact hull, one-pass area and volume
 
 struct FeatureAsk {
   std::vector<std::string> names;   // validated names (validate_feature_names)
