@@ -104,8 +104,11 @@ std::optional<std::vector<int64_t>> lattice_candidates(const std::vector<Vec3>& 
       lo[a] = std::min(lo[a], q[i][a]), hi[a] = std::max(hi[a], q[i][a]);
     }
   }
+  if (n == 0) return std::vector<int64_t>{};
   for (size_t a = 0; a < 3; ++a) {
-    if (int64_t(hi[a] - lo[a] + 1) * (hi[(a + 1) % 3] - lo[(a + 1) % 3] + 1) > max_cells) return std::nullopt;
+    // In int64_t: the extents are below 2^16 each, their product far below its range.
+    const int64_t width = int64_t(hi[a]) - lo[a] + 1, rows = int64_t(hi[(a + 1) % 3]) - lo[(a + 1) % 3] + 1;
+    if (width * rows > max_cells) return std::nullopt;
   }
   struct Cell {
     int32_t least = INT32_MAX, greatest = INT32_MIN;  // values along the row
