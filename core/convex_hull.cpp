@@ -87,14 +87,21 @@ class Quickhull {
     f.normal = cross(u, v);
     f.minors = {std::fabs(u[1] * v[2]) + std::fabs(u[2] * v[1]), std::fabs(u[2] * v[0]) + std::fabs(u[0] * v[2]),
                 std::fabs(u[0] * v[1]) + std::fabs(u[1] * v[0])};
+    // Dead faces are reused, so memory follows the hull's size, not the number of points added.
+    if (!free_faces_.empty()) {
+      const int32_t slot = free_faces_.back();
+      free_faces_.pop_back();
+      faces_[size_t(slot)] = f;
+      return slot;
+    }
     faces_.push_back(f);
     return int32_t(faces_.size() - 1);
   }
 
-  // Puts q into the outside set of the first face of [first, last) it lies strictly above; a
-  // point above none is inside or on the hull and is dropped for good.
-  void assign(int32_t q, int32_t first, int32_t last) {
-    for (int32_t f = first; f < last; ++f) {
+  // Puts q into the outside set of the first of `candidates` it lies strictly above; a point
+  // above none is inside or on the hull and is dropped for good.
+  void assign(int32_t q, const std::vector<int32_t>& candidates) {
+    for (const int32_t f : candidates) {
       Face& face = faces_[size_t(f)];
       double d = 0;
       if (side(face, q, d) <= 0) continue;
@@ -113,6 +120,9 @@ class Quickhull {
   bool lattice_;               // on a small dyadic lattice (dyadic_lattice.h): plain doubles are exact
   std::vector<Face> faces_;
   std::vector<int32_t> pending_;  // faces that got a non-empty outside set; a stack, newest first
+                                  // (a reused slot may be listed again: checked when popped)
+  std::vector<int32_t> free_faces_, cone_;
+  Vec3 interior_{0, 0, 0};
   uint32_t epoch_ = 0;
   std::vector<int32_t> stack_, visible_;
   struct HorizonEdge {
@@ -191,7 +201,9 @@ Status Quickhull::initial_tetrahedron() {
   // permutation of the tetrahedron's vertex order, face outward as well.
   if (side(i3) > 0) std::swap(i1, i2);
   const int32_t t[4][3] = {{i0, i1, i2}, {i0, i3, i1}, {i1, i3, i2}, {i2, i3, i0}};
-  for (const auto& f : t) new_face(f[0], f[1], f[2]);
+  for (const auto& f : t) cone_.push_back(new_face(f[0], f[1], f[2]));
+  // A point strictly inside every later hull, for the volume's tetrahedra.
+  interior_ = 0.25 * (p_[size_t(i0)] + p_[size_t(i1)] + p_[size_t(i2)] + p_[size_t(i3)]);
   for (int32_t f = 0; f < 4; ++f) {  // adjacency: the face holding the reversed edge
     for (int e = 0; e < 3; ++e) {
       const int32_t u = faces_[size_t(f)].v[e], w = faces_[size_t(f)].v[(e + 1) % 3];
@@ -204,7 +216,7 @@ Status Quickhull::initial_tetrahedron() {
   }
   for (size_t i = 0; i < n; ++i) {
     const auto q = int32_t(i);
-    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q, 0, 4);
+    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q, cone_);
   }
   return ok_status();
 }
@@ -238,9 +250,10 @@ void Quickhull::add_point(int32_t start) {
   // horizon's vertices (each starts exactly one horizon edge of the disc's boundary), to its two
   // cone neighbours.
   if (face_from_.size() < p_.size()) face_from_.assign(p_.size(), -1);
-  const auto first = int32_t(faces_.size());
+  cone_.clear();
   for (const HorizonEdge& h : horizon_) {
     const int32_t f = new_face(h.a, h.b, apex);
+    cone_.push_back(f);
     faces_[size_t(f)].adj[0] = h.beyond;
     Face& beyond = faces_[size_t(h.beyond)];
     for (int k = 0; k < 3; ++k) {
@@ -248,8 +261,7 @@ void Quickhull::add_point(int32_t start) {
     }
     face_from_[size_t(h.a)] = f;
   }
-  const auto last = int32_t(faces_.size());
-  for (int32_t f = first; f < last; ++f) {
+  for (const int32_t f : cone_) {
     const int32_t g = face_from_[size_t(faces_[size_t(f)].v[1])];  // the cone face from b: (b, c, apex)
     faces_[size_t(f)].adj[1] = g;
     faces_[size_t(g)].adj[2] = f;
@@ -259,10 +271,11 @@ void Quickhull::add_point(int32_t start) {
     dead.alive = false;
     for (int32_t q = dead.outside; q >= 0;) {
       const int32_t after = next_[size_t(q)];
-      if (q != apex) assign(q, first, last);
+      if (q != apex) assign(q, cone_);
       q = after;
     }
     dead.outside = -1;
+    free_faces_.push_back(f);
   }
 }
 
@@ -272,8 +285,7 @@ ConvexHull Quickhull::result() const {
   // at least three of its edges are creases (the two faces on an edge are not coplanar): a point
   // inside a facet has none, a point inside a hull edge two.
   std::vector<uint8_t> creases(p_.size(), 0);
-  const Vec3 interior = 0.25 * (p_[size_t(faces_[0].v[0])] + p_[size_t(faces_[0].v[1])] + p_[size_t(faces_[0].v[2])] +
-                                p_[size_t(faces_[1].v[1])]);
+  const Vec3& interior = interior_;
   for (size_t f = 0; f < faces_.size(); ++f) {
     const Face& face = faces_[f];
     if (!face.alive) continue;
