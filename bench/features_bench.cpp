@@ -91,6 +91,7 @@ Status simulated_rows(const std::string& dir, int runs, std::vector<Row>& rows) 
     if (!std::filesystem::exists(base + "_S1.vtp")) continue;
     SOIQ_ASSIGN_OR_RETURN(TriangleMesh lattice_mesh, read_mesh(base + "_S1.vtp"));
     SOIQ_ASSIGN_OR_RETURN(Image v1, read_image(base + "_V1.nii.gz"));
+    const Image ramp = ramp_image(v1.geometry);
     // SM1 also with its surface in general position (one extra row).
     for (const bool jitter : {false, true}) {
       if (jitter && model.name != "SM1") continue;
@@ -101,7 +102,6 @@ Status simulated_rows(const std::string& dir, int runs, std::vector<Row>& rows) 
       VoxelizeOptions options;
       options.known_defects = mesh_defects(mesh);  // the defect check belongs to loading the mesh
       // Conversion and features interleaved run by run, so both see the same machine load.
-      const Image ramp = ramp_image(v1.geometry);
       FeatureRequest request;
       request.images = {{"ramp", &ramp}};
       request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};

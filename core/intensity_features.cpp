@@ -103,8 +103,8 @@ Result<IntensityFeatures> intensity_features(std::vector<double> values) {
     for (size_t l = 0; l < kLanes; ++l) first_pass(l, values[i + l]);
   }
   for (size_t i = whole; i < count; ++i) first_pass(i - whole, values[i]);
-  const double total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
-  const double energy = (squares[0] + squares[1]) + (squares[2] + squares[3]);
+  auto add = [](const double(&s)[kLanes]) { return (s[0] + s[1]) + (s[2] + s[3]); };
+  const double total = add(sum), energy = add(squares);
   const double lo = std::min({low[0], low[1], low[2], low[3]}), hi = std::max({high[0], high[1], high[2], high[3]});
   if (!std::isfinite(total) || !std::isfinite(energy)) {
     for (double v : values) {
@@ -132,7 +132,6 @@ Result<IntensityFeatures> intensity_features(std::vector<double> values) {
   }
   for (size_t i = whole; i < count; ++i) second_pass(i - whole, i);
   for (const uint16_t b : bucket) ++bucket_size[b];
-  auto add = [](const double (&s)[kLanes]) { return (s[0] + s[1]) + (s[2] + s[3]); };
   const double m2 = add(m2s) / n, m3 = add(m3s) / n, m4 = add(m4s) / n;
   f.variance = m2;
   f.standard_deviation = std::sqrt(m2);

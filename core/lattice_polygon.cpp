@@ -14,20 +14,17 @@ int64_t turn(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c
 }  // namespace
 
 std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& points) {
-  const size_t n = points.size();
-  if (n <= 2) return points;
-  std::vector<LatticePoint> hull(2 * n);
-  size_t h = 0;
-  for (size_t p = 0; p < n; ++p) {  // lower chain
-    while (h >= 2 && turn(hull[h - 2], hull[h - 1], points[p]) <= 0) --h;
-    hull[h++] = points[p];
+  // Sorted by (u, v): each row's first and last points are its ends; a point between them lies
+  // on the segment joining them, so it is never a vertex.
+  std::vector<LatticeRow> rows;
+  for (const LatticePoint& p : points) {
+    if (rows.empty() || rows.back().u != p.u) {
+      rows.push_back({p.u, p.v, p.v});
+    } else {
+      rows.back().hi = p.v;
+    }
   }
-  for (size_t p = n - 1, lower = h + 1; p-- > 0;) {  // upper chain
-    while (h >= lower && turn(hull[h - 2], hull[h - 1], points[p]) <= 0) --h;
-    hull[h++] = points[p];
-  }
-  hull.resize(h - 1);  // the last point repeats the first
-  return hull;
+  return lattice_hull_of_rows(rows);
 }
 
 std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows) {

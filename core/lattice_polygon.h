@@ -8,17 +8,17 @@
 //   Output  the hull's vertices counter-clockwise, starting at the first point; points on an
 //           edge's interior (collinear) are left out. One point gives itself; all collinear
 //           points give the two ends. Turns are exact integer cross products (Andrew's monotone
-//           chain).
+//           chain, through lattice_hull_of_rows on each row's two ends).
 //   Cost    O(n) time and memory. Thread-safe.
 //
 // lattice_hull_of_rows
 //   Input   rows ascending in u, each holding its least and greatest v (lo <= hi): the point set
 //           {(u, lo), (u, hi)} of every row, as the mask sweep and the hull shortlist keep it.
-//   Output  exactly lattice_hull of those points (sorted by (u, v)).
+//   Output  the hull of those points, as lattice_hull describes it.
 //   Method  Andrew's chains with each point offered to the one chain it can be on: a row's lo
 //           only to the lower chain, its hi only to the upper one (a hi above its lo is never a
 //           lower-chain vertex but at the last row, nor a lo an upper one but at the first).
-//   Cost    O(rows), half the turns of lattice_hull. Thread-safe.
+//   Cost    O(rows), half the turns of offering every point to both chains. Thread-safe.
 //
 // lattice_polygon_diameter
 //   Input   a convex polygon as lattice_hull returns it; scale_u, scale_v > 0: mm per unit along
