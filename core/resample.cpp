@@ -100,19 +100,24 @@ Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region
   const auto& dims = image.geometry.dims;
 
   if (out.same_grid) {
+    // Straight reads, written unconditionally and kept by advancing the cursor only for finite
+    // values: no branch per voxel, so the copy runs at memory speed (it is most of a same-grid
+    // resample, the usual clinical case).
+    out.values.resize(size_t(out.region_voxels));
+    double* kept = out.values.data();
+    size_t n = 0;
     for (int64_t l = 0; l < region.line_count(); ++l) {
-      const size_t row = size_t(l * dims[0]);
+      const float* row = image.voxels.data() + l * dims[0];
       for (int64_t r = region.line_start[size_t(l)]; r < region.line_start[size_t(l) + 1]; ++r) {
         for (int32_t i = region.runs[size_t(r)].begin; i < region.runs[size_t(r)].end; ++i) {
-          const double v = double(image.voxels[row + size_t(i)]);
-          if (std::isfinite(v)) {
-            out.values.push_back(v);
-          } else {
-            ++out.non_finite;
-          }
+          const double v = double(row[i]);
+          kept[n] = v;
+          n += std::isfinite(v) ? 1 : 0;
         }
       }
     }
+    out.non_finite = out.region_voxels - int64_t(n);
+    out.values.resize(n);
   } else {
     const IndexMap map = index_map(region.geometry, image.geometry);
     for (int64_t l = 0; l < region.line_count(); ++l) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/intensity_features.h"
@@ -98,6 +99,33 @@ TEST(Resample, SameGridReadsValuesDirectly) {
   EXPECT_TRUE(s->same_grid);
   ASSERT_EQ(s->values.size(), 1u);
   EXPECT_EQ(s->values[0], double(im.voxels[size_t(3 + 20 * (4 + 20 * 5))]));
+}
+
+// On the same grid the values come in run order, and NaN or infinite voxels are left out and
+// counted, whichever run they fall in.
+TEST(Resample, SameGridSkipsNonFiniteVoxelsInRunOrder) {
+  Image im = ramp_image();
+  Mask m;
+  m.geometry = im.geometry;
+  m.voxels.assign(8000, 0);
+  auto at = [](int i, int j, int k) { return size_t(i + 20 * (j + 20 * k)); };
+  for (int i = 2; i < 9; ++i) m.voxels[at(i, 4, 5)] = 1;    // one run of 7
+  for (int i = 10; i < 13; ++i) m.voxels[at(i, 4, 5)] = 1;  // a second run on the same line
+  for (int i = 0; i < 4; ++i) m.voxels[at(i, 7, 9)] = 1;    // and one on a later line
+  im.voxels[at(3, 4, 5)] = std::numeric_limits<float>::quiet_NaN();
+  im.voxels[at(11, 4, 5)] = std::numeric_limits<float>::infinity();
+  im.voxels[at(0, 7, 9)] = -std::numeric_limits<float>::infinity();
+  auto s = resample(im, from_mask(m), Interpolation::kNearest);
+  ASSERT_TRUE(s.ok()) << s.status().to_string();
+  EXPECT_TRUE(s->same_grid);
+  EXPECT_EQ(s->region_voxels, 14);
+  EXPECT_EQ(s->non_finite, 3);
+  std::vector<double> expected;
+  for (const size_t v : {at(2, 4, 5), at(4, 4, 5), at(5, 4, 5), at(6, 4, 5), at(7, 4, 5), at(8, 4, 5), at(10, 4, 5),
+                         at(12, 4, 5), at(1, 7, 9), at(2, 7, 9), at(3, 7, 9)}) {
+    expected.push_back(double(im.voxels[v]));
+  }
+  EXPECT_EQ(s->values, expected);
 }
 
 // STS_002: the PET image and the tumour contoured on CT, one frame of reference, different grids.
