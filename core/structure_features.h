@@ -34,6 +34,12 @@
 //   Others as the parts report them.
 // Cost: the sum of the parts requested. The mask's marching-cubes surface is never built: its
 // features come from one O(runs) sweep shared by the mask surface shape and the 2D diameters.
+// Threads: request.threads > 1 runs the independent sections at once on core's pool (run_tasks.h):
+// volume shape; the stored surface; the mask sweep with its surface and 2D diameters; each region
+// with its images. The report is the same for any thread count (features, order, values bit for
+// bit, parts); each part's time is then its own wall time, so they can add up to more than the
+// call. On our 2-vCPU machines two threads take SM1's full set from 11 to 7 ms (BENCHMARKS.md).
+// Safe to call from several threads at once.
 
 #include <optional>
 #include <string>
@@ -65,13 +71,13 @@ struct FeatureRequest {
   std::vector<NamedImage> images;
   Interpolation interpolation = Interpolation::kNearest;
   CovarianceDivisor covariance = CovarianceDivisor::kN;  // PyRadiomics; kNMinus1 for IBSI
-  int threads = 1;
+  int threads = 1;  // >= 1: sections at once (Threads, above), and the regions' distance transform
 };
 
 struct Feature {
   std::string name;
   std::vector<double> value;  // one number, or an array (centroid_mm, bbox_mm)
-  std::string region;         // "" for shape features; "inside", "shell_5mm", "core_2mm"
+  std::string region;         // "" for shape features; region_name(): "inside", "shell:5", "core:2"
   std::string image;          // "" for shape features
 };
 

@@ -105,6 +105,62 @@ TEST(StructureFeatures, SurfaceModelValuesAndMaskSurfaceValuesAreNamedApart) {
   EXPECT_NEAR(m.at("mask_mesh_volume_mm3"), analytic, 0.05 * analytic);
 }
 
+// With threads > 1 the independent parts run at once; the report must not notice: the same
+// features in the same order with bitwise the same values, and the same parts timed, in order.
+TEST(StructureFeatures, ThreadCountChangesNothingInTheReport) {
+  const TriangleMesh sphere = uv_sphere({0.2, 0.1, -0.3}, 10, 60, 120);
+  ImageGeometry g;
+  g.dims = {30, 30, 30};
+  g.origin_mm = {-15, -15, -15};
+  auto v = voxelize_1d(sphere, g);
+  ASSERT_TRUE(v.ok());
+  Image ramp;
+  ramp.geometry = g;
+  for (int64_t n = 0; n < g.voxel_count(); ++n) ramp.voxels.push_back(float((n * 7919) % 1000) / 10.0f);
+  const StructureInput s{v->volume, sphere};
+  FeatureRequest request;
+  request.images = {{"ramp", &ramp}, {"ramp again", &ramp}};
+  request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 2}, RegionSpec{RegionKind::kCore, 3}};
+  auto one = structure_features(s, request);
+  ASSERT_TRUE(one.ok()) << one.status().to_string();
+  // volume, stored surface, mask_ surface, 2D diameters, and 17 + 16 + 16 per image for the regions.
+  ASSERT_EQ(one->features.size(), 9u + 13u + 13u + 3u + 2 * (17u + 16u + 16u));
+  // In the documented order: shape, then region by region (named as parse_region reads them), image
+  // by image.
+  EXPECT_EQ(one->features[0].name, "voxel_count");
+  EXPECT_EQ(one->features[9].name, "mesh_volume_mm3");
+  EXPECT_EQ(one->features[22].name, "mask_mesh_volume_mm3");
+  EXPECT_EQ(one->features[35].name, "maximum_2d_diameter_slice_mm");
+  EXPECT_EQ(one->features[38].name + "/" + one->features[38].region + "/" + one->features[38].image,
+            "mean/inside/ramp");
+  EXPECT_EQ(one->features.back().region + "/" + one->features.back().image, "core:3/ramp again");
+  for (const int threads : {2, 4}) {
+    request.threads = threads;
+    auto many = structure_features(s, request);
+    ASSERT_TRUE(many.ok()) << many.status().to_string();
+    ASSERT_EQ(many->features.size(), one->features.size()) << threads;
+    for (size_t i = 0; i < one->features.size(); ++i) {
+      const Feature &a = one->features[i], &b = many->features[i];
+      EXPECT_EQ(a.name + "/" + a.region + "/" + a.image, b.name + "/" + b.region + "/" + b.image) << threads;
+      EXPECT_EQ(a.value, b.value) << a.name << " " << a.region << " " << a.image << " threads " << threads;
+    }
+    ASSERT_EQ(many->timings_ms.size(), one->timings_ms.size());
+    for (size_t i = 0; i < one->timings_ms.size(); ++i) {
+      EXPECT_EQ(many->timings_ms[i].first, one->timings_ms[i].first);
+    }
+  }
+  // An error is the one a single thread reports: the first failing part in report order (here
+  // the image is missing in the first region's section and the core is empty in the last).
+  request.images = {{"missing", nullptr}};
+  request.regions = {RegionSpec{}, RegionSpec{RegionKind::kCore, 50}};
+  for (const int threads : {1, 2, 4}) {
+    request.threads = threads;
+    auto r = structure_features(s, request);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().message(), "image 'missing' was not given") << threads;
+  }
+}
+
 TEST(StructureFeatures, UnknownFeatureIsInvalidArgumentListingTheKnownOnes) {
   auto r = structure_features(phantom().structure, asking_for({"volume_in_litres"}));
   ASSERT_FALSE(r.ok());
