@@ -78,6 +78,25 @@ TEST(VolumeShape, BoxOfVoxelsHasExactDiscreteVariances) {
   EXPECT_EQ(s.bbox_max_mm, g.index_to_physical({11, 5, 5}));
 }
 
+// Runs far from the origin and longer than 2^20 voxels (the 64-bit shortcut's limit): the
+// index moments stay exact, so two runs on one line have the hand-counted variance.
+TEST(VolumeShape, LongRunsFarFromTheOriginHaveExactMoments) {
+  const int64_t nx = (int64_t(1) << 22) + 7;
+  const auto g = grid({nx, 1, 1}, {1, 1, 1});
+  for (const auto& [b, n] : {std::pair<int32_t, int32_t>{3'000'000, 1'000'003},
+                             std::pair<int32_t, int32_t>{5, 3'000'001}, std::pair<int32_t, int32_t>{1, 1}}) {
+    RunLengthVolume v = empty_volume(g);
+    v.runs = {{b, b + n}};
+    v.line_start = {0, 1};
+    const auto s = must(v);
+    EXPECT_EQ(s.voxel_count, n);
+    EXPECT_EQ(s.centroid_mm[0], b + (double(n) - 1) / 2) << n;
+    // n centres 1 mm apart: variance (n^2 - 1) / 12, the major axis 4 sqrt of it.
+    const double variance = (double(n) * double(n) - 1) / 12;
+    EXPECT_NEAR(s.major_axis_length_mm, 4 * std::sqrt(variance), 1e-12 * (1 + 4 * std::sqrt(variance))) << n;
+  }
+}
+
 TEST(VolumeShape, SampleCovarianceScalesByNOverNMinus1) {
   const auto g = grid({12, 9, 7}, {0.7, 1.3, 2.5});
   const auto v = from_mask(box_mask(g, {0, 2, 3}, {12, 6, 6}));  // 144 voxels
