@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/ball_dilation.h"
+#include "core/ball_morphology.h"
 #include "core/distance_transform.h"
 
 namespace soiq {
@@ -119,14 +119,18 @@ std::string region_name(const RegionSpec& spec) {
 Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpec& spec, const RegionOptions& options) {
   SOIQ_RETURN_IF_ERROR(check_structure(structure));
   if (spec.kind == RegionKind::kInside) return structure;
-  const double r = spec.radius_mm;
-  if (!std::isfinite(r) || !(r > 0)) {
+  if (!std::isfinite(spec.radius_mm) || !(spec.radius_mm > 0)) {
     return invalid_argument(std::string(kind_word(spec.kind)) + " radius must be a finite number of mm > 0, got " +
-                            std::to_string(r));
+                            std::to_string(spec.radius_mm));
   }
   const ImageGeometry& g = structure.geometry;
   const IndexBox inside_box = bounding_box(structure);
   if (inside_box.empty) return empty_volume(g);
+  // No two voxel centres of the grid are farther apart than its diagonal: a larger radius selects
+  // exactly what twice the diagonal does, and r * r then stays finite.
+  double diagonal2 = 0;
+  for (int a = 0; a < 3; ++a) diagonal2 += std::pow(double(g.dims[size_t(a)]) * g.spacing_mm[size_t(a)], 2);
+  const double r = std::min(spec.radius_mm, 2 * std::sqrt(diagonal2));
 
   // Every voxel within r mm of an inside voxel (shell), and every outside voxel within r mm of an
   // inside one (core), lies in the inside box grown by ceil(r / spacing) along each axis. The factor
@@ -145,19 +149,20 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
     std::snprintf(buf, sizeof buf,
                   "%s: the structure's bounding box grown by %g mm has %lldx%lldx%lld voxels, over the limit of %lld; "
                   "use a smaller radius or a coarser grid",
-                  region_name(spec).c_str(), r, (long long)bd[0], (long long)bd[1], (long long)bd[2],
+                  region_name(spec).c_str(), spec.radius_mm, (long long)bd[0], (long long)bd[1], (long long)bd[2],
                   (long long)options.max_box_voxels);
     return resource_exhausted(buf);
   }
 
-  // The shell by run dilation when the ball's (j, k) cross section times the runs per line costs
-  // less than the transform's pass over the box (both select the same voxels).
+  // The region straight on the runs (a ball dilation or erosion) when the ball's (j, k) cross
+  // section times the runs per line costs less than the transform's pass over the box; both ways
+  // select the same voxels.
   const bool is_shell = spec.kind == RegionKind::kShell;
-  if (is_shell && options.allow_run_dilation) {
+  if (options.allow_run_morphology) {
     const int64_t lines = std::max<int64_t>(1, inside_box.dims()[1] * inside_box.dims()[2]);
     const double runs_per_line = double(structure.runs.size()) / double(lines);
-    if (double(ball_dilation_offsets(g, r)) * std::max(1.0, runs_per_line) < 2.0 * double(bd[0])) {
-      return subtract(ball_dilation(structure, r), structure);
+    if (double(ball_offset_lines(g, r)) * std::max(1.0, runs_per_line) < 2.0 * double(bd[0])) {
+      return is_shell ? subtract(ball_dilation(structure, r), structure) : ball_erosion(structure, r);
     }
   }
 

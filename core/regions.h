@@ -7,9 +7,9 @@
 //   core(r)    the inside voxels whose centre lies farther than r mm from every outside voxel centre
 //              (deeper than r).
 // Distances come from the exact separable Euclidean distance transform (distance_transform.h) over
-// the structure's bounding box grown by r, so the cost follows the structure, not the image; a
-// shell whose ball has a small cross section is dilated on the runs instead (ball_dilation.h), with
-// the same distances and tie rule.
+// the structure's bounding box grown by r, so the cost follows the structure, not the image; when
+// the ball's cross section is small, a shell is dilated and a core eroded on the runs instead
+// (ball_morphology.h), with the same distances and tie rule.
 //
 // Inputs
 //   structure  a RunLengthVolume with a valid geometry (validate_geometry) and line_start of
@@ -61,9 +61,10 @@ struct RegionSpec {
 struct RegionOptions {
   int threads = 1;
   int64_t max_box_voxels = 200'000'000;
-  // A shell may be built by dilating the runs with the ball (ball_dilation.h) when that costs less
-  // than the distance transform; both select the same voxels. false forces the transform (tests).
-  bool allow_run_dilation = true;
+  // A shell may be built by dilating the runs with the ball, a core by eroding them
+  // (ball_morphology.h), when that costs less than the distance transform; both select the same
+  // voxels. false forces the transform (tests).
+  bool allow_run_morphology = true;
 };
 
 // "inside", "shell:R" or "core:R" with R in mm (e.g. "shell:5"). INVALID_ARGUMENT naming the

@@ -10,7 +10,7 @@
 #include <numbers>
 #include <random>
 
-#include "core/ball_dilation.h"
+#include "core/ball_morphology.h"
 #include "core/primitives.h"
 #include "core/voxelize_1d.h"
 
@@ -84,20 +84,24 @@ TEST_P(RegionsOracle, EqualsBruteForceVoxelForVoxelOnAnAnisotropicGrid) {
     if (!c.empty) {
       ASSERT_GT(voxel_count(want), 0);
     }
-    // Both ways to a shell (run dilation when cheaper, else the distance transform) and the
+    // Both ways to a region (on the runs when cheaper, else the distance transform) and the
     // transform alone.
-    for (const bool allow_run_dilation : {true, false}) {
-      auto got =
-          region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2, .allow_run_dilation = allow_run_dilation});
+    for (const bool allow_runs : {true, false}) {
+      auto got = region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2, .allow_run_morphology = allow_runs});
       ASSERT_TRUE(got.ok()) << got.status().to_string();
       auto cmp = compare(*got, want);
       ASSERT_TRUE(cmp.ok());
-      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed << ", run dilation " << allow_run_dilation;
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed << ", on the runs " << allow_runs;
     }
     if (c.kind == RegionKind::kShell) {  // the dilation itself: the structure plus its shell
       Mask dilated = brute;
       for (size_t n = 0; n < blob.voxels.size(); ++n) dilated.voxels[n] |= blob.voxels[n];
       auto cmp = compare(ball_dilation(from_mask(blob), c.radius_mm), from_mask(dilated));
+      ASSERT_TRUE(cmp.ok());
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed;
+    }
+    if (c.kind == RegionKind::kCore) {  // the erosion itself, whichever way region() chose
+      auto cmp = compare(ball_erosion(from_mask(blob), c.radius_mm), want);
       ASSERT_TRUE(cmp.ok());
       EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed;
     }
@@ -109,11 +113,36 @@ TEST_P(RegionsOracle, EqualsBruteForceVoxelForVoxelOnAnAnisotropicGrid) {
 std::vector<OracleCase> oracle_cases() {
   std::vector<OracleCase> cases{{RegionKind::kShell, 0.5, true}};
   for (double r : {1.25, 2.1, 2.5, 4.2}) cases.push_back({RegionKind::kShell, r, false});
-  for (double r : {0.7, 2.1, 2.5}) cases.push_back({RegionKind::kCore, r, false});
+  for (double r : {0.7, 1.25, 2.1, 2.5}) cases.push_back({RegionKind::kCore, r, false});
   return cases;
 }
 
 INSTANTIATE_TEST_SUITE_P(Radii, RegionsOracle, ::testing::ValuesIn(oracle_cases()));
+
+// A radius far beyond the grid (an absurd request) answers at once with what the whole grid holds:
+// it used to loop over a billion offset lines (1e9 mm), or overflow to an empty shell (1e300 mm).
+TEST(Regions, RadiusFarBeyondTheGridSelectsWhatTheGridHolds) {
+  const Mask blob = random_blob(5);
+  Mask outside = blob, full = blob;
+  for (size_t n = 0; n < blob.voxels.size(); ++n) outside.voxels[n] = uint8_t(1 - blob.voxels[n]), full.voxels[n] = 1;
+  for (const double r : {1e9, 1e300}) {
+    for (const bool allow_runs : {true, false}) {
+      const RegionOptions options{.threads = 1, .allow_run_morphology = allow_runs};
+      auto shell = region(from_mask(blob), {RegionKind::kShell, r}, options);
+      ASSERT_TRUE(shell.ok()) << shell.status().to_string();
+      auto cmp = compare(*shell, from_mask(outside));
+      ASSERT_TRUE(cmp.ok());
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << r << " " << allow_runs;
+      auto core = region(from_mask(blob), {RegionKind::kCore, r}, options);
+      ASSERT_TRUE(core.ok());
+      EXPECT_EQ(voxel_count(*core), 0) << r << " " << allow_runs;
+      // With no outside voxel in the grid, nothing erodes a structure that fills it.
+      auto whole = region(from_mask(full), {RegionKind::kCore, r}, options);
+      ASSERT_TRUE(whole.ok());
+      EXPECT_EQ(voxel_count(*whole), int64_t(full.voxels.size())) << r << " " << allow_runs;
+    }
+  }
+}
 
 TEST(Regions, InsideIsTheStructureItself) {
   const RunLengthVolume v = from_mask(random_blob(4));
