@@ -55,9 +55,22 @@ std::vector<double> order_statistics(const std::vector<double>& v, const std::ve
     const int s = slot[bucket[i]];
     if (s >= 0) gathered[size_t(s)].push_back(v[i]);
   }
+  // A bucket of one repeated value (binary or integer images put every value in its own bucket)
+  // needs no selection; otherwise ranks are selected in ascending order, each within what lies
+  // above the previous one of its bucket, so ten ranks in one bucket do not cost ten full passes.
+  std::vector<size_t> selected_below(gathered.size(), 0);
+  std::vector<uint8_t> constant(gathered.size(), 0);
+  for (size_t b = 0; b < gathered.size(); ++b) {
+    const auto [lo, hi] = std::minmax_element(gathered[b].begin(), gathered[b].end());
+    constant[b] = *lo == *hi ? 1 : 0;
+  }
   for (size_t q = 0; q < ranks.size(); ++q) {
-    std::vector<double>& g = gathered[size_t(slot[rank_bucket[q]])];
-    std::nth_element(g.begin(), g.begin() + long(rank_within[q]), g.end());
+    const size_t b = size_t(slot[rank_bucket[q]]);
+    std::vector<double>& g = gathered[b];
+    if (!constant[b]) {
+      std::nth_element(g.begin() + long(selected_below[b]), g.begin() + long(rank_within[q]), g.end());
+      selected_below[b] = rank_within[q] + 1;
+    }
     out[q] = g[rank_within[q]];
   }
   return out;

@@ -20,7 +20,8 @@
 // Errors   INVALID_ARGUMENT  no values ("no intensity values"); a NaN or infinite value.
 // Cost     O(N): moments in two passes over doubles; the percentiles' order statistics, exact, by
 //          one pass into up to 2^16 buckets monotone in the value and a selection (nth_element)
-//          within the few buckets that hold a wanted rank; no sort. Thread-safe.
+//          within the few buckets that hold a wanted rank (none in a bucket of one repeated value,
+//          as binary and integer images give); no sort. Thread-safe.
 
 #include <cstdint>
 #include <vector>

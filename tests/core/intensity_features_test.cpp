@@ -150,5 +150,30 @@ TEST(IntensityFeatures, PercentilesAreExactOnExtremeRanges) {
   }
 }
 
+// One far outlier puts every other value into the lowest bucket: all ten ranks are then selected
+// in that one bucket, each within what lies above the previous one, and must still be exact.
+TEST(IntensityFeatures, RanksSharingOneBucketAreEachExact) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (size_t n : {12, 1001, 100003}) {
+    std::vector<double> values(n);
+    for (double& v : values) v = unit(rng);
+    values[n / 3] = 1e12;
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    auto at = [&](double p) {
+      const double h = double(n - 1) * p;
+      const size_t lo = size_t(std::floor(h)), hi = std::min(lo + 1, n - 1);
+      return sorted[lo] + (h - double(lo)) * (sorted[hi] - sorted[lo]);
+    };
+    auto f = intensity_features(values);
+    ASSERT_TRUE(f.ok());
+    EXPECT_EQ(f->p10, at(0.1)) << n;
+    EXPECT_EQ(f->median, at(0.5)) << n;
+    EXPECT_EQ(f->p90, at(0.9)) << n;
+    EXPECT_EQ(f->interquartile_range, at(0.75) - at(0.25)) << n;
+  }
+}
+
 }  // namespace
 }  // namespace soiq
