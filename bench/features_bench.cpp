@@ -87,6 +87,43 @@ TriangleMesh jittered(TriangleMesh mesh) {
   return mesh;
 }
 
+// SM1's shell and core regions of several radii, on the runs and by the distance transform, and
+// the way region() takes by its cost model: that model's calibration, measured.
+Status print_region_table(const std::string& dir, int runs) {
+  const std::string base = dir + "/SM1";
+  if (!std::filesystem::exists(base + "_S1.vtp")) return ok_status();
+  SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, read_mesh(base + "_S1.vtp"));
+  SOIQ_ASSIGN_OR_RETURN(Image v1, read_image(base + "_V1.nii.gz"));
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, voxelize_1d(mesh, v1.geometry));
+  std::printf(
+      "\nSM1's regions, best ms of %d, one thread: on the runs (ball dilation or erosion) and by the distance "
+      "transform over the grown box; \"taken\" is the way `region` picks by its cost model.\n\n",
+      runs);
+  std::printf("| region | voxels | on the runs ms | transform ms | taken |\n|---|---:|---:|---:|---|\n");
+  for (const RegionSpec& spec :
+       {RegionSpec{RegionKind::kShell, 3}, RegionSpec{RegionKind::kShell, 5}, RegionSpec{RegionKind::kShell, 10},
+        RegionSpec{RegionKind::kShell, 20}, RegionSpec{RegionKind::kCore, 3}, RegionSpec{RegionKind::kCore, 5},
+        RegionSpec{RegionKind::kCore, 10}}) {
+    double best[2] = {1e300, 1e300};
+    int64_t voxels = 0;
+    for (int r = 0; r < runs; ++r) {
+      for (const RegionMethod method : {RegionMethod::kRuns, RegionMethod::kTransform}) {
+        RegionOptions options;
+        options.method = method;
+        const auto t0 = std::chrono::steady_clock::now();
+        SOIQ_ASSIGN_OR_RETURN(RunLengthVolume out, region(v.volume, spec, options));
+        double& b = best[method == RegionMethod::kRuns ? 0 : 1];
+        b = std::min(b, ms_since(t0));
+        voxels = voxel_count(out);
+      }
+    }
+    SOIQ_ASSIGN_OR_RETURN(const RegionMethod taken, cheapest_region_method(v.volume, spec));
+    std::printf("| %s | %lld | %.1f | %.1f | %s |\n", region_name(spec).c_str(), (long long)voxels, best[0], best[1],
+                taken == RegionMethod::kRuns ? "runs" : "transform");
+  }
+  return ok_status();
+}
+
 Status simulated_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
   for (const SimModel& model : simulated_models()) {
     const std::string base = dir + "/" + model.name;
@@ -235,6 +272,12 @@ int run_features_bench(const CliArgs& args) {
     if (!r.conversion_2_ms) continue;
     std::printf("| %s | %.1f | %.1f | %.1f | %.1f |\n", r.name.c_str(), *r.conversion_ms, *r.conversion_2_ms,
                 r.features_ms, *r.features_2_ms);
+  }
+  if (!models.empty()) {
+    if (const Status t = print_region_table(models, *runs); !t.ok()) {
+      std::fprintf(stderr, "soiq-bench features: %s\n", t.to_string().c_str());
+      return 1;
+    }
   }
   return 0;
 }

@@ -116,33 +116,72 @@ std::string region_name(const RegionSpec& spec) {
   return buf;
 }
 
-Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpec& spec, const RegionOptions& options) {
+namespace {
+
+// What both region() and cheapest_region_method() work out before building anything.
+struct RegionPlan {
+  double r = 0;         // the radius, clamped to what the grid can tell apart
+  IndexBox inside_box;  // of the structure
+  IndexBox box;         // grown by r, clipped to the grid
+  RegionMethod cheapest = RegionMethod::kRuns;
+};
+
+Result<RegionPlan> plan_region(const RunLengthVolume& structure, const RegionSpec& spec) {
   SOIQ_RETURN_IF_ERROR(check_structure(structure));
-  if (spec.kind == RegionKind::kInside) return structure;
+  RegionPlan plan;
+  if (spec.kind == RegionKind::kInside) return plan;
   if (!std::isfinite(spec.radius_mm) || !(spec.radius_mm > 0)) {
     return invalid_argument(std::string(kind_word(spec.kind)) + " radius must be a finite number of mm > 0, got " +
                             std::to_string(spec.radius_mm));
   }
   const ImageGeometry& g = structure.geometry;
-  const IndexBox inside_box = bounding_box(structure);
-  if (inside_box.empty) return empty_volume(g);
+  plan.inside_box = bounding_box(structure);
+  if (plan.inside_box.empty) return plan;
   // No two voxel centres of the grid are farther apart than its diagonal: a larger radius selects
   // exactly what twice the diagonal does, and r * r then stays finite.
   double diagonal2 = 0;
   for (int a = 0; a < 3; ++a) diagonal2 += std::pow(double(g.dims[size_t(a)]) * g.spacing_mm[size_t(a)], 2);
-  const double r = std::min(spec.radius_mm, 2 * std::sqrt(diagonal2));
+  plan.r = std::min(spec.radius_mm, 2 * std::sqrt(diagonal2));
 
   // Every voxel within r mm of an inside voxel (shell), and every outside voxel within r mm of an
   // inside one (core), lies in the inside box grown by ceil(r / spacing) along each axis. The factor
   // covers the tie tolerance.
-  IndexBox box = inside_box;
+  plan.box = plan.inside_box;
   for (int a = 0; a < 3; ++a) {
-    const double grow = std::ceil(r / g.spacing_mm[size_t(a)] * (1 + 1e-9));
+    const double grow = std::ceil(plan.r / g.spacing_mm[size_t(a)] * (1 + 1e-9));
     const int64_t n = g.dims[size_t(a)];
     const int64_t margin = grow >= double(n) ? n : int64_t(grow);
-    box.lo[size_t(a)] = std::max<int64_t>(0, box.lo[size_t(a)] - margin);
-    box.hi[size_t(a)] = std::min<int64_t>(n - 1, box.hi[size_t(a)] + margin);
+    plan.box.lo[size_t(a)] = std::max<int64_t>(0, plan.box.lo[size_t(a)] - margin);
+    plan.box.hi[size_t(a)] = std::min<int64_t>(n - 1, plan.box.hi[size_t(a)] + margin);
   }
+
+  // On the runs when the ball's (j, k) cross section times the runs per line costs less than the
+  // transform's pass over the box. Per line of the box, measured on SM1 (1 mm, one thread): the
+  // runs cost ~2.7 ns per offset line and run, the transform ~20 ns per voxel, so the break-even is
+  // at ~7 offsets per box voxel along i (shell and core of 10 mm: 10 and 7 ms on the runs against
+  // 24 and 25 ms by the transform; 20 mm: 37 against 24 ms). 6 leans to the transform.
+  const int64_t lines = std::max<int64_t>(1, plan.inside_box.dims()[1] * plan.inside_box.dims()[2]);
+  const double runs_per_line = double(structure.runs.size()) / double(lines);
+  plan.cheapest = double(ball_offset_lines(g, plan.r)) * std::max(1.0, runs_per_line) < 6.0 * double(plan.box.dims()[0])
+                      ? RegionMethod::kRuns
+                      : RegionMethod::kTransform;
+  return plan;
+}
+
+}  // namespace
+
+Result<RegionMethod> cheapest_region_method(const RunLengthVolume& structure, const RegionSpec& spec) {
+  SOIQ_ASSIGN_OR_RETURN(const RegionPlan plan, plan_region(structure, spec));
+  return plan.cheapest;
+}
+
+Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpec& spec, const RegionOptions& options) {
+  SOIQ_ASSIGN_OR_RETURN(const RegionPlan plan, plan_region(structure, spec));
+  if (spec.kind == RegionKind::kInside) return structure;
+  const ImageGeometry& g = structure.geometry;
+  if (plan.inside_box.empty) return empty_volume(g);
+  const double r = plan.r;
+  const IndexBox& box = plan.box;
   const std::array<int64_t, 3> bd = box.dims();
   if (double(bd[0]) * double(bd[1]) * double(bd[2]) > double(options.max_box_voxels)) {
     char buf[256];
@@ -153,20 +192,10 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
                   (long long)options.max_box_voxels);
     return resource_exhausted(buf);
   }
-
-  // The region straight on the runs (a ball dilation or erosion) when the ball's (j, k) cross
-  // section times the runs per line costs less than the transform's pass over the box; both ways
-  // select the same voxels. Per line of the box, measured on SM1 (1 mm, one thread): the runs cost
-  // ~2.7 ns per offset line and run, the transform ~20 ns per voxel, so the break-even is at ~7
-  // offsets per box voxel along i (shell and core of 10 mm: 10 and 7 ms on the runs against 24
-  // and 25 ms by the transform; 20 mm: 37 against 24 ms). 6 leans to the transform.
   const bool is_shell = spec.kind == RegionKind::kShell;
-  if (options.allow_run_morphology) {
-    const int64_t lines = std::max<int64_t>(1, inside_box.dims()[1] * inside_box.dims()[2]);
-    const double runs_per_line = double(structure.runs.size()) / double(lines);
-    if (double(ball_offset_lines(g, r)) * std::max(1.0, runs_per_line) < 6.0 * double(bd[0])) {
-      return is_shell ? subtract(ball_dilation(structure, r), structure) : ball_erosion(structure, r);
-    }
+  const RegionMethod method = options.method == RegionMethod::kCheapest ? plan.cheapest : options.method;
+  if (method == RegionMethod::kRuns) {
+    return is_shell ? subtract(ball_dilation(structure, r), structure) : ball_erosion(structure, r);
   }
 
   // Dense inside flags of the box.

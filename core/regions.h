@@ -58,13 +58,17 @@ struct RegionSpec {
   double radius_mm = 0;  // shell and core only
 };
 
+// How a shell or core is built; every way selects the same voxels. kRuns dilates (shell) or erodes
+// (core) the runs with the ball (ball_morphology.h); kTransform thresholds the distance transform of
+// the grown box; kCheapest takes the one its cost model expects to be faster (regions.cpp).
+enum class RegionMethod { kCheapest, kRuns, kTransform };
+
 struct RegionOptions {
   int threads = 1;
+  // Bounds the work either way: the transform allocates the grown box, and the runs' cost also
+  // grows with it where they are taken.
   int64_t max_box_voxels = 200'000'000;
-  // A shell may be built by dilating the runs with the ball, a core by eroding them
-  // (ball_morphology.h), when that costs less than the distance transform; both select the same
-  // voxels. false forces the transform (tests).
-  bool allow_run_morphology = true;
+  RegionMethod method = RegionMethod::kCheapest;
 };
 
 // "inside", "shell:R" or "core:R" with R in mm (e.g. "shell:5"). INVALID_ARGUMENT naming the
@@ -76,5 +80,9 @@ std::string region_name(const RegionSpec& spec);
 
 Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpec& spec,
                                const RegionOptions& options = {});
+
+// The way kCheapest takes for this structure and region (kRuns or kTransform; kRuns for inside and
+// for an empty structure, which need neither), for benchmarks and tests. Errors as region()'s.
+Result<RegionMethod> cheapest_region_method(const RunLengthVolume& structure, const RegionSpec& spec);
 
 }  // namespace soiq

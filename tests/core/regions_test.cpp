@@ -84,14 +84,13 @@ TEST_P(RegionsOracle, EqualsBruteForceVoxelForVoxelOnAnAnisotropicGrid) {
     if (!c.empty) {
       ASSERT_GT(voxel_count(want), 0);
     }
-    // Both ways to a region (on the runs when cheaper, else the distance transform) and the
-    // transform alone.
-    for (const bool allow_runs : {true, false}) {
-      auto got = region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2, .allow_run_morphology = allow_runs});
+    // Each way to a region: on the runs, by the distance transform, and the cheaper of the two.
+    for (const RegionMethod method : {RegionMethod::kCheapest, RegionMethod::kRuns, RegionMethod::kTransform}) {
+      auto got = region(from_mask(blob), {c.kind, c.radius_mm}, {.threads = 2, .method = method});
       ASSERT_TRUE(got.ok()) << got.status().to_string();
       auto cmp = compare(*got, want);
       ASSERT_TRUE(cmp.ok());
-      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed << ", on the runs " << allow_runs;
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << "seed " << seed << ", method " << int(method);
     }
     if (c.kind == RegionKind::kShell) {  // the dilation itself: the structure plus its shell
       Mask dilated = brute;
@@ -126,20 +125,20 @@ TEST(Regions, RadiusFarBeyondTheGridSelectsWhatTheGridHolds) {
   Mask outside = blob, full = blob;
   for (size_t n = 0; n < blob.voxels.size(); ++n) outside.voxels[n] = uint8_t(1 - blob.voxels[n]), full.voxels[n] = 1;
   for (const double r : {1e9, 1e300}) {
-    for (const bool allow_runs : {true, false}) {
-      const RegionOptions options{.threads = 1, .allow_run_morphology = allow_runs};
+    for (const RegionMethod method : {RegionMethod::kCheapest, RegionMethod::kRuns, RegionMethod::kTransform}) {
+      const RegionOptions options{.threads = 1, .method = method};
       auto shell = region(from_mask(blob), {RegionKind::kShell, r}, options);
       ASSERT_TRUE(shell.ok()) << shell.status().to_string();
       auto cmp = compare(*shell, from_mask(outside));
       ASSERT_TRUE(cmp.ok());
-      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << r << " " << allow_runs;
+      EXPECT_EQ(cmp->only_a + cmp->only_b, 0) << r << " " << int(method);
       auto core = region(from_mask(blob), {RegionKind::kCore, r}, options);
       ASSERT_TRUE(core.ok());
-      EXPECT_EQ(voxel_count(*core), 0) << r << " " << allow_runs;
+      EXPECT_EQ(voxel_count(*core), 0) << r << " " << int(method);
       // With no outside voxel in the grid, nothing erodes a structure that fills it.
       auto whole = region(from_mask(full), {RegionKind::kCore, r}, options);
       ASSERT_TRUE(whole.ok());
-      EXPECT_EQ(voxel_count(*whole), int64_t(full.voxels.size())) << r << " " << allow_runs;
+      EXPECT_EQ(voxel_count(*whole), int64_t(full.voxels.size())) << r << " " << int(method);
     }
   }
 }
@@ -184,10 +183,25 @@ TEST(Regions, NonPositiveRadiusIsInvalidArgument) {
 }
 
 TEST(Regions, GrownBoxOverTheLimitIsResourceExhausted) {
-  auto got = region(from_mask(random_blob(6)), {RegionKind::kShell, 2.0}, {.max_box_voxels = 100});
-  ASSERT_FALSE(got.ok());
-  EXPECT_EQ(got.status().code(), StatusCode::kResourceExhausted);
-  EXPECT_NE(got.status().message().find("over the limit"), std::string::npos) << got.status().message();
+  for (const RegionMethod method : {RegionMethod::kCheapest, RegionMethod::kRuns, RegionMethod::kTransform}) {
+    auto got = region(from_mask(random_blob(6)), {RegionKind::kShell, 2.0}, {.max_box_voxels = 100, .method = method});
+    ASSERT_FALSE(got.ok());
+    EXPECT_EQ(got.status().code(), StatusCode::kResourceExhausted);
+    EXPECT_NE(got.status().message().find("over the limit"), std::string::npos) << got.status().message();
+  }
+}
+
+// The cost model's choice: a thin ball on a long line goes to the runs, a ball whose cross section
+// dwarfs the box's width to the transform (each is measured side by side in BENCHMARKS.md).
+TEST(Regions, CheapestMethodFollowsTheBallCrossSection) {
+  const RunLengthVolume blob = from_mask(random_blob(8));
+  auto thin = cheapest_region_method(blob, {RegionKind::kCore, 0.7});
+  ASSERT_TRUE(thin.ok());
+  EXPECT_EQ(*thin, RegionMethod::kRuns);
+  auto wide = cheapest_region_method(blob, {RegionKind::kShell, 40});
+  ASSERT_TRUE(wide.ok());
+  EXPECT_EQ(*wide, RegionMethod::kTransform);
+  EXPECT_FALSE(cheapest_region_method(blob, {RegionKind::kShell, -1}).ok());
 }
 
 TEST(Regions, RunOutsideTheGridIsInvalidArgument) {
