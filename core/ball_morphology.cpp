@@ -41,6 +41,31 @@ std::vector<Offset> ball_offsets(const Vec3& h, double r, const std::array<int64
   return out;
 }
 
+// Appends the stretches of [lo, hi) where the running sum of `delta` reaches `threshold` as runs,
+// and clears delta[lo..hi] for the next line.
+void append_covered(std::vector<int32_t>& delta, int64_t lo, int64_t hi, int32_t threshold, std::vector<Run>& runs) {
+  int32_t count = 0;
+  int64_t begin = -1;
+  for (int64_t i = lo; i <= hi; ++i) {
+    count += delta[size_t(i)];
+    delta[size_t(i)] = 0;
+    const bool kept = i < hi && count >= threshold;
+    if (kept && begin < 0) begin = i;
+    if (!kept && begin >= 0) {
+      runs.push_back({int32_t(begin), int32_t(i)});
+      begin = -1;
+    }
+  }
+}
+
+// An empty result on the structure's grid, with its line table sized.
+RunLengthVolume empty_result(const RunLengthVolume& s) {
+  RunLengthVolume out;
+  out.geometry = s.geometry;
+  out.line_start.assign(size_t(s.line_count()) + 1, 0);
+  return out;
+}
+
 }  // namespace
 
 int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm) {
@@ -51,9 +76,7 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
   const ImageGeometry& g = s.geometry;
   const int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   const std::vector<Offset> offsets = ball_offsets(g.spacing_mm, radius_mm, g.dims);
-  RunLengthVolume out;
-  out.geometry = g;
-  out.line_start.assign(size_t(s.line_count()) + 1, 0);
+  RunLengthVolume out = empty_result(s);
   // Lines that hold a run, and the (j, k) range the result can reach.
   int64_t jlo = ny, jhi = -1, klo = nz, khi = -1, mj = 0, mk = 0;
   for (int64_t l = 0; l < s.line_count(); ++l) {
@@ -81,17 +104,7 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
         span_lo = std::min(span_lo, b), span_hi = std::max(span_hi, e);
       }
     }
-    int32_t count = 0;
-    int64_t begin = -1;
-    for (int64_t i = span_lo; i <= span_hi; ++i) {
-      count += delta[size_t(i)];
-      delta[size_t(i)] = 0;
-      if (count > 0 && begin < 0) begin = i;
-      if (count == 0 && begin >= 0) {
-        out.runs.push_back({int32_t(begin), int32_t(i)});
-        begin = -1;
-      }
-    }
+    append_covered(delta, span_lo, span_hi, 1, out.runs);
   }
   out.line_start.back() = int64_t(out.runs.size());
   return out;
@@ -101,9 +114,7 @@ RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
   const ImageGeometry& g = s.geometry;
   const int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   const std::vector<Offset> offsets = ball_offsets(g.spacing_mm, radius_mm, g.dims);
-  RunLengthVolume out;
-  out.geometry = g;
-  out.line_start.assign(size_t(s.line_count()) + 1, 0);
+  RunLengthVolume out = empty_result(s);
   std::vector<int32_t> delta(size_t(nx) + 1, 0);
   for (int64_t k = 0, l = 0; k < nz; ++k) {
     for (int64_t j = 0; j < ny; ++j, ++l) {
@@ -136,18 +147,8 @@ RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
           if (b < e) ++delta[size_t(b)], --delta[size_t(e)];
         }
       }
-      int32_t count = 0;
-      int64_t begin = -1;
-      for (int64_t i = span_lo; i <= span_hi; ++i) {
-        count += delta[size_t(i)];
-        delta[size_t(i)] = 0;
-        const bool kept = i < span_hi && count == needed;
-        if (kept && begin < 0) begin = i;
-        if (!kept && begin >= 0) {
-          out.runs.push_back({int32_t(begin), int32_t(i)});
-          begin = -1;
-        }
-      }
+      // At most one piece per neighbour line covers a voxel: reaching `needed` means all do.
+      append_covered(delta, span_lo, span_hi, needed, out.runs);
     }
   }
   out.line_start.back() = int64_t(out.runs.size());

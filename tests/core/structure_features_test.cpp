@@ -45,6 +45,19 @@ Phantom phantom() {
   return p;
 }
 
+// A UV sphere of radius 10 mm (segments x 2 segments) as a stored surface, with its voxels on an
+// n^3 grid of 1 mm around it.
+StructureInput sphere_structure(int segments, int64_t n) {
+  const TriangleMesh sphere = uv_sphere({0.2, 0.1, -0.3}, 10, segments, 2 * segments);
+  ImageGeometry g;
+  g.dims = {n, n, n};
+  const double o = -double(n / 2);
+  g.origin_mm = {o, o, o};
+  auto v = voxelize_1d(sphere, g);
+  EXPECT_TRUE(v.ok()) << v.status().to_string();
+  return {v.ok() ? v->volume : empty_volume(g), sphere};
+}
+
 TEST(StructureFeatures, IbsiPhantomThroughTheEntryPoint) {
   const Phantom p = phantom();
   FeatureRequest request;
@@ -86,13 +99,7 @@ TEST(StructureFeatures, ComputesOnlyWhatIsAskedAndTimesEachPart) {
 TEST(StructureFeatures, SurfaceModelValuesAndMaskSurfaceValuesAreNamedApart) {
   // A finely meshed sphere of radius 10 mm: the stored surface has nearly the analytic volume;
   // the mask's marching-cubes surface on a 1 mm grid is a coarser approximation.
-  const TriangleMesh sphere = uv_sphere({0.2, 0.1, -0.3}, 10, 100, 200);
-  ImageGeometry g;
-  g.dims = {25, 25, 25};
-  g.origin_mm = {-12, -12, -12};
-  auto v = voxelize_1d(sphere, g);
-  ASSERT_TRUE(v.ok());
-  StructureInput s{v->volume, sphere};
+  const StructureInput s = sphere_structure(100, 25);
   FeatureRequest request;
   request.names = {"mesh_volume_mm3", "mask_mesh_volume_mm3"};
   auto r = structure_features(s, request);
@@ -108,16 +115,10 @@ TEST(StructureFeatures, SurfaceModelValuesAndMaskSurfaceValuesAreNamedApart) {
 // With threads > 1 the independent parts run at once; the report must not notice: the same
 // features in the same order with bitwise the same values, and the same parts timed, in order.
 TEST(StructureFeatures, ThreadCountChangesNothingInTheReport) {
-  const TriangleMesh sphere = uv_sphere({0.2, 0.1, -0.3}, 10, 60, 120);
-  ImageGeometry g;
-  g.dims = {30, 30, 30};
-  g.origin_mm = {-15, -15, -15};
-  auto v = voxelize_1d(sphere, g);
-  ASSERT_TRUE(v.ok());
+  const StructureInput s = sphere_structure(60, 30);
   Image ramp;
-  ramp.geometry = g;
-  for (int64_t n = 0; n < g.voxel_count(); ++n) ramp.voxels.push_back(float((n * 7919) % 1000) / 10.0f);
-  const StructureInput s{v->volume, sphere};
+  ramp.geometry = s.volume.geometry;
+  for (int64_t n = 0; n < ramp.geometry.voxel_count(); ++n) ramp.voxels.push_back(float((n * 7919) % 1000) / 10.0f);
   FeatureRequest request;
   request.images = {{"ramp", &ramp}, {"ramp again", &ramp}};
   request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 2}, RegionSpec{RegionKind::kCore, 3}};
