@@ -239,6 +239,22 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
     return invalid_argument("intensity features need an image in the structure's frame of reference (--image)");
   }
   if (voxel_count(input.volume) == 0) return invalid_argument("the structure has no voxels inside its grid");
+  // The report tells images and regions apart by name: a name twice would give two values under one key.
+  for (size_t i = 0; i < request.images.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (request.images[i].name == request.images[j].name) {
+        return invalid_argument("image name '" + request.images[i].name +
+                                "' is given twice; give each image its own name (--image NAME=PATH)");
+      }
+    }
+  }
+  for (size_t i = 0; i < request.regions.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (region_name(request.regions[i]) == region_name(request.regions[j])) {
+        return invalid_argument("region " + region_name(request.regions[i]) + " is asked twice");
+      }
+    }
+  }
 
   // The work in independent sections, each filling its own report, listed in report order. With
   // threads > 1 they run at once on core's pool (run_tasks.h); the report never depends on the

@@ -49,6 +49,14 @@ Status complete_feature_ask(FeatureAsk& ask) {
   if (!intensity && !ask.images.empty())
     return invalid_argument("images were given but no intensity feature was asked (e.g. mean, median, p90)");
   if (ask.regions.empty()) ask.regions.push_back(RegionSpec{});
+  // A region asked twice is computed once (its values would share their cache entries anyway).
+  std::vector<RegionSpec> unique;
+  for (const RegionSpec& r : ask.regions) {
+    const bool seen = std::any_of(unique.begin(), unique.end(),
+                                  [&](const RegionSpec& u) { return region_name(u) == region_name(r); });
+    if (!seen) unique.push_back(r);
+  }
+  ask.regions = std::move(unique);
   return ok_status();
 }
 
@@ -68,9 +76,16 @@ Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
     if (r.kind == RegionKind::kShell) widest_shell = std::max(widest_shell, r.radius_mm);
   }
   SOIQ_ASSIGN_OR_RETURN(p.grid, resolve_grid(ask.grid, structure, study_series, widest_shell, max_grid_voxels_));
+  // Each series once, under the first name it was asked by (a modality and its series uid may name
+  // the same series).
+  std::vector<std::string> refs;
   for (const std::string& ref : ask.images) {
     SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(ref, study_series, structure.study_uid));
+    const bool seen = std::any_of(p.images.begin(), p.images.end(),
+                                  [&](const db::SeriesRecord& known) { return known.sha256 == s.sha256; });
+    if (seen) continue;
     p.images.push_back(std::move(s));
+    refs.push_back(ref);
   }
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a long chain of "literal" + string.
   p.cache_key = "v";
@@ -86,9 +101,9 @@ Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
       continue;
     }
     for (const RegionSpec& r : ask.regions) {
-      for (size_t i = 0; i < ask.images.size(); ++i) {
+      for (size_t i = 0; i < refs.size(); ++i) {
         const std::string region = region_name(r);
-        p.wants.push_back({feature_entry(n, region, p.images[i].sha256, ask.interpolation), n, region, ask.images[i]});
+        p.wants.push_back({feature_entry(n, region, p.images[i].sha256, ask.interpolation), n, region, refs[i]});
       }
     }
   }

@@ -41,5 +41,14 @@ expect 2 "empty" -- "$soiq" features "$phantom/mask.nii.gz" --image "$phantom/ph
 expect 2 "frame of reference" -- "$soiq" features "$phantom/mask.nii.gz" --image "$sts/PET_image.nii.gz" --features mean
 expect 3 "not" -- "$soiq" features "$tmp/missing.nii.gz"
 expect 2 "--format" -- "$soiq" features "$phantom/mask.nii.gz" --format xml
+# Two images of one name would share their keys in the output: refused, naming it.
+expect 2 "image name 'phantom' is given twice" -- "$soiq" features "$phantom/mask.nii.gz" \
+  --image "$phantom/phantom.nii.gz" --image "$phantom/phantom.nii.gz" --features mean
+# A radius far beyond the grid answers at once (it used to loop over a billion offset lines) with
+# every outside voxel of the grid: 5x4x4 = 80, of which the mask holds 74.
+"$soiq" features "$phantom/mask.nii.gz" --image "$phantom/phantom.nii.gz" --region shell:1e9 --features voxel_count \
+  --format csv >"$tmp/huge.csv" || fail "features in shell:1e9"
+[ "$(awk -F, '$1 == "shell:1e+09" && $3 == "voxel_count" { print $4 }' "$tmp/huge.csv")" = 6 ] ||
+  fail "shell:1e9 should hold the grid's 6 outside voxels: $(cat "$tmp/huge.csv")"
 
 finish features_test

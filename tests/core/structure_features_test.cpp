@@ -207,6 +207,24 @@ TEST(StructureFeatures, EmptyRegionIsInvalidArgument) {
   EXPECT_NE(r.status().message().find("empty"), std::string::npos);
 }
 
+// The report keys intensity features by region and image name: a name twice would put two values
+// under one key, so it is refused, naming the duplicate.
+TEST(StructureFeatures, ImageOrRegionNamedTwiceIsInvalidArgument) {
+  Phantom p = phantom();
+  FeatureRequest request;
+  request.names = {"mean"};
+  request.images = {{"PET", &p.image}, {"PET", &p.image}};
+  auto r = structure_features(p.structure, request);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("image name 'PET' is given twice"), std::string::npos) << r.status().message();
+  request.images = {{"PET", &p.image}};
+  request.regions = {RegionSpec{RegionKind::kShell, 2}, RegionSpec{}, RegionSpec{RegionKind::kShell, 2.0}};
+  r = structure_features(p.structure, request);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("region shell:2 is asked twice"), std::string::npos) << r.status().message();
+}
+
 TEST(StructureFeatures, EmptyStructureIsInvalidArgument) {
   StructureInput s;
   ImageGeometry g;

@@ -99,6 +99,29 @@ TEST_F(QueryTest, FeaturesEqualTheOfflineOnesAndComeFromTheCacheTheSecondTime) {
     EXPECT_EQ(second->features(i).value(0), first->features(i).value(0));  // bitwise: stored as float64
 }
 
+// A region asked twice (under two spellings) and one series named twice are each computed and
+// answered once, with the values of the plain request.
+TEST_F(QueryTest, ARegionOrImageAskedTwiceIsAnsweredOnce) {
+  const CohortStructure& s = cohort_.structures[7];
+  v1::FeaturesRequest req;
+  req.set_structure_id(s.id);
+  req.mutable_grid()->set_spacing_mm(1);
+  req.mutable_grid()->set_margin_voxels(kMargin);
+  req.add_features("mean");
+  req.add_regions("shell:3");
+  req.add_images("MR");
+  Result<v1::FeaturesResponse> plain = client_->compute_features(req);
+  ASSERT_TRUE(plain.ok()) << plain.status().to_string();
+  ASSERT_EQ(plain->features_size(), 1);
+  req.add_regions("shell:3.0");
+  req.add_images("MR");
+  Result<v1::FeaturesResponse> twice = client_->compute_features(req);
+  ASSERT_TRUE(twice.ok()) << twice.status().to_string();
+  ASSERT_EQ(twice->features_size(), 1);
+  EXPECT_EQ(twice->features(0).region(), "shell:3");
+  EXPECT_EQ(twice->features(0).value(0), plain->features(0).value(0));
+}
+
 TEST_F(QueryTest, TheMaskSurfaceValuesOfAStoredSurfaceAreServedAlone) {
   // Asked alone, a mask_ feature still needs the stored surface beside the mask (the server may
   // otherwise leave the mesh out of the computation).
