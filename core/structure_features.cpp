@@ -186,6 +186,10 @@ Status region_section(const Ask& ask, const RegionSpec& spec, FeatureReport& rep
     SOIQ_ASSIGN_OR_RETURN(RegionSamples samples, timer.run("resample " + img.name + " " + rname, [&] {
       return resample(*img.image, r, request.interpolation);
     }));
+    if (samples.values.empty() && samples.non_finite > 0) {
+      return invalid_argument("image '" + img.name + "' is NaN or infinite at every voxel of region " + rname + " (" +
+                              std::to_string(samples.non_finite) + " voxels)");
+    }
     if (samples.values.empty()) {
       return invalid_argument("no voxel of region " + rname + " lies inside image '" + img.name +
                               "': is it in the structure's frame of reference?");

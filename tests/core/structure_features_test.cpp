@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
 #include "core/io/read_image.h"
@@ -223,6 +224,20 @@ TEST(StructureFeatures, ImageOrRegionNamedTwiceIsInvalidArgument) {
   r = structure_features(p.structure, request);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("region shell:2 is asked twice"), std::string::npos) << r.status().message();
+}
+
+TEST(StructureFeatures, ImageThatIsNaNOverTheWholeRegionIsInvalidArgumentSayingSo) {
+  Phantom p = phantom();
+  for (float& v : p.image.voxels) v = std::numeric_limits<float>::quiet_NaN();
+  FeatureRequest request;
+  request.names = {"mean"};
+  request.images = {{"broken", &p.image}};
+  auto r = structure_features(p.structure, request);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("'broken' is NaN or infinite at every voxel of region inside (74 voxels)"),
+            std::string::npos)
+      << r.status().message();
 }
 
 TEST(StructureFeatures, EmptyStructureIsInvalidArgument) {
