@@ -21,23 +21,34 @@ double squared_mm(int64_t di, int64_t dj, int64_t dk, const Vec3& h) {
   return z * z + d2;
 }
 
-// The ball's (dj, dk) offsets and each one's largest |di|, limited to the grid's extent: an offset
-// beyond it reaches no line, a half-width beyond nx covers every line whole. So a radius far beyond
-// the grid costs what the whole grid costs, never more (and never overflows an integer).
-std::vector<Offset> ball_offsets(const Vec3& h, double r, const std::array<int64_t, 3>& dims) {
+// Calls f(dj, dk) for each (dj, dk) line offset in the ball, limited to the grid's extent (an
+// offset beyond it reaches no line), until f returns false. So a radius far beyond the grid costs
+// what the whole grid costs, never more, and never overflows an integer.
+template <typename F>
+void for_each_offset_line(const Vec3& h, double r, const std::array<int64_t, 3>& dims, F&& f) {
   const double r2 = r * r * (1 + 1e-12);  // regions.h's tie tolerance
-  std::vector<Offset> out;
   auto reach = [&](double spacing, int64_t n) { return int64_t(std::min(std::ceil(r / spacing) + 1, double(n))); };
-  const int64_t mi = dims[0], mj = reach(h[1], dims[1]), mk = reach(h[2], dims[2]);
+  const int64_t mj = reach(h[1], dims[1]), mk = reach(h[2], dims[2]);
   for (int64_t dk = -mk; dk <= mk; ++dk) {
     for (int64_t dj = -mj; dj <= mj; ++dj) {
-      if (squared_mm(0, dj, dk, h) > r2) continue;
-      int64_t m = int64_t(std::min(std::sqrt(std::max(0.0, r2 - squared_mm(0, dj, dk, h))) / h[0], double(mi)));
-      while (m > 0 && squared_mm(m, dj, dk, h) > r2) --m;
-      while (m < mi && squared_mm(m + 1, dj, dk, h) <= r2) ++m;
-      out.push_back({dj, dk, m});
+      if (squared_mm(0, dj, dk, h) <= r2 && !f(dj, dk)) return;
     }
   }
+}
+
+// The ball's line offsets and each one's largest |di| (at most nx: a half-width beyond it covers
+// every line whole).
+std::vector<Offset> ball_offsets(const Vec3& h, double r, const std::array<int64_t, 3>& dims) {
+  const double r2 = r * r * (1 + 1e-12);
+  const int64_t mi = dims[0];
+  std::vector<Offset> out;
+  for_each_offset_line(h, r, dims, [&](int64_t dj, int64_t dk) {
+    int64_t m = int64_t(std::min(std::sqrt(std::max(0.0, r2 - squared_mm(0, dj, dk, h))) / h[0], double(mi)));
+    while (m > 0 && squared_mm(m, dj, dk, h) > r2) --m;
+    while (m < mi && squared_mm(m + 1, dj, dk, h) <= r2) ++m;
+    out.push_back({dj, dk, m});
+    return true;
+  });
   return out;
 }
 
@@ -68,8 +79,10 @@ RunLengthVolume empty_result(const RunLengthVolume& s) {
 
 }  // namespace
 
-int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm) {
-  return int64_t(ball_offsets(grid.spacing_mm, radius_mm, grid.dims).size());
+int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm, int64_t stop_at) {
+  int64_t count = 0;
+  for_each_offset_line(grid.spacing_mm, radius_mm, grid.dims, [&](int64_t, int64_t) { return ++count < stop_at; });
+  return count;
 }
 
 RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {

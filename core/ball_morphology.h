@@ -30,7 +30,8 @@ RunLengthVolume ball_dilation(const RunLengthVolume& structure, double radius_mm
 
 RunLengthVolume ball_erosion(const RunLengthVolume& structure, double radius_mm);
 
-// The number of (dj, dk) offsets either visits per line, for cost estimates.
-int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm);
+// The number of (dj, dk) offsets either visits per line, for cost estimates; counting stops at
+// `stop_at` (a huge ball on a large grid has hundreds of thousands).
+int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm, int64_t stop_at);
 
 }  // namespace soiq
