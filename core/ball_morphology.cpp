@@ -52,30 +52,42 @@ std::vector<Offset> ball_offsets(const Vec3& h, double r, const std::array<int64
   return out;
 }
 
-// Appends the stretches of [lo, hi) where the running sum of `delta` reaches `threshold` as runs,
-// and clears delta[lo..hi] for the next line.
-void append_covered(std::vector<int32_t>& delta, int64_t lo, int64_t hi, int32_t threshold, std::vector<Run>& runs) {
-  int32_t count = 0;
-  int64_t begin = -1;
-  for (int64_t i = lo; i <= hi; ++i) {
-    count += delta[size_t(i)];
-    delta[size_t(i)] = 0;
-    const bool kept = i < hi && count >= threshold;
-    if (kept && begin < 0) begin = i;
-    if (!kept && begin >= 0) {
-      runs.push_back({int32_t(begin), int32_t(i)});
-      begin = -1;
+// What a dilation and an erosion share: the ball's line offsets, the result on the structure's grid
+// (its line table sized), and a difference array over one line, cleared between lines.
+struct BallPass {
+  BallPass(const RunLengthVolume& s, double radius_mm)
+      : offsets(ball_offsets(s.geometry.spacing_mm, radius_mm, s.geometry.dims)),
+        delta(size_t(s.geometry.dims[0]) + 1, 0) {
+    out.geometry = s.geometry;
+    out.line_start.assign(size_t(s.line_count()) + 1, 0);
+  }
+
+  // Appends the stretches of [lo, hi) where the running sum of `delta` reaches `threshold` as
+  // runs, and clears delta[lo..hi] for the next line.
+  void append_covered(int64_t lo, int64_t hi, int32_t threshold) {
+    int32_t count = 0;
+    int64_t begin = -1;
+    for (int64_t i = lo; i <= hi; ++i) {
+      count += delta[size_t(i)];
+      delta[size_t(i)] = 0;
+      const bool kept = i < hi && count >= threshold;
+      if (kept && begin < 0) begin = i;
+      if (!kept && begin >= 0) {
+        out.runs.push_back({int32_t(begin), int32_t(i)});
+        begin = -1;
+      }
     }
   }
-}
 
-// An empty result on the structure's grid, with its line table sized.
-RunLengthVolume empty_result(const RunLengthVolume& s) {
+  RunLengthVolume finish() {
+    out.line_start.back() = int64_t(out.runs.size());
+    return std::move(out);
+  }
+
+  const std::vector<Offset> offsets;
   RunLengthVolume out;
-  out.geometry = s.geometry;
-  out.line_start.assign(size_t(s.line_count()) + 1, 0);
-  return out;
-}
+  std::vector<int32_t> delta;
+};
 
 }  // namespace
 
@@ -86,10 +98,11 @@ int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm, int64_t s
 }
 
 RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
-  const ImageGeometry& g = s.geometry;
-  const int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
-  const std::vector<Offset> offsets = ball_offsets(g.spacing_mm, radius_mm, g.dims);
-  RunLengthVolume out = empty_result(s);
+  const int64_t nx = s.geometry.dims[0], ny = s.geometry.dims[1], nz = s.geometry.dims[2];
+  BallPass pass(s, radius_mm);
+  const std::vector<Offset>& offsets = pass.offsets;
+  std::vector<int32_t>& delta = pass.delta;
+  RunLengthVolume& out = pass.out;
   // Lines that hold a run, and the (j, k) range the result can reach.
   int64_t jlo = ny, jhi = -1, klo = nz, khi = -1, mj = 0, mk = 0;
   for (int64_t l = 0; l < s.line_count(); ++l) {
@@ -100,7 +113,6 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
   // The union of a line's pieces by a difference array over their span, O(pieces + span): no
   // sort. A count that stays positive across a piece's end joins adjacent pieces into one run
   // (runs are non-adjacent).
-  std::vector<int32_t> delta(size_t(nx) + 1, 0);
   for (int64_t l = 0; l < s.line_count(); ++l) {
     out.line_start[size_t(l)] = int64_t(out.runs.size());
     const int64_t j = l % ny, k = l / ny;
@@ -117,18 +129,17 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
         span_lo = std::min(span_lo, b), span_hi = std::max(span_hi, e);
       }
     }
-    append_covered(delta, span_lo, span_hi, 1, out.runs);
+    pass.append_covered(span_lo, span_hi, 1);
   }
-  out.line_start.back() = int64_t(out.runs.size());
-  return out;
+  return pass.finish();
 }
 
 RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
-  const ImageGeometry& g = s.geometry;
-  const int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
-  const std::vector<Offset> offsets = ball_offsets(g.spacing_mm, radius_mm, g.dims);
-  RunLengthVolume out = empty_result(s);
-  std::vector<int32_t> delta(size_t(nx) + 1, 0);
+  const int64_t nx = s.geometry.dims[0], ny = s.geometry.dims[1], nz = s.geometry.dims[2];
+  BallPass pass(s, radius_mm);
+  const std::vector<Offset>& offsets = pass.offsets;
+  std::vector<int32_t>& delta = pass.delta;
+  RunLengthVolume& out = pass.out;
   for (int64_t k = 0, l = 0; k < nz; ++k) {
     for (int64_t j = 0; j < ny; ++j, ++l) {
       out.line_start[size_t(l)] = int64_t(out.runs.size());
@@ -161,11 +172,10 @@ RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
         }
       }
       // At most one piece per neighbour line covers a voxel: reaching `needed` means all do.
-      append_covered(delta, span_lo, span_hi, needed, out.runs);
+      pass.append_covered(span_lo, span_hi, needed);
     }
   }
-  out.line_start.back() = int64_t(out.runs.size());
-  return out;
+  return pass.finish();
 }
 
 }  // namespace soiq
