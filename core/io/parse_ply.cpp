@@ -1,0 +1,401 @@
+#include "core/io/parse_ply.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/io/byte_order.h"
+#include "core/io/mesh_text.h"
+
+namespace soiq {
+namespace {
+
+enum class Type { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
+
+struct TypeInfo {
+  std::string_view name;
+  Type type;
+  int size;
+  double min, max;  // the integer range; +-inf for floats
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr TypeInfo kTypes[] = {
+    {"char", Type::kInt8, 1, -128, 127},
+    {"int8", Type::kInt8, 1, -128, 127},
+    {"uchar", Type::kUint8, 1, 0, 255},
+    {"uint8", Type::kUint8, 1, 0, 255},
+    {"short", Type::kInt16, 2, -32768, 32767},
+    {"int16", Type::kInt16, 2, -32768, 32767},
+    {"ushort", Type::kUint16, 2, 0, 65535},
+    {"uint16", Type::kUint16, 2, 0, 65535},
+    {"int", Type::kInt32, 4, -2147483648.0, 2147483647.0},
+    {"int32", Type::kInt32, 4, -2147483648.0, 2147483647.0},
+    {"uint", Type::kUint32, 4, 0, 4294967295.0},
+    {"uint32", Type::kUint32, 4, 0, 4294967295.0},
+    {"float", Type::kFloat32, 4, -kInf, kInf},
+    {"float32", Type::kFloat32, 4, -kInf, kInf},
+    {"double", Type::kFloat64, 8, -kInf, kInf},
+    {"float64", Type::kFloat64, 8, -kInf, kInf},
+};
+
+const TypeInfo* type_named(std::string_view name) {
+  for (const TypeInfo& t : kTypes) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+bool is_integer(const TypeInfo& t) { return t.type != Type::kFloat32 && t.type != Type::kFloat64; }
+
+enum class Role { kSkip, kX, kY, kZ, kCorners };
+
+struct Property {
+  std::string name;
+  const TypeInfo* type;             // of the scalar, or of each list item
+  const TypeInfo* count = nullptr;  // of the list count; null for a scalar
+  Role role = Role::kSkip;
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> properties;
+  bool has_list = false;
+};
+
+enum class Format { kAscii, kLittleEndian, kBigEndian };
+
+struct Header {
+  Format format = Format::kAscii;
+  std::vector<Element> elements;
+  size_t body_offset = 0;  // first byte after the end_header line
+  int64_t lines = 0;       // lines in the header
+  uint64_t vertices = 0;
+};
+
+Status bad_header(const std::string& name, int64_t line, const std::string& why) {
+  return invalid_argument(line_where("PLY", name, line) + ": " + why);
+}
+
+// Marks x, y, z of `vertex` and the corner list of `face`; checks that they are there and usable.
+Status assign_roles(Header& h, const std::string& name) {
+  Element* vertex = nullptr;
+  for (Element& e : h.elements) {
+    for (const Element& other : h.elements) {
+      if (&other != &e && other.name == e.name) {
+        return invalid_argument("PLY '" + name + "' declares element '" + e.name + "' twice");
+      }
+    }
+    if (e.name == "tristrips") {
+      return invalid_argument("PLY '" + name + "' has triangle strips ('tristrips'), which soiq does not read");
+    }
+    if (e.name == "vertex") {
+      vertex = &e;
+      for (Property& p : e.properties) {
+        if (p.count != nullptr || (p.name != "x" && p.name != "y" && p.name != "z")) continue;
+        p.role = p.name == "x" ? Role::kX : p.name == "y" ? Role::kY : Role::kZ;
+      }
+    }
+    if (e.name == "face") {
+      int lists = 0;
+      for (Property& p : e.properties) {
+        if (p.count == nullptr || (p.name != "vertex_indices" && p.name != "vertex_index")) continue;
+        if (!is_integer(*p.type)) {
+          return invalid_argument("PLY '" + name + "': face list '" + p.name + "' must hold integers, not " +
+                                  std::string(p.type->name));
+        }
+        p.role = Role::kCorners;
+        ++lists;
+      }
+      if (lists != 1) {
+        return invalid_argument("PLY '" + name + "': element 'face' needs one 'vertex_indices' list, it has " +
+                                std::to_string(lists));
+      }
+    }
+  }
+  if (vertex == nullptr) return invalid_argument("PLY '" + name + "' has no 'vertex' element");
+  for (const char* axis : {"x", "y", "z"}) {
+    int scalars = 0, named = 0;
+    for (const Property& p : vertex->properties) {
+      named += p.name == axis;
+      scalars += p.name == axis && p.count == nullptr;
+    }
+    if (named != 1 || scalars != 1) {
+      return invalid_argument("PLY '" + name + "': element 'vertex' needs one scalar property '" + axis + "'");
+    }
+  }
+  h.vertices = vertex->count;
+  return ok_status();
+}
+
+Result<Header> parse_header(std::string_view bytes, const std::string& name) {
+  Header h;
+  LineReader lines(bytes);
+  std::string_view line;
+  std::vector<std::string_view> w;
+  if (!lines.next(line) || line != "ply") {
+    return invalid_argument("PLY '" + name + "' does not start with the line 'ply'");
+  }
+  bool format_seen = false;
+  while (true) {
+    if (!lines.next(line)) return invalid_argument("PLY '" + name + "' has no 'end_header' line (truncated header?)");
+    const int64_t n = lines.line_number();
+    words_of(line, w);
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header" && w.size() == 1) break;
+    if (w[0] == "format") {
+      if (format_seen || w.size() != 3 || w[2] != "1.0")
+        return bad_header(name, n, "expected 'format <type> 1.0' once");
+      if (w[1] == "ascii") {
+        h.format = Format::kAscii;
+      } else if (w[1] == "binary_little_endian") {
+        h.format = Format::kLittleEndian;
+      } else if (w[1] == "binary_big_endian") {
+        h.format = Format::kBigEndian;
+      } else {
+        return bad_header(name, n, "unknown format '" + std::string(w[1]) + "'");
+      }
+      format_seen = true;
+    } else if (w[0] == "element") {
+      if (w.size() != 3) return bad_header(name, n, "expected 'element <name> <count>'");
+      SOIQ_ASSIGN_OR_RETURN(const int64_t count, whole_integer(w[2], line_where("PLY", name, n)));
+      if (count < 0) return bad_header(name, n, "negative element count " + std::to_string(count));
+      h.elements.push_back({std::string(w[1]), uint64_t(count), {}, false});
+    } else if (w[0] == "property") {
+      if (h.elements.empty()) return bad_header(name, n, "'property' before any 'element'");
+      Element& e = h.elements.back();
+      if (w.size() == 3 && type_named(w[1]) != nullptr) {
+        e.properties.push_back({std::string(w[2]), type_named(w[1])});
+      } else if (w.size() == 5 && w[1] == "list" && type_named(w[2]) != nullptr && type_named(w[3]) != nullptr) {
+        if (!is_integer(*type_named(w[2]))) return bad_header(name, n, "a list count must have an integer type");
+        e.properties.push_back({std::string(w[4]), type_named(w[3]), type_named(w[2])});
+        e.has_list = true;
+      } else {
+        return bad_header(name, n, "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
+      }
+    } else {
+      return bad_header(name, n, "unknown header keyword '" + std::string(w[0].substr(0, 40)) + "'");
+    }
+  }
+  if (!format_seen) return invalid_argument("PLY '" + name + "' has no 'format' line");
+  h.body_offset = lines.offset();
+  h.lines = lines.line_number();
+  SOIQ_RETURN_IF_ERROR(assign_roles(h, name));
+  return h;
+}
+
+// Every element instance takes at least a few bytes (ASCII: a digit and a separator per
+// property; binary: each scalar and each list count): a count the remaining bytes cannot hold is
+// refused here, before anything is allocated for it.
+Status check_counts(const Header& h, size_t body_bytes, const std::string& name) {
+  uint64_t remaining = body_bytes + 1;  // ASCII: the last line may lack its newline
+  for (const Element& e : h.elements) {
+    if (e.count == 0) continue;
+    if (e.properties.empty()) {
+      return invalid_argument("PLY '" + name + "': element '" + e.name + "' has " + std::to_string(e.count) +
+                              " items but no properties");
+    }
+    uint64_t least = 0;
+    for (const Property& p : e.properties) {
+      least += h.format == Format::kAscii ? 2 : uint64_t(p.count != nullptr ? p.count->size : p.type->size);
+    }
+    if (e.count > remaining / least) {
+      return invalid_argument("PLY '" + name + "' is truncated or corrupt: element '" + e.name + "' announces " +
+                              std::to_string(e.count) + " items of at least " + std::to_string(least) +
+                              " bytes, but the data has " + std::to_string(body_bytes) + " bytes");
+    }
+    remaining -= e.count * least;
+  }
+  if (h.vertices > uint64_t(std::numeric_limits<int32_t>::max())) {
+    return resource_exhausted("PLY '" + name + "' has more than 2^31 vertices");
+  }
+  return ok_status();
+}
+
+// Collects one element instance's values into the mesh.
+struct Sink {
+  TriangleMesh& mesh;
+  uint64_t vertices;
+  std::vector<int64_t> corners;
+  Vec3 p{};
+
+  void coordinate(Role role, double v) { p[int(role) - int(Role::kX)] = v; }
+
+  // Fans the corners read into triangles; `where()` names the face, built only for a message.
+  template <typename Where>
+  Status add_face(const Where& where) {
+    if (corners.size() < 3) {
+      return invalid_argument(where() + ": face has " + std::to_string(corners.size()) +
+                              " corners; a face needs at least 3");
+    }
+    for (const int64_t c : corners) {
+      if (c < 0 || uint64_t(c) >= vertices) {
+        return invalid_argument(where() + ": face index " + std::to_string(c) + " is out of range (" +
+                                std::to_string(vertices) + " vertices)");
+      }
+    }
+    for (size_t k = 1; k + 1 < corners.size(); ++k) {
+      mesh.triangles.push_back({int32_t(corners[0]), int32_t(corners[k]), int32_t(corners[k + 1])});
+    }
+    return ok_status();
+  }
+};
+
+// One ASCII value of type `t`; coordinates must be finite, skipped floats may be NaN.
+Result<double> ascii_value(std::string_view token, const TypeInfo& t, bool coordinate, const std::string& where) {
+  if (!is_integer(t)) return coordinate ? finite_number(token, where) : any_number(token, where);
+  SOIQ_ASSIGN_OR_RETURN(const int64_t v, whole_integer(token, where));
+  if (double(v) < t.min || double(v) > t.max) {
+    return invalid_argument(where + ": " + std::to_string(v) + " is out of range for " + std::string(t.name));
+  }
+  return double(v);
+}
+
+Status parse_ascii_body(const Header& h, std::string_view body, const std::string& name, TriangleMesh& mesh) {
+  LineReader lines(body, h.lines + 1);
+  Sink sink{mesh, h.vertices, {}};
+  std::vector<std::string_view> words;
+  std::string_view line;
+  for (const Element& e : h.elements) {
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    for (uint64_t item = 0; item < e.count; ++item) {
+      do {
+        if (!lines.next(line)) {
+          return invalid_argument("PLY '" + name + "' ends in element '" + e.name + "' after " + std::to_string(item) +
+                                  " of " + std::to_string(e.count) + " items; is it truncated?");
+        }
+        words_of(line, words);
+      } while (words.empty());
+      const std::string where = line_where("PLY", name, lines.line_number());
+      // Values the header (and the list counts read so far) declare for this line.
+      size_t declared = e.properties.size();
+      const auto count_mismatch = [&] {
+        return invalid_argument(where + ": " + e.name + " has " + std::to_string(words.size()) +
+                                " values, the header " + (e.has_list ? "and its list counts declare " : "declares ") +
+                                std::to_string(declared));
+      };
+      size_t w = 0;
+      sink.corners.clear();
+      for (const Property& p : e.properties) {
+        if (w >= words.size()) return count_mismatch();
+        if (p.count == nullptr) {
+          SOIQ_ASSIGN_OR_RETURN(const double v, ascii_value(words[w++], *p.type, p.role != Role::kSkip, where));
+          if (p.role != Role::kSkip) sink.coordinate(p.role, v);
+          continue;
+        }
+        SOIQ_ASSIGN_OR_RETURN(const double items, ascii_value(words[w++], *p.count, false, where));
+        if (items < 0) return invalid_argument(where + ": negative list count " + std::to_string(int64_t(items)));
+        declared += size_t(items);
+        if (words.size() - w < size_t(items)) return count_mismatch();
+        for (size_t k = 0; k < size_t(items); ++k) {
+          SOIQ_ASSIGN_OR_RETURN(const double v, ascii_value(words[w++], *p.type, false, where));
+          if (p.role == Role::kCorners) sink.corners.push_back(int64_t(v));
+        }
+      }
+      if (w != words.size()) return count_mismatch();
+      if (is_vertex) mesh.vertices_mm.push_back(sink.p);
+      if (is_face) SOIQ_RETURN_IF_ERROR(sink.add_face([&] { return where; }));
+    }
+  }
+  while (lines.next(line)) {
+    words_of(line, words);
+    if (!words.empty()) {
+      return invalid_argument(line_where("PLY", name, lines.line_number()) + ": data after the last element");
+    }
+  }
+  return ok_status();
+}
+
+double binary_value(const char* p, Type t, bool big) {
+  switch (t) {
+    case Type::kInt8:
+      return double(load_scalar<int8_t>(p, big));
+    case Type::kUint8:
+      return double(load_scalar<uint8_t>(p, big));
+    case Type::kInt16:
+      return double(load_scalar<int16_t>(p, big));
+    case Type::kUint16:
+      return double(load_scalar<uint16_t>(p, big));
+    case Type::kInt32:
+      return double(load_scalar<int32_t>(p, big));
+    case Type::kUint32:
+      return double(load_scalar<uint32_t>(p, big));
+    case Type::kFloat32:
+      return double(load_scalar<float>(p, big));
+    case Type::kFloat64:
+      return load_scalar<double>(p, big);
+  }
+  return 0;
+}
+
+Status parse_binary_body(const Header& h, std::string_view body, const std::string& name, TriangleMesh& mesh) {
+  const bool big = h.format == Format::kBigEndian;
+  Sink sink{mesh, h.vertices, {}};
+  size_t pos = 0;
+  for (const Element& e : h.elements) {
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    const auto where = [&](uint64_t item) {
+      return "PLY '" + name + "' " + e.name + " " + std::to_string(item + 1) + " (from 1)";
+    };
+    const auto truncated = [&](uint64_t item) {
+      return invalid_argument(where(item) + ": the data ends inside it; is the file truncated?");
+    };
+    for (uint64_t item = 0; item < e.count; ++item) {
+      sink.corners.clear();
+      for (const Property& p : e.properties) {
+        if (p.count == nullptr) {
+          if (body.size() - pos < size_t(p.type->size)) return truncated(item);
+          const double v = binary_value(body.data() + pos, p.type->type, big);
+          pos += size_t(p.type->size);
+          if (p.role == Role::kSkip) continue;
+          if (!std::isfinite(v)) return invalid_argument(where(item) + ": coordinate " + p.name + " is not finite");
+          sink.coordinate(p.role, v);
+          continue;
+        }
+        if (body.size() - pos < size_t(p.count->size)) return truncated(item);
+        const double items = binary_value(body.data() + pos, p.count->type, big);
+        pos += size_t(p.count->size);
+        if (items < 0) return invalid_argument(where(item) + ": negative list count " + std::to_string(int64_t(items)));
+        if ((body.size() - pos) / size_t(p.type->size) < size_t(items)) return truncated(item);
+        if (p.role == Role::kCorners) {
+          for (size_t k = 0; k < size_t(items); ++k) {
+            sink.corners.push_back(
+                int64_t(binary_value(body.data() + pos + k * size_t(p.type->size), p.type->type, big)));
+          }
+        }
+        pos += size_t(items) * size_t(p.type->size);
+      }
+      if (is_vertex) mesh.vertices_mm.push_back(sink.p);
+      if (is_face) SOIQ_RETURN_IF_ERROR(sink.add_face([&] { return where(item); }));
+    }
+  }
+  if (pos != body.size()) {
+    return invalid_argument("PLY '" + name + "' has " + std::to_string(body.size() - pos) +
+                            " bytes after its last element");
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<TriangleMesh> parse_ply(std::string_view bytes, const std::string& name) {
+  SOIQ_ASSIGN_OR_RETURN(const Header h, parse_header(bytes, name));
+  const std::string_view body = bytes.substr(h.body_offset);
+  SOIQ_RETURN_IF_ERROR(check_counts(h, body.size(), name));
+  TriangleMesh mesh;
+  mesh.vertices_mm.reserve(size_t(h.vertices));
+  for (const Element& e : h.elements) {
+    if (e.name == "face") mesh.triangles.reserve(size_t(e.count));
+  }
+  if (h.format == Format::kAscii) {
+    SOIQ_RETURN_IF_ERROR(parse_ascii_body(h, body, name, mesh));
+  } else {
+    SOIQ_RETURN_IF_ERROR(parse_binary_body(h, body, name, mesh));
+  }
+  return mesh;
+}
+
+}  // namespace soiq
