@@ -1,0 +1,78 @@
+// parse_mesh: one entry point for every mesh format held in memory (uploads), the RAS flip and
+// the checks common to all formats.
+#include "core/io/parse_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "core/io/write_mesh.h"
+#include "core/mesh_defects.h"
+#include "tests/core/io/io_test_files.h"
+#include "tests/core/io/mesh_test_shapes.h"
+
+namespace soiq {
+namespace {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+class ParseMeshFormats : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ParseMeshFormats, WrittenBoxIsParsedFromMemoryClosed) {
+  const std::string path = testing_io::scratch_path("parse_mesh_box." + GetParam());
+  ASSERT_TRUE(write_mesh(testing_io::awkward_box(), path).ok());
+  const auto mesh = parse_mesh(file_bytes(path), GetParam(), /*ras=*/false, "upload");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().to_string();
+  EXPECT_EQ(mesh->triangles.size(), 12u);
+  EXPECT_EQ(mesh->vertices_mm.size(), 8u);
+  EXPECT_TRUE(mesh_defects(*mesh).closed());
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ParseMeshFormats, ::testing::Values("stl", "obj", "ply", "vtk", "vtp"));
+
+TEST(ParseMesh, FormatIsCaseInsensitiveAndMayHaveADot) {
+  const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_TRUE(parse_mesh(off, ".OFF", false, "a").ok());
+  EXPECT_TRUE(parse_mesh(off, "off", false, "a").ok());
+}
+
+TEST(ParseMesh, RasNegatesXAndY) {
+  const auto mesh = parse_mesh("OFF\n3 1 0\n1 2 3\n1 0 0\n0 1 0\n3 0 1 2\n", "off", /*ras=*/true, "ras.off");
+  ASSERT_TRUE(mesh.ok()) << mesh.status().to_string();
+  EXPECT_EQ(mesh->vertices_mm[0], (Vec3{-1, -2, 3}));
+}
+
+TEST(ParseMesh, UnknownFormatIsInvalidArgument) {
+  const auto mesh = parse_mesh("x", "3ds", false, "m.3ds");
+  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(mesh.status().message().find("unknown mesh format '3ds' of 'm.3ds'"), std::string::npos)
+      << mesh.status().message();
+}
+
+TEST(ParseMesh, EmptyBytesAreInvalidArgumentInEveryFormat) {
+  for (const char* format : {"stl", "obj", "ply", "off", "vtk", "vtp"}) {
+    const auto mesh = parse_mesh("", format, false, "empty");
+    EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument) << format;
+    EXPECT_NE(mesh.status().message().find("mesh 'empty' is empty"), std::string::npos) << mesh.status().message();
+  }
+}
+
+TEST(ParseMesh, NoTrianglesIsInvalidArgument) {
+  const auto mesh = parse_mesh("v 0 0 0\n", "obj", false, "points.obj");
+  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(mesh.status().message().find("mesh 'points.obj' contains no triangles"), std::string::npos);
+}
+
+TEST(ParseMesh, MessagesNameTheUploadNotAPath) {
+  const auto mesh = parse_mesh("v 0 0 nan\n", "obj", false, "hippo_L.obj");
+  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(mesh.status().message(), "OBJ 'hippo_L.obj' line 1: 'nan' is not a finite number");
+}
+
+}  // namespace
+}  // namespace soiq
