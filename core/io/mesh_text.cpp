@@ -25,13 +25,13 @@ Result<double> parse_number(std::string_view token, std::string_view where, bool
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const bool whole = !digits.empty() && end == digits.data() + digits.size();
   if (ec == std::errc::result_out_of_range && whole) {
-    return invalid_argument(std::string(where) + ": '" + std::string(token) + "' is out of range");
+    return invalid_argument(std::string(where) + ": " + quoted(token) + " is out of range");
   }
   if (ec != std::errc() || !whole) {
-    return invalid_argument(std::string(where) + ": '" + std::string(token) + "' is not a number");
+    return invalid_argument(std::string(where) + ": " + quoted(token) + " is not a number");
   }
   if (finite && !std::isfinite(value)) {
-    return invalid_argument(std::string(where) + ": '" + std::string(token) + "' is not a finite number");
+    return invalid_argument(std::string(where) + ": " + quoted(token) + " is not a finite number");
   }
   return value;
 }
@@ -74,12 +74,20 @@ Result<int64_t> whole_integer(std::string_view token, std::string_view where) {
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const bool whole = !digits.empty() && end == digits.data() + digits.size();
   if (ec == std::errc::result_out_of_range && whole) {
-    return invalid_argument(std::string(where) + ": '" + std::string(token) + "' is out of range");
+    return invalid_argument(std::string(where) + ": " + quoted(token) + " is out of range");
   }
   if (ec != std::errc() || !whole) {
-    return invalid_argument(std::string(where) + ": '" + std::string(token) + "' is not an integer");
+    return invalid_argument(std::string(where) + ": " + quoted(token) + " is not an integer");
   }
   return value;
+}
+
+std::string quoted(std::string_view token) {
+  constexpr size_t kMaxShown = 40;
+  std::string out = "'";
+  for (const char c : token.substr(0, kMaxShown)) out += c >= 0x20 && c < 0x7f ? c : '?';
+  if (token.size() > kMaxShown) out += "...";
+  return out + "'";
 }
 
 std::string line_where(std::string_view format, const std::string& name, int64_t line) {

@@ -52,6 +52,10 @@ Result<double> any_number(std::string_view token, std::string_view where);
 // The whole token as a decimal integer ("12", "-3", "+4").
 Result<int64_t> whole_integer(std::string_view token, std::string_view where);
 
+// The token in single quotes for a message: at most 40 bytes ("..." marks a cut) and bytes that
+// are not printable ASCII shown as '?', so hostile input cannot make messages huge or multi-line.
+std::string quoted(std::string_view token);
+
 // "<format> '<name>' line <n>", the prefix of every message about a line.
 std::string line_where(std::string_view format, const std::string& name, int64_t line);
 

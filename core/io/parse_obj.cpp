@@ -26,7 +26,7 @@ Result<int64_t> resolve(std::string_view token, std::string_view corner, Kind ki
                         int64_t line, const std::string& where) {
   const Result<int64_t> index = whole_integer(token, where);
   if (!index.ok() || *index == 0) {
-    return invalid_argument(where + ": malformed face index '" + std::string(corner) + "'" +
+    return invalid_argument(where + ": malformed face index " + quoted(corner) +
                             (index.ok() ? " (OBJ indices start at 1)" : ""));
   }
   if (*index < 0 && -*index > defined) {
@@ -100,7 +100,7 @@ Result<TriangleMesh> parse_obj(std::string_view bytes, const std::string& name) 
             if (kind == kVertex) corners.push_back(index);
           }
           if (last) break;
-          if (kind == kNormal) return invalid_argument(w + ": malformed face index '" + std::string(words[k]) + "'");
+          if (kind == kNormal) return invalid_argument(w + ": malformed face index " + quoted(words[k]));
           rest = rest.substr(slash + 1);
         }
       }

@@ -27,7 +27,7 @@ Result<TriangleMesh> parse_off(std::string_view bytes, const std::string& name) 
   std::vector<std::string_view> words;
   if (!next_words(lines, words) || words[0] != "OFF") {
     return invalid_argument("OFF '" + name + "' does not start with the keyword 'OFF'" +
-                            (words.empty() ? "" : " (found '" + std::string(words[0].substr(0, 40)) + "')"));
+                            (words.empty() ? "" : " (found " + quoted(words[0]) + ")"));
   }
   std::vector<std::string_view> counts(words.begin() + 1, words.end());
   if (counts.empty()) {

@@ -76,6 +76,9 @@ struct Header {
   uint64_t vertices = 0;
 };
 
+// Names go into messages: they must be printable and short (quoted() shows them unchanged).
+bool is_short_word(std::string_view s) { return quoted(s) == "'" + std::string(s) + "'"; }
+
 Status bad_header(const std::string& name, int64_t line, const std::string& why) {
   return invalid_argument(line_where("PLY", name, line) + ": " + why);
 }
@@ -156,17 +159,23 @@ Result<Header> parse_header(std::string_view bytes, const std::string& name) {
       } else if (w[1] == "binary_big_endian") {
         h.format = Format::kBigEndian;
       } else {
-        return bad_header(name, n, "unknown format '" + std::string(w[1]) + "'");
+        return bad_header(name, n, "unknown format " + quoted(w[1]));
       }
       format_seen = true;
     } else if (w[0] == "element") {
       if (w.size() != 3) return bad_header(name, n, "expected 'element <name> <count>'");
       SOIQ_ASSIGN_OR_RETURN(const int64_t count, whole_integer(w[2], line_where("PLY", name, n)));
       if (count < 0) return bad_header(name, n, "negative element count " + std::to_string(count));
+      if (!is_short_word(w[1]))
+        return bad_header(name, n, "element name " + quoted(w[1]) + " is not a short printable word");
       h.elements.push_back({std::string(w[1]), uint64_t(count), {}, false});
     } else if (w[0] == "property") {
       if (h.elements.empty()) return bad_header(name, n, "'property' before any 'element'");
       Element& e = h.elements.back();
+      const std::string_view property_name = w.back();
+      if (!is_short_word(property_name)) {
+        return bad_header(name, n, "property name " + quoted(property_name) + " is not a short printable word");
+      }
       if (w.size() == 3 && type_named(w[1]) != nullptr) {
         e.properties.push_back({std::string(w[2]), type_named(w[1])});
       } else if (w.size() == 5 && w[1] == "list" && type_named(w[2]) != nullptr && type_named(w[3]) != nullptr) {
@@ -177,7 +186,7 @@ Result<Header> parse_header(std::string_view bytes, const std::string& name) {
         return bad_header(name, n, "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       }
     } else {
-      return bad_header(name, n, "unknown header keyword '" + std::string(w[0].substr(0, 40)) + "'");
+      return bad_header(name, n, "unknown header keyword " + quoted(w[0]));
     }
   }
   if (!format_seen) return invalid_argument("PLY '" + name + "' has no 'format' line");

@@ -167,8 +167,7 @@ Result<TriangleMesh> parse_ascii(std::string_view bytes, const std::string& name
         expect = Expect::kFacet;
         continue;
     }
-    std::string found(key.substr(0, 40));
-    return invalid_argument(where + ": expected '" + kExpected[int(expect)] + "', found '" + found + "'");
+    return invalid_argument(where + ": expected '" + kExpected[int(expect)] + "', found " + quoted(key));
   }
   if (!any_solid) return invalid_argument("STL '" + name + "' has no 'solid' line");
   if (expect != Expect::kSolid) {

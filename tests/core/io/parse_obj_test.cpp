@@ -149,6 +149,13 @@ TEST(ParseObj, FreeFormGeometryIsRefusedNotDropped) {
   expect_invalid(parse_obj(std::string(kSquare) + "surf 0 1 0 1 1 2 3 4\n", "surf.obj"), "free-form geometry");
 }
 
+TEST(ParseObj, HugeOrBinaryTokensAreQuotedShortAndPrintable) {
+  // A hostile token must not make a huge or multi-line message (soiqd logs messages as logfmt).
+  const auto mesh = parse_obj("v 0 0 " + std::string(100000, '7') + "x\n", "long.obj");
+  expect_invalid(mesh, "line 1: '7777777777777777777777777777777777777777...' is not a number");
+  expect_invalid(parse_obj(std::string("v 0 0 1\x01\x7f\n"), "ctrl.obj"), "'1?\?' is not a number");
+}
+
 TEST(ParseObj, FileWithoutFacesHasNoTriangles) {
   const auto mesh = parse_obj("v 0 0 0\n", "points.obj");
   ASSERT_TRUE(mesh.ok());

@@ -257,6 +257,8 @@ TEST(ParsePly, MalformedHeadersAreInvalidArgument) {
   expect_invalid(
       parse_ply("ply\nformat ascii 1.0\n" + v + "element face 1\nproperty int flags\nend_header\n", "noindices.ply"),
       "element 'face' needs one 'vertex_indices' list, it has 0");
+  expect_invalid(parse_ply("ply\nformat ascii 1.0\nelement vert\x01x 1\n", "ctrl.ply"),
+                 "line 3: element name 'vert?x' is not a short printable word");
   expect_invalid(parse_ply("ply\nformat ascii 1.0\n" + v + "element vertex -1\nend_header\n", "negative.ply"),
                  "negative element count -1");
   expect_invalid(parse_ply("ply\nformat ascii 1.0\nelement face 0\nproperty list uchar int vertex_indices\n"
