@@ -58,11 +58,7 @@ Result<ParsedSurface> parse_surface(const std::string& bytes, const std::string&
 Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name) {
   SOIQ_ASSIGN_OR_RETURN(const std::string f, checked_format(format, {"nii", "nii.gz", "nrrd", "mha"}, "image"));
   if (bytes.empty()) return invalid_argument("image '" + name + "' is empty (0 bytes uploaded)");
-  SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create("." + f));
-  SOIQ_RETURN_IF_ERROR(file.write(bytes));
-  Result<Image> image = read_image(file.path());
-  if (!image.ok()) return renamed(image.status(), file.path(), name);
-  return image;
+  return decode_image(bytes, f, name);
 }
 
 Result<std::string> surface_bytes(const TriangleMesh& mesh, const std::string& format, bool ras) {

@@ -7,7 +7,9 @@
 // validated (no triangles, NaN vertices, bad indices: INVALID_ARGUMENT naming `name`), and a closed
 // mesh is turned to face outward. An open or inconsistently oriented surface is FAILED_PRECONDITION
 // unless `robust` (its conversions then use the three-axis vote).
-// parse_image: `format` is nii, nii.gz, nrrd or mha; INVALID_ARGUMENT for a malformed file.
+// parse_image: `format` is nii, nii.gz, nrrd or mha, parsed in memory (core/io decode_image): a
+// header naming a separate data file is refused, so no upload makes soiqd read a server file;
+// INVALID_ARGUMENT for a malformed file.
 // surface_bytes: the mesh in `format` (stl default), flipped to RAS when asked.
 
 #include <string>

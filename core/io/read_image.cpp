@@ -1,5 +1,7 @@
 #include "core/io/read_image.h"
 
+#include <cctype>
+
 #include "core/io/file_extension.h"
 #include "core/io/read_metaimage.h"
 #include "core/io/read_nifti.h"
@@ -14,6 +16,16 @@ Result<Image> read_image(const std::string& path) {
   if (ext == ".mha" || ext == ".mhd") return read_metaimage(path);
   return invalid_argument("unknown image extension '" + ext + "' of '" + path +
                           "'; soiq reads .nii, .nii.gz, .nrrd, .nhdr, .mha and .mhd");
+}
+
+Result<Image> decode_image(const std::string& bytes, const std::string& format, const std::string& name) {
+  std::string f = format;
+  for (char& c : f) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (f.starts_with(".")) f.erase(0, 1);
+  if (f == "nii" || f == "nii.gz") return parse_nifti(bytes, name);
+  if (f == "nrrd") return parse_nrrd(bytes, name, std::nullopt);
+  if (f == "mha") return parse_metaimage(bytes, name, std::nullopt);
+  return invalid_argument("unknown image format '" + format + "' of '" + name + "'; known: nii, nii.gz, nrrd, mha");
 }
 
 Mask mask_from_image(const Image& image, int label) {

@@ -115,6 +115,11 @@ Result<ImageGeometry> parse_geometry(const MetaHeader& h, const std::string& pat
 
 Result<Image> read_metaimage(const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
+  return parse_metaimage(bytes, path, directory_of(path));
+}
+
+Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
+                              const std::optional<std::string>& detached_dir) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
   SOIQ_ASSIGN_OR_RETURN(const MetaHeader header, parse_header(bytes, path));
   if (const std::string* object = find_first(header, {"ObjectType"}); object && *object != "Image") {
@@ -138,11 +143,17 @@ Result<Image> read_metaimage(const std::string& path) {
   if (data_file == "LOCAL") {
     encoded = bytes.substr(header.data_offset);
   } else {
+    if (!detached_dir) {
+      return invalid_argument("MetaImage '" + path +
+                              "' names a separate data file ('ElementDataFile = " + data_file.substr(0, 80) +
+                              "'); soiq reads uploaded images only with their data attached: save it as one .mha "
+                              "(ElementDataFile = LOCAL)");
+    }
     if (data_file.starts_with("LIST") || data_file.find('%') != std::string::npos ||
         split_words(data_file).size() != 1) {
       return bad_field(path, "ElementDataFile", data_file, "multi-file data is not supported");
     }
-    const std::string data_path = data_file.starts_with("/") ? data_file : directory_of(path) + data_file;
+    const std::string data_path = data_file.starts_with("/") ? data_file : *detached_dir + data_file;
     SOIQ_ASSIGN_OR_RETURN(encoded, read_file_bytes(data_path, "MetaImage data"));
   }
   const bool big_endian = is_true(find_first(header, {"BinaryDataByteOrderMSB", "ElementByteOrderMSB"}));

@@ -14,6 +14,7 @@
 //             fields (named), truncated or corrupt data; RESOURCE_EXHAUSTED > kDefaultMaxVoxels.
 // Cost        O(voxels); thread-safe.
 
+#include <optional>
 #include <string>
 
 #include "core/image.h"
@@ -22,5 +23,10 @@
 namespace soiq {
 
 Result<Image> read_metaimage(const std::string& path);
+
+// The same from bytes named `path` in messages; `detached_dir` as for parse_nrrd: nullopt refuses
+// any ElementDataFile but LOCAL.
+Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
+                              const std::optional<std::string>& detached_dir);
 
 }  // namespace soiq

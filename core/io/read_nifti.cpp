@@ -3,6 +3,7 @@
 #include <nifti2_io.h>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -10,6 +11,7 @@
 #include "core/io/geometry_from_axes.h"
 #include "core/io/read_file_bytes.h"
 #include "core/io/voxel_type.h"
+#include "core/io/zlib_codec.h"
 
 namespace soiq {
 namespace {
@@ -65,50 +67,185 @@ Result<ImageGeometry> nifti_geometry(const nifti_image& nim, const std::string& 
   return geometry_from_axes(axes, origin, {nim.nx, nim.ny, nim.nz}, path);
 }
 
+bool is_gzip(std::string_view bytes) {
+  return bytes.size() >= 2 && uint8_t(bytes[0]) == 0x1f && uint8_t(bytes[1]) == 0x8b;
+}
+
+uint32_t byte_swapped(uint32_t v) { return __builtin_bswap32(v); }
+
+// The header's version (1: 348 bytes, 2: 540 bytes) from sizeof_hdr, in either byte order; 0 when
+// it is neither, so the bytes are no NIfTI header at all.
+int header_version(std::string_view bytes) {
+  if (bytes.size() < 4) return 0;
+  uint32_t n = 0;
+  std::memcpy(&n, bytes.data(), 4);
+  if (n == 348 || byte_swapped(n) == 348) return 1;
+  if (n == 540 || byte_swapped(n) == 540) return 2;
+  return 0;
+}
+
+// libnifti builds the nifti_image (qform/sform matrices, byte order) from a header in memory, but
+// trusts dim[]: dim[0] indexes the array, so it is checked here first, in the file's byte order.
+template <typename Header, typename Dim>
+Status check_dims(const Header& h, bool swapped, const std::string& name) {
+  Dim d[8];
+  std::memcpy(d, h.dim, sizeof d);
+  if (swapped) {
+    for (Dim& v : d) {
+      if constexpr (sizeof(Dim) == 2)
+        v = Dim(__builtin_bswap16(uint16_t(v)));
+      else
+        v = Dim(__builtin_bswap64(uint64_t(v)));
+    }
+  }
+  if (d[0] < 1 || d[0] > 7) {
+    return invalid_argument("NIfTI '" + name + "' has dim[0] = " + std::to_string(d[0]) + " (must be 1 to 7)");
+  }
+  for (int a = 1; a <= d[0]; ++a) {
+    if (d[a] < 1) {
+      return invalid_argument("NIfTI '" + name + "' has dim[" + std::to_string(a) + "] = " + std::to_string(d[a]) +
+                              " (sizes must be >= 1)");
+    }
+  }
+  return ok_status();
+}
+
+// A single-file NIfTI header read from memory into libnifti's image description (no data), with
+// vox_offset as the file says it (libnifti silently moves an offset inside the header to 352).
+struct NiftiHeader {
+  NiftiPtr nim;
+  int64_t vox_offset = 0;
+  int64_t header_size = 0;
+};
+
+Result<NiftiHeader> header_from_bytes(std::string_view head, const std::string& name) {
+  const int version = header_version(head);
+  if (version == 0) {
+    return invalid_argument("'" + name + "' is not a NIfTI file (its first 4 bytes are not sizeof_hdr 348 or 540)");
+  }
+  const size_t header_size = version == 1 ? sizeof(nifti_1_header) : sizeof(nifti_2_header);
+  if (head.size() < header_size) {
+    return invalid_argument("NIfTI '" + name + "' is truncated: " + std::to_string(head.size()) +
+                            " bytes, less than its " + std::to_string(header_size) + "-byte header");
+  }
+  uint32_t sizeof_hdr = 0;
+  std::memcpy(&sizeof_hdr, head.data(), 4);
+  const bool swapped = sizeof_hdr != header_size;
+  // A two-file header ("ni1"/"ni2", or Analyze without magic) names a companion .img file: soiq
+  // reads self-contained files only, so no header can make it open another file.
+  if (version == 1) {
+    nifti_1_header h;
+    std::memcpy(&h, head.data(), sizeof h);
+    if (std::memcmp(h.magic, "n+1", 4) != 0) {
+      return invalid_argument("NIfTI '" + name +
+                              "' is not a single-file NIfTI-1 (magic is not 'n+1'); a .hdr/.img pair is "
+                              "not read: convert it to one .nii file");
+    }
+    SOIQ_RETURN_IF_ERROR((check_dims<nifti_1_header, int16_t>(h, swapped, name)));
+    // NIfTI-1 stores vox_offset as a float, which libnifti casts to an integer: out of range, that
+    // cast is undefined, so it is checked first.
+    uint32_t raw_offset = 0;
+    std::memcpy(&raw_offset, &h.vox_offset, 4);
+    if (swapped) raw_offset = byte_swapped(raw_offset);
+    float vox_offset = 0;
+    std::memcpy(&vox_offset, &raw_offset, 4);
+    if (!(vox_offset >= 0 && vox_offset < 1e15f)) {
+      return invalid_argument("NIfTI '" + name + "' has vox_offset " + std::to_string(vox_offset) +
+                              " (must be a byte offset within the file)");
+    }
+    NiftiPtr nim(nifti_convert_n1hdr2nim(h, name.c_str()));
+    if (!nim) return invalid_argument("'" + name + "' has a NIfTI-1 header that libnifti rejects");
+    return NiftiHeader{std::move(nim), int64_t(vox_offset), int64_t(header_size)};
+  }
+  nifti_2_header h;
+  std::memcpy(&h, head.data(), sizeof h);
+  if (std::memcmp(h.magic, "n+2", 4) != 0) {
+    return invalid_argument("NIfTI '" + name +
+                            "' is not a single-file NIfTI-2 (magic is not 'n+2'); a .hdr/.img pair is not "
+                            "read: convert it to one .nii file");
+  }
+  SOIQ_RETURN_IF_ERROR((check_dims<nifti_2_header, int64_t>(h, swapped, name)));
+  int64_t vox_offset = h.vox_offset;
+  if (swapped) vox_offset = int64_t(__builtin_bswap64(uint64_t(vox_offset)));
+  NiftiPtr nim(nifti_convert_n2hdr2nim(h, name.c_str()));
+  if (!nim) return invalid_argument("'" + name + "' has a NIfTI-2 header that libnifti rejects");
+  return NiftiHeader{std::move(nim), vox_offset, int64_t(header_size)};
+}
+
 }  // namespace
 
-Result<Image> read_nifti(const std::string& path) {
-  SOIQ_ASSIGN_OR_RETURN(const int64_t file_bytes, input_file_size(path, "image"));
-  if (file_bytes == 0) return invalid_argument("image file '" + path + "' is empty");
+Result<Image> parse_nifti(std::string_view bytes, const std::string& name) {
+  if (bytes.empty()) return invalid_argument("image '" + name + "' is empty");
   // libnifti prints its errors to stderr unless its debug level is 0; we report our own.
   static std::once_flag quiet;
   std::call_once(quiet, [] { nifti_set_debug_level(0); });
 
-  NiftiPtr nim(nifti_image_read(path.c_str(), /*read_data=*/0));
-  if (!nim) return invalid_argument("'" + path + "' is not a readable NIfTI file (bad or truncated header)");
+  const bool gz = is_gzip(bytes);
+  std::string inflated_head;
+  if (gz) {
+    SOIQ_ASSIGN_OR_RETURN(inflated_head, inflate_at_most(bytes, sizeof(nifti_2_header), name));
+  }
+  SOIQ_ASSIGN_OR_RETURN(const NiftiHeader header,
+                        header_from_bytes(gz ? std::string_view(inflated_head) : bytes, name));
+  const NiftiPtr& nim = header.nim;
   for (int d = 4; d <= 7; ++d) {
     if (nim->dim[0] >= d && nim->dim[d] > 1) {
-      return invalid_argument("NIfTI '" + path + "' has " + std::to_string(nim->dim[0]) +
+      return invalid_argument("NIfTI '" + name + "' has " + std::to_string(nim->dim[0]) +
                               " dimensions; soiq reads 3D images only");
     }
   }
   const auto type = nifti_voxel_type(nim->datatype);
   if (!type) {
-    return invalid_argument("NIfTI '" + path + "' has datatype " + std::to_string(nim->datatype) + " (" +
+    return invalid_argument("NIfTI '" + name + "' has datatype " + std::to_string(nim->datatype) + " (" +
                             nifti_datatype_string(nim->datatype) + "), which soiq does not read");
   }
-  SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, nifti_geometry(*nim, path));
+  SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, nifti_geometry(*nim, name));
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, kDefaultMaxVoxels));
   const int64_t count = geometry.voxel_count();
   const int64_t needed = count * int64_t(voxel_type_size(*type));
-  // For an uncompressed file, check the size before libnifti allocates and reads.
-  if (nim->iname && !nifti_is_gzfile(nim->iname)) {
-    SOIQ_ASSIGN_OR_RETURN(const int64_t data_file_bytes, input_file_size(nim->iname, "NIfTI data"));
-    if (data_file_bytes < nim->iname_offset + needed) {
-      return invalid_argument("NIfTI '" + path + "' is truncated: " + std::to_string(data_file_bytes) +
-                              " bytes, expected " + std::to_string(nim->iname_offset + needed));
-    }
+  // vox_offset is where the voxels start; it cannot lie inside the header, nor past the data.
+  const int64_t header_size = header.header_size;
+  const int64_t offset = header.vox_offset;
+  if (offset < 0 || offset > (int64_t(1) << 50)) {
+    return invalid_argument("NIfTI '" + name + "' has vox_offset " + std::to_string(offset) +
+                            " (must be a byte offset within the file)");
   }
-  if (nifti_image_load(nim.get()) < 0 || nim->data == nullptr) {
-    return invalid_argument("NIfTI '" + path + "' is truncated or its voxel data is unreadable");
+  if (offset < header_size) {
+    return invalid_argument("NIfTI '" + name + "' has vox_offset " + std::to_string(offset) +
+                            ", inside its header (a single-file NIfTI's voxels start at byte " +
+                            std::to_string(header_size) + " or later)");
   }
-  Image image{geometry, decode_voxels(static_cast<const char*>(nim->data), size_t(count), *type, false)};
+  std::string inflated;
+  if (gz) {
+    SOIQ_ASSIGN_OR_RETURN(inflated, inflate_at_most(bytes, size_t(offset + needed), name));
+  }
+  const std::string_view file = gz ? std::string_view(inflated) : bytes;
+  if (int64_t(file.size()) < offset + needed) {
+    return invalid_argument("NIfTI '" + name + "' is truncated: " + std::to_string(file.size()) +
+                            " bytes, its header (vox_offset " + std::to_string(offset) + ", " + std::to_string(count) +
+                            " voxels of " + std::to_string(voxel_type_size(*type)) + " bytes) needs " +
+                            std::to_string(offset + needed));
+  }
+  const bool swap = nim->byteorder != nifti_short_order();
+  Image image{geometry, decode_voxels(file.data() + offset, size_t(count), *type, swap)};
   const double slope = nim->scl_slope;
   const double inter = nim->scl_inter;
   if (std::isfinite(slope) && slope != 0 && std::isfinite(inter) && !(slope == 1 && inter == 0)) {
-    for (float& v : image.voxels) v = float(double(v) * slope + inter);
+    for (float& v : image.voxels) {
+      const bool was_finite = std::isfinite(v);
+      v = float(double(v) * slope + inter);
+      if (was_finite && !std::isfinite(v)) {
+        return invalid_argument("NIfTI '" + name + "' has scl_slope " + std::to_string(slope) + " and scl_inter " +
+                                std::to_string(inter) + ", which take its voxel values beyond float's range");
+      }
+    }
   }
   return image;
+}
+
+Result<Image> read_nifti(const std::string& path) {
+  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
+  return parse_nifti(bytes, path);
 }
 
 }  // namespace soiq

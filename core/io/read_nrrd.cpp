@@ -145,8 +145,10 @@ Result<ImageGeometry> parse_geometry(const NrrdHeader& h, const std::string& pat
   return geometry_from_axes(axes, origin, dims, path);
 }
 
-// The encoded voxel bytes: the attached data after the header, or the detached data file.
-Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, const std::string& path) {
+// The encoded voxel bytes: the attached data after the header, or the detached data file when
+// the header's own directory is known (a local file); bytes from elsewhere cannot name a file.
+Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, const std::string& path,
+                               const std::optional<std::string>& detached_dir) {
   auto it = h.fields.find("data file");
   if (it == h.fields.end()) it = h.fields.find("datafile");
   if (it == h.fields.end()) {
@@ -156,10 +158,14 @@ Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, co
     return bytes.substr(h.data_offset);
   }
   const std::string& name = it->second;
+  if (!detached_dir) {
+    return invalid_argument("NRRD '" + path + "' names a separate data file ('data file: " + name.substr(0, 80) +
+                            "'); soiq reads uploaded images only with their data attached: save it as one .nrrd");
+  }
   if (name.starts_with("LIST") || name.find('%') != std::string::npos || split_words(name).size() != 1) {
     return bad_field(path, "data file", name, "multi-file data is not supported");
   }
-  const std::string data_path = name.starts_with("/") ? name : directory_of(path) + name;
+  const std::string data_path = name.starts_with("/") ? name : *detached_dir + name;
   return read_file_bytes(data_path, "NRRD data");
 }
 
@@ -167,6 +173,11 @@ Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, co
 
 Result<Image> read_nrrd(const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
+  return parse_nrrd(bytes, path, directory_of(path));
+}
+
+Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
+                         const std::optional<std::string>& detached_dir) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
   SOIQ_ASSIGN_OR_RETURN(const NrrdHeader header, parse_header(bytes, path));
   SOIQ_ASSIGN_OR_RETURN(const std::string type_name, field(header, "type", path));
@@ -194,7 +205,7 @@ Result<Image> read_nrrd(const std::string& path) {
     }
     byte_skip = *n;
   }
-  SOIQ_ASSIGN_OR_RETURN(std::string encoded, data_bytes(bytes, header, path));
+  SOIQ_ASSIGN_OR_RETURN(std::string encoded, data_bytes(bytes, header, path, detached_dir));
 
   if (encoding == "ascii" || encoding == "text" || encoding == "txt") {
     const auto words = split_words(encoded);

@@ -11,6 +11,7 @@
 //             RESOURCE_EXHAUSTED more than kDefaultMaxVoxels voxels.
 // Cost        O(voxels); thread-safe.
 
+#include <optional>
 #include <string>
 
 #include "core/image.h"
@@ -19,5 +20,12 @@
 namespace soiq {
 
 Result<Image> read_nrrd(const std::string& path);
+
+// The same from bytes named `path` in messages. `detached_dir`: the directory a `data file` field
+// is resolved in (with a trailing '/'), or nullopt for bytes that are not a local file (an
+// upload): a header naming a data file is then INVALID_ARGUMENT, so no header can make soiqd read
+// a file of the sender's choosing.
+Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
+                         const std::optional<std::string>& detached_dir);
 
 }  // namespace soiq

@@ -6,8 +6,15 @@
 
 namespace soiq {
 
-Result<std::string> inflate_bytes(std::string_view compressed, size_t expected_bytes, const std::string& name) {
-  std::string out(expected_bytes, '\0');
+namespace {
+
+// Inflates into at most `limit` bytes. `exact`: the stream must hold exactly `limit` bytes (an
+// announced size); otherwise inflation stops at `limit` or at the end of the stream, whichever
+// comes first. The output buffer grows with what the stream really yields, up to `limit`: a tiny
+// file whose header announces gigabytes fails as truncated without allocating them first.
+Result<std::string> inflate_up_to(std::string_view compressed, size_t limit, bool exact, const std::string& name) {
+  const size_t expected_bytes = limit;
+  std::string out(std::min<size_t>(limit, size_t(1) << 20), '\0');
   z_stream zs{};
   // 32 + MAX_WBITS: accept both zlib and gzip headers.
   if (inflateInit2(&zs, 32 + MAX_WBITS) != Z_OK) return internal_error("zlib inflateInit2 failed for '" + name + "'");
@@ -18,7 +25,8 @@ Result<std::string> inflate_bytes(std::string_view compressed, size_t expected_b
     // zlib counts in uInt: feed at most 1 GiB per call. Once the output is full, a one-byte spare
     // buffer reveals a stream that holds more than announced.
     const size_t in_chunk = std::min<size_t>(compressed.size() - in_pos, size_t(1) << 30);
-    const bool full = out_pos == out.size();
+    if (out_pos == out.size() && out.size() < limit) out.resize(std::min(limit, out.size() * 2));
+    const bool full = out_pos == limit;
     const size_t out_chunk = full ? 1 : std::min<size_t>(out.size() - out_pos, size_t(1) << 30);
     zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data() + in_pos));
     zs.avail_in = uInt(in_chunk);
@@ -29,12 +37,13 @@ Result<std::string> inflate_bytes(std::string_view compressed, size_t expected_b
     const size_t produced = out_chunk - zs.avail_out;
     if (full && produced > 0) {
       inflateEnd(&zs);
+      if (!exact) return out;
       return invalid_argument("compressed data of '" + name + "' holds more than the " +
                               std::to_string(expected_bytes) + " bytes its header announces");
     }
     if (!full) out_pos += produced;
     if (rc == Z_STREAM_END) {
-      if (out_pos == out.size() || in_pos >= compressed.size()) break;
+      if (out_pos == limit || in_pos >= compressed.size()) break;
       if (inflateReset(&zs) != Z_OK) break;  // another gzip member follows
       continue;
     }
@@ -46,11 +55,25 @@ Result<std::string> inflate_bytes(std::string_view compressed, size_t expected_b
     }
   }
   inflateEnd(&zs);
-  if (out_pos != out.size()) {
+  if (!exact) {
+    out.resize(out_pos);
+    return out;
+  }
+  if (out_pos != limit) {
     return invalid_argument("compressed data of '" + name + "' is truncated: it inflates to " +
                             std::to_string(out_pos) + " bytes, expected " + std::to_string(expected_bytes));
   }
   return out;
+}
+
+}  // namespace
+
+Result<std::string> inflate_bytes(std::string_view compressed, size_t expected_bytes, const std::string& name) {
+  return inflate_up_to(compressed, expected_bytes, /*exact=*/true, name);
+}
+
+Result<std::string> inflate_at_most(std::string_view compressed, size_t max_bytes, const std::string& name) {
+  return inflate_up_to(compressed, max_bytes, /*exact=*/false, name);
 }
 
 Result<std::string> deflate_bytes(std::string_view data, ZlibFormat format) {
