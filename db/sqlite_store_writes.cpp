@@ -47,8 +47,8 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
     if (found) {
       const std::string owner = q.text(1);
       if (owner != patient.patient_id) {
-        return invalid_argument("study '" + study.study_uid + "' belongs to patient '" + owner + "', not to '" +
-                                patient.patient_id + "'");
+        return failed_precondition("study '" + study.study_uid + "' belongs to patient '" + owner + "', not to '" +
+                                   patient.patient_id + "': an upload never moves a study to another patient");
       }
       study_pk = q.int64(0);
       stored_date = q.text(2);
@@ -242,14 +242,20 @@ Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
   // A re-imported structure (same source_uid) keeps its id; its old surface goes if orphaned.
   std::optional<int64_t> old_patient_pk;
   if (!s.source_uid.empty()) {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT s.id, s.surface_sha256, st.patient_pk FROM structures s JOIN "
-                                                 "studies st ON st.pk = s.study_pk WHERE s.source_uid = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT s.id, s.surface_sha256, st.patient_pk, p.patient_id FROM "
+                                                 "structures s JOIN studies st ON st.pk = s.study_pk JOIN patients p "
+                                                 "ON p.pk = st.patient_pk WHERE s.source_uid = ?1"));
     q.bind(1, s.source_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (row) {
       const int64_t id = q.int64(0);
       const std::string old_sha = q.text(1);
       old_patient_pk = q.int64(2);
+      if (*old_patient_pk != keys.patient_pk) {
+        return failed_precondition("structure " + std::to_string(id) + " (source '" + s.source_uid +
+                                   "') belongs to patient '" + q.text(3) + "', not to '" + s.patient.patient_id +
+                                   "': an import never moves a structure to another patient");
+      }
       SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare("UPDATE structures SET study_pk = ?2, name = ?3, laterality = ?4, "
                                                     "robust = ?5, surface_sha256 = ?6, source_series_uid = ?7 "
                                                     "WHERE id = ?1"));
@@ -303,13 +309,21 @@ Result<bool> insert_series(Connection& c, const NewSeries& s) {
   std::optional<std::string> old_sha;
   std::optional<int64_t> old_patient_pk;
   {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT se.image_sha256, st.patient_pk FROM series se JOIN "
-                                                 "studies st ON st.pk = se.study_pk WHERE se.series_uid = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT se.image_sha256, st.patient_pk, p.patient_id FROM series se "
+                                                 "JOIN studies st ON st.pk = se.study_pk JOIN patients p ON p.pk = "
+                                                 "st.patient_pk WHERE se.series_uid = ?1"));
     q.bind(1, s.series.series_uid);
     SOIQ_ASSIGN_OR_RETURN(replaced, q.step());
     if (replaced) {
       old_sha = q.text(0);
       old_patient_pk = q.int64(1);
+      // A series UID is the image's identity: another patient's upload that names it is a mistake
+      // (or an attack), never a reason to move the images.
+      if (*old_patient_pk != keys.patient_pk) {
+        return failed_precondition("series '" + s.series.series_uid + "' belongs to patient '" + q.text(2) +
+                                   "', not to '" + s.patient.patient_id +
+                                   "': an upload never moves a series to another patient");
+      }
     }
   }
   {

@@ -102,7 +102,7 @@ TEST_F(SqliteStoreWrite, StudyOfAnotherPatientIsRefusedAndLeavesNothing) {
   const Counts before = counts();
   auto bad = store_->add_structure(new_structure("P2", "S1", "b", 5.0));
   ASSERT_FALSE(bad.ok());
-  EXPECT_EQ(bad.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(bad.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_TRUE(contains(bad.status().message(), "study 'S1' belongs to patient 'P1', not to 'P2'"))
       << bad.status().message();
   EXPECT_EQ(store_->get_patient("P2").status().code(), StatusCode::kNotFound);
@@ -211,6 +211,44 @@ TEST_F(SqliteStoreWrite, PutSeriesInsertsThenReplaces) {
   auto listed = store_->list_series("S1");
   ASSERT_TRUE(listed.ok());
   ASSERT_EQ(listed->size(), 1u);
+}
+
+// A series UID names images of one patient: an upload naming it under another patient (another
+// study) used to move the series there. It is refused, and the refused upload leaves nothing.
+TEST_F(SqliteStoreWrite, SeriesOfAnotherPatientIsRefusedAndLeavesNothing) {
+  ASSERT_TRUE(store_->put_series(new_series("P1", "S1", "SE1", 1.0f)).ok());
+  const Counts before = counts();
+  auto bad = store_->put_series(new_series("P2", "S2", "SE1", 2.0f));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_TRUE(contains(bad.status().message(), "series 'SE1' belongs to patient 'P1', not to 'P2'"))
+      << bad.status().message();
+  EXPECT_EQ(store_->get_patient("P2").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(store_->get_study("S2").status().code(), StatusCode::kNotFound);
+  auto series = store_->get_series("SE1");
+  ASSERT_TRUE(series.ok());
+  EXPECT_EQ(series->study_uid, "S1");
+  auto image = decode_image(*store_->get_image_blob("SE1"), series->geometry);
+  ASSERT_TRUE(image.ok());
+  EXPECT_EQ(image->voxels, std::vector<float>(12, 1.0f));
+  EXPECT_EQ(counts().patients, before.patients);
+  EXPECT_EQ(counts().series, before.series);
+}
+
+// The same for a structure re-imported under its source UID (an RT Structure Set's ROI).
+TEST_F(SqliteStoreWrite, StructureSourceOfAnotherPatientIsRefused) {
+  NewStructure first = new_structure("P1", "S1", "a");
+  first.source_uid = "1.2.3/1";
+  auto added = store_->add_structure(first);
+  ASSERT_TRUE(added.ok()) << added.status().to_string();
+  NewStructure second = new_structure("P2", "S2", "a", 5.0);
+  second.source_uid = "1.2.3/1";
+  auto bad = store_->add_structure(second);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_TRUE(contains(bad.status().message(), "belongs to patient 'P1', not to 'P2'")) << bad.status().message();
+  EXPECT_EQ(store_->get_patient("P2").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(store_->get_structure(added->structure.id)->study_uid, "S1");
 }
 
 TEST_F(SqliteStoreWrite, DeleteStructureKeepsASharedSurfaceAndDropsAnOrphan) {
