@@ -36,7 +36,7 @@ std::string format_from_path(const std::string& path) {
   auto ends = [&](const std::string& s) {
     return lower.size() > s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
   };
-  for (const char* f : {"nii.gz", "stl", "obj", "ply", "vtk", "vtp", "nii", "nrrd", "mha"}) {
+  for (const char* f : {"nii.gz", "stl", "obj", "ply", "off", "vtk", "vtp", "nii", "nrrd", "mha"}) {
     if (ends(std::string(".") + f)) return f;
   }
   return "";

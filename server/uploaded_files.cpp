@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "core/io/parse_mesh.h"
 #include "core/io/read_image.h"
-#include "core/io/read_mesh.h"
 #include "core/io/write_mesh.h"
 #include "server/temp_file.h"
 
@@ -21,15 +21,8 @@ Result<std::string> checked_format(const std::string& format, const std::vector<
   return invalid_argument(std::string("unknown ") + what + " format '" + format + "'; known: " + list);
 }
 
-// Readers name the temporary path in their messages; the client knows its file as `name`.
-Status renamed(const Status& s, const std::string& path, const std::string& name) {
-  std::string m = s.message();
-  for (size_t at = m.find(path); at != std::string::npos; at = m.find(path, at + name.size()))
-    m.replace(at, path.size(), name);
-  return Status(s.code(), m);
-}
-
-const std::vector<std::string> kMeshFormats = {"stl", "obj", "ply", "vtk", "vtp"};
+const std::vector<std::string> kMeshFormats = {"stl", "obj", "ply", "off", "vtk", "vtp"};
+const std::vector<std::string> kMeshDownloadFormats = {"stl", "obj", "ply", "vtk", "vtp"};
 
 }  // namespace
 
@@ -37,11 +30,8 @@ Result<ParsedSurface> parse_surface(const std::string& bytes, const std::string&
                                     const std::string& name) {
   SOIQ_ASSIGN_OR_RETURN(const std::string f, checked_format(format, kMeshFormats, "mesh"));
   if (bytes.empty()) return invalid_argument("surface '" + name + "' is empty (0 bytes uploaded)");
-  SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create("." + f));
-  SOIQ_RETURN_IF_ERROR(file.write(bytes));
-  Result<TriangleMesh> mesh = read_mesh(file.path(), ras);
-  if (!mesh.ok()) return renamed(mesh.status(), file.path(), name);
-  ParsedSurface out{std::move(mesh).value(), {}};
+  SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, parse_mesh(bytes, f, ras, name));
+  ParsedSurface out{std::move(mesh), {}};
   out.defects = mesh_defects(out.mesh);
   SOIQ_RETURN_IF_ERROR(validate_mesh(out.mesh, out.defects, name));
   if (!out.defects.closed()) {
@@ -62,7 +52,8 @@ Result<Image> parse_image(const std::string& bytes, const std::string& format, c
 }
 
 Result<std::string> surface_bytes(const TriangleMesh& mesh, const std::string& format, bool ras) {
-  SOIQ_ASSIGN_OR_RETURN(const std::string f, checked_format(format.empty() ? "stl" : format, kMeshFormats, "mesh"));
+  SOIQ_ASSIGN_OR_RETURN(const std::string f,
+                        checked_format(format.empty() ? "stl" : format, kMeshDownloadFormats, "mesh"));
   SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create("." + f));
   if (ras) {
     TriangleMesh flipped = mesh;

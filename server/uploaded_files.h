@@ -3,7 +3,8 @@
 // readers and writers as the offline CLI (core/io), so an upload is checked exactly as a local
 // file would be.
 //
-// parse_surface: `format` is stl, obj, ply, vtk or vtp; `ras` flips x and y into LPS. The mesh is
+// parse_surface: `format` is stl, obj, ply, off, vtk or vtp, parsed in memory (core/io
+// parse_mesh: no third-party reader sees the simple formats); `ras` flips x and y into LPS. The mesh is
 // validated (no triangles, NaN vertices, bad indices: INVALID_ARGUMENT naming `name`), and a closed
 // mesh is turned to face outward. An open or inconsistently oriented surface is FAILED_PRECONDITION
 // unless `robust` (its conversions then use the three-axis vote).

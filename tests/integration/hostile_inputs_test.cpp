@@ -1,0 +1,131 @@
+// Hostile and careless inputs sent to a real soiqd: each gets a precise status and a one-line
+// message, soiqd keeps serving, and no record changes.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "core/primitives.h"
+#include "tests/integration/service_fixture.h"
+
+namespace soiq::testing {
+namespace {
+
+bool one_line(const Status& s) { return s.message().find('\n') == std::string::npos && !s.message().empty(); }
+
+v1::UploadImageHeader image_header(const std::string& patient, const std::string& study, const std::string& series,
+                                   const std::string& format) {
+  v1::UploadImageHeader h;
+  h.mutable_patient()->set_patient_id(patient);
+  h.mutable_study()->set_study_uid(study);
+  h.set_series_uid(series);
+  h.set_modality("MR");
+  h.set_format(format);
+  return h;
+}
+
+// An attached 2x2x2 uint8 NRRD whose voxels are 1..8.
+std::string small_nrrd() {
+  return std::string("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n") +
+         std::string("\x01\x02\x03\x04\x05\x06\x07\x08", 8);
+}
+
+class HostileInputs : public ServiceTest {
+ protected:
+  // soiqd answers and holds exactly `series` series and `structures` structures.
+  void expect_serving_with(int64_t series, int64_t structures) {
+    Result<v1::ServerInfo> info = client_->server_info();
+    ASSERT_TRUE(info.ok()) << info.status().to_string();
+    EXPECT_EQ(info->series(), series);
+    EXPECT_EQ(info->structures(), structures);
+  }
+};
+
+// The attack that read a TLS key: a header naming a server file as its voxel data. The file's
+// bytes would come back through features and exports.
+TEST_F(HostileInputs, ImageHeadersNamingAServerFileAreRefused) {
+  const std::string secret = dir_.file("server_secret.key");
+  std::ofstream(secret) << "-----BEGIN PRIVATE KEY-----";
+  const std::string nrrd =
+      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 3 3 3\nencoding: raw\ndata file: " + secret + "\n\n";
+  const std::string mha =
+      "ObjectType = Image\nNDims = 3\nDimSize = 3 3 3\nElementType = MET_UCHAR\n"
+      "ElementDataFile = " +
+      secret + "\n";
+  for (const auto& [format, bytes] : {std::pair{std::string("nrrd"), nrrd}, std::pair{std::string("mha"), mha}}) {
+    Result<v1::UploadImageResponse> r = client_->upload_image_bytes(image_header("P", "S", "1.2.3", format), bytes);
+    ASSERT_FALSE(r.ok()) << format;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+    EXPECT_NE(r.status().message().find("names a separate data file"), std::string::npos) << r.status().message();
+    EXPECT_TRUE(one_line(r.status())) << r.status().message();
+  }
+  expect_serving_with(0, 0);
+}
+
+TEST_F(HostileInputs, NiftiWithVoxOffsetPastItsDataIsRefused) {
+  // A NIfTI-1 header (348 bytes, magic n+1) announcing 4x4x4 uint8 voxels at byte 4000 of a
+  // 416-byte file.
+  std::string bytes(416, '\0');
+  const int32_t sizeof_hdr = 348;
+  const int16_t dim[8] = {3, 4, 4, 4, 1, 1, 1, 1};
+  const int16_t datatype = 2, bitpix = 8;
+  const float pixdim[8] = {1, 1, 1, 1, 0, 0, 0, 0};
+  const float vox_offset = 4000;
+  std::memcpy(bytes.data(), &sizeof_hdr, 4);
+  std::memcpy(bytes.data() + 40, dim, sizeof dim);
+  std::memcpy(bytes.data() + 70, &datatype, 2);
+  std::memcpy(bytes.data() + 72, &bitpix, 2);
+  std::memcpy(bytes.data() + 76, pixdim, sizeof pixdim);
+  std::memcpy(bytes.data() + 108, &vox_offset, 4);
+  std::memcpy(bytes.data() + 344, "n+1", 4);
+  Result<v1::UploadImageResponse> r = client_->upload_image_bytes(image_header("P", "S", "1.2.4", "nii"), bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("vox_offset 4000"), std::string::npos) << r.status().message();
+  EXPECT_TRUE(one_line(r.status()));
+  expect_serving_with(0, 0);
+}
+
+// This PLY crashed soiqd inside VTK's reader (a vertex line with fewer values than declared).
+TEST_F(HostileInputs, MalformedMeshesAreRefusedAndSoiqdKeepsServing) {
+  ASSERT_TRUE(upload(uv_sphere({0, 0, 0}, 10, 12, 24), "P", "S", "kept").ok());
+  const std::string short_ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n";
+  const std::string nan_obj = "v 0 0 0\nv 1 0 nan\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n";
+  const std::string junk_obj = "v 0 0 0\nv 5abc 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n";
+  for (const auto& [format, bytes, says] : {std::tuple{"ply", short_ply, "vertex has 2 values"},
+                                            std::tuple{"obj", nan_obj, "nan"}, std::tuple{"obj", junk_obj, "5abc"}}) {
+    v1::UploadSurfaceHeader h = surface_header("P", "S", "hostile", "");
+    h.set_format(format);
+    Result<v1::UploadSurfaceResponse> r = client_->upload_surface_bytes(h, bytes);
+    ASSERT_FALSE(r.ok()) << format;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+    EXPECT_NE(r.status().message().find(says), std::string::npos) << r.status().message();
+    EXPECT_TRUE(one_line(r.status())) << r.status().message();
+  }
+  expect_serving_with(0, 1);
+}
+
+// An upload naming another patient's series used to move the series (and its images) over.
+TEST_F(HostileInputs, ASeriesNeverChangesPatient) {
+  ASSERT_TRUE(client_->upload_image_bytes(image_header("P1", "S1", "1.2.5", "nrrd"), small_nrrd()).ok());
+  Result<v1::UploadImageResponse> r =
+      client_->upload_image_bytes(image_header("P2", "S2", "1.2.5", "nrrd"), small_nrrd());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kFailedPrecondition) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("'P1'"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("'P2'"), std::string::npos) << r.status().message();
+  EXPECT_EQ(client_->get_patient("P2").status().code(), StatusCode::kNotFound);
+  Result<v1::Study> s1 = client_->get_study("S1");
+  ASSERT_TRUE(s1.ok());
+  EXPECT_EQ(s1->series_size(), 1);
+  expect_serving_with(1, 0);
+}
+
+}  // namespace
+}  // namespace soiq::testing
