@@ -23,6 +23,7 @@ struct DicomStudy {
   std::string study_uid;  // (0020,000D)
   std::string patient_id;
   std::string study_date;        // (0008,0020) YYYYMMDD or ""
+  std::string study_time;        // (0008,0030) HHMMSS.FFFFFF or a prefix, or ""
   std::string description;       // (0008,1030)
   std::string accession_number;  // (0008,0050)
   std::string study_id;          // (0020,0010)

@@ -142,6 +142,7 @@ class Index {
     st.study_uid = study_uid;
     fill_if_empty(st.patient_id, patient_id);
     fill_if_empty(st.study_date, get_string(ds, DCM_StudyDate));
+    fill_if_empty(st.study_time, get_string(ds, DCM_StudyTime));
     fill_if_empty(st.description, get_string(ds, DCM_StudyDescription));
     fill_if_empty(st.accession_number, get_string(ds, DCM_AccessionNumber));
     fill_if_empty(st.study_id, get_string(ds, DCM_StudyID));

@@ -33,6 +33,7 @@ TEST(ScanDicom, CtSmallGivesItsPatientStudyAndSeries) {
   ASSERT_EQ(s.studies.size(), 1u);
   EXPECT_EQ(s.studies[0].study_uid, "1.3.6.1.4.1.5962.1.2.1.20040119072730.12322");
   EXPECT_EQ(s.studies[0].study_date, "20040119");
+  EXPECT_EQ(s.studies[0].study_time, "072730");
   EXPECT_EQ(s.studies[0].description, "e+1");
   EXPECT_EQ(s.studies[0].study_id, "1CT1");
   ASSERT_TRUE(s.studies[0].age_years.has_value());  // Patient's Age "000Y", taken as written

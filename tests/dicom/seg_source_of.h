@@ -23,6 +23,7 @@ inline Result<SegSource> seg_source_of(const DicomImport& imported, const std::s
   source.patient_birth_date = patient->birth_date;
   source.study_uid = study->study_uid;
   source.study_date = study->study_date;
+  source.study_time = study->study_time;
   source.study_id = study->study_id;
   source.accession_number = study->accession_number;
   source.series_uid = series->series_uid;
