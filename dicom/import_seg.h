@@ -18,7 +18,8 @@
 //          imported images (or, without a Referenced Series Sequence, none or several candidates);
 //          INVALID_ARGUMENT when the SEG's Frame of Reference differs from the series' (its
 //          positions would mean other places), and read_seg's errors (FRACTIONAL segmentation,
-//          frames that do not fit the series' grid), each naming the file.
+//          no frames, truncated Pixel Data, frames that do not fit the series' grid), each naming
+//          the file; a SEG refused so yields no structure set at all.
 // Cost     O(frames x rows x columns + lines of the grid) plus marching cubes per segment.
 
 #include <vector>

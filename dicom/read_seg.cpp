@@ -9,15 +9,17 @@
 #include <dcmtk/dcmfg/fgseg.h>
 #include <dcmtk/dcmseg/segdoc.h>
 #include <dcmtk/dcmseg/segment.h>
-#include <dcmtk/dcmseg/segutils.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <mutex>
+#include <span>
 
 #include "dicom/dcmtk_file.h"
+#include "dicom/decompress_pixels.h"
+#include "dicom/seg_bit_packing.h"
 
 namespace soiq::dicom {
 namespace {
@@ -35,6 +37,83 @@ struct FrameOnGrid {
 };
 
 std::string frame_name(size_t f) { return "SEG frame " + std::to_string(f + 1); }
+
+// The most pixels a Pixel Data value can hold at one bit each: its length field is 32 bits (even).
+constexpr int64_t kMaxPixelDataBits = 8 * 0xFFFFFFFELL;
+
+// DCMTK 3.6.7's SEG reader unpacks the frames itself with each one starting on a byte, which misreads
+// standard files (PS3.5 8.1.1 / 8.2: frames are back to back; see seg_bit_packing.h) and walks
+// past a short Pixel Data. Everything but the Pixel Data is read through it; the pixels are ours.
+class SegWithoutPixelData : public DcmSegmentation {
+ public:
+  OFCondition read_without_pixel_data(DcmItem& ds) { return readWithoutPixelData(ds); }
+};
+
+// The Pixel Data of a binary SEG, checked against what its header claims before anything is read.
+struct BinaryPixels {
+  int64_t rows = 0, columns = 0, frames = 0;
+  std::vector<uint8_t> words_as_bytes;  // the bytes of an OW value, little-endian as in the file
+  std::span<const uint8_t> bytes;       // the whole Pixel Data value
+};
+
+// `path` ("" for bytes) only names the object in messages, as `seg` does ("SEG '<path>'").
+Result<BinaryPixels> binary_pixels(DcmDataset& ds, const std::string& path, const std::string& seg) {
+  const std::string type = get_string(ds, DCM_SegmentationType);
+  if (type == "FRACTIONAL") return invalid_argument(seg + " is a FRACTIONAL segmentation; only BINARY ones are read");
+  if (type != "BINARY")
+    return invalid_argument(seg + " has Segmentation Type '" + type + "'; only BINARY segmentations are read");
+  Uint16 bits = 0, rows = 0, columns = 0;
+  if (ds.findAndGetUint16(DCM_BitsAllocated, bits).bad() || bits != 1)
+    return invalid_argument(seg + " has Bits Allocated " + std::to_string(bits) +
+                            "; a BINARY segmentation has 1 bit per pixel");
+  (void)ds.findAndGetUint16(DCM_Rows, rows);  // absent stays 0, refused next
+  (void)ds.findAndGetUint16(DCM_Columns, columns);
+  if (rows == 0 || columns == 0)
+    return invalid_argument(seg + " has frames of Rows " + std::to_string(rows) + " x Columns " +
+                            std::to_string(columns) + "; each needs at least 1");
+  BinaryPixels out;
+  out.rows = rows;
+  out.columns = columns;
+  const std::string frames_text = get_string(ds, DCM_NumberOfFrames);
+  char* end = nullptr;
+  const long long frames = std::strtoll(frames_text.c_str(), &end, 10);
+  if (frames_text.empty() || *end != '\0' || frames < 1)
+    return invalid_argument(seg + " has NumberOfFrames '" + frames_text + "'; a SEG needs at least 1 frame");
+  // Bounded before anything is sized by it; the length check below bounds it by the file too.
+  if (frames > kMaxPixelDataBits / (out.rows * out.columns))
+    return invalid_argument(seg + " claims NumberOfFrames " + frames_text + " of Rows " + std::to_string(rows) +
+                            " x Columns " + std::to_string(columns) + ", more pixels than a Pixel Data can hold");
+  out.frames = frames;
+
+  SOIQ_RETURN_IF_ERROR(decompress_pixels(ds, path.empty() ? "SEG bytes" : path));
+  DcmElement* element = nullptr;
+  if (ds.findAndGetElement(DCM_PixelData, element).bad() || element == nullptr)
+    return invalid_argument(seg + " has no Pixel Data");
+  const size_t length = element->getLength();
+  if (length > 0 && element->getTag().getEVR() == EVR_OW) {
+    // DCMTK keeps OW words in host byte order; the bit stream is their little-endian bytes.
+    Uint16* words = nullptr;
+    if (element->getUint16Array(words).bad() || words == nullptr)
+      return invalid_argument(seg + ": its Pixel Data (OW) cannot be read");
+    out.words_as_bytes.resize(length / 2 * 2);
+    for (size_t n = 0; n < length / 2; ++n) {
+      out.words_as_bytes[2 * n] = static_cast<uint8_t>(words[n] & 0xFF);
+      out.words_as_bytes[2 * n + 1] = static_cast<uint8_t>(words[n] >> 8);
+    }
+    out.bytes = out.words_as_bytes;
+  } else if (length > 0) {
+    Uint8* bytes = nullptr;
+    if (element->getUint8Array(bytes).bad() || bytes == nullptr)
+      return invalid_argument(seg + ": its Pixel Data cannot be read");
+    out.bytes = std::span<const uint8_t>(bytes, length);
+  }
+  const int64_t needed = binary_pixel_data_bytes(out.rows, out.columns, out.frames);
+  if (static_cast<int64_t>(out.bytes.size()) < needed)
+    return invalid_argument(seg + " is truncated: " + std::to_string(out.bytes.size()) +
+                            " bytes of pixel data, NumberOfFrames " + frames_text + " x Rows " + std::to_string(rows) +
+                            " x Columns " + std::to_string(columns) + " needs " + std::to_string(needed));
+  return out;
+}
 
 std::string vec_text(double x, double y, double z) {
   return "(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")";
@@ -103,29 +182,27 @@ std::string source_uid(FGInterface& fg, size_t f) {
 }
 
 // Runs of one segment from its frames (sorted by k): slice by slice, frames on one slice united.
-Result<RunLengthVolume> segment_volume(DcmSegmentation& seg, const std::vector<FrameOnGrid>& frames,
+Result<RunLengthVolume> segment_volume(const BinaryPixels& pixels, const std::vector<FrameOnGrid>& frames,
                                        const ImageGeometry& grid) {
   const int64_t nx = grid.dims[0], ny = grid.dims[1];
   RunLengthVolume v = empty_volume(grid);
   v.line_start.assign(1, 0);
-  std::vector<Uint8> slice(static_cast<size_t>(nx * ny));
+  std::vector<uint8_t> slice(static_cast<size_t>(nx * ny));
   size_t next = 0;
   for (int64_t k = 0; k < grid.dims[2]; ++k) {
     if (next == frames.size() || frames[next].k != k) {
       v.line_start.insert(v.line_start.end(), static_cast<size_t>(ny), static_cast<int64_t>(v.runs.size()));
       continue;
     }
-    std::fill(slice.begin(), slice.end(), Uint8{0});
+    std::fill(slice.begin(), slice.end(), uint8_t{0});
     for (; next < frames.size() && frames[next].k == k; ++next) {
-      const DcmIODTypes::Frame* packed = seg.getFrame(frames[next].frame);
-      std::unique_ptr<DcmIODTypes::Frame> pixels(
-          packed ? DcmSegUtils::unpackBinaryFrame(packed, static_cast<Uint16>(ny), static_cast<Uint16>(nx)) : nullptr);
-      if (!pixels || pixels->length < slice.size())
-        return data_loss(frame_name(frames[next].frame) + " has no or too little pixel data");
-      for (size_t n = 0; n < slice.size(); ++n) slice[n] |= pixels->pixData[n] != 0 ? 1 : 0;
+      SOIQ_ASSIGN_OR_RETURN(const std::vector<uint8_t> frame,
+                            unpack_binary_frame(pixels.bytes, pixels.rows, pixels.columns, pixels.frames,
+                                                static_cast<int64_t>(frames[next].frame)));
+      for (size_t n = 0; n < slice.size(); ++n) slice[n] |= frame[n];
     }
     for (int64_t j = 0; j < ny; ++j) {
-      const Uint8* row = slice.data() + j * nx;
+      const uint8_t* row = slice.data() + j * nx;
       for (int64_t i = 0; i < nx;) {
         if (!row[i]) {
           ++i;
@@ -151,7 +228,10 @@ void read_references(DcmDataset& ds, SegObject& out) {
     out.referenced_sop_instance_uids.push_back(get_string(*instances->getItem(n), DCM_ReferencedSOPInstanceUID));
 }
 
-Result<SegObject> read_dataset(DcmDataset& ds, const std::string& name, const ImageGeometry& grid) {
+// `path` is "" for bytes.
+Result<SegObject> read_dataset(DcmDataset& ds, const std::string& path, const ImageGeometry& grid) {
+  const std::string name = path.empty() ? "SEG bytes" : "'" + path + "'";
+  const std::string seg_name = path.empty() ? "SEG in memory" : "SEG '" + path + "'";
   SOIQ_RETURN_IF_ERROR(validate_geometry(grid));
   const std::string sop_class = get_string(ds, DCM_SOPClassUID);
   if (sop_class != UID_SegmentationStorage)
@@ -162,17 +242,17 @@ Result<SegObject> read_dataset(DcmDataset& ds, const std::string& name, const Im
     for (OFLogger* log : {&DCM_dcmsegLogger, &DCM_dcmfgLogger, &DCM_dcmiodLogger})
       log->setLogLevel(OFLogger::FATAL_LOG_LEVEL);
   });
-  DcmSegmentation* raw = nullptr;
-  const OFCondition c = DcmSegmentation::loadDataset(ds, raw);
-  std::unique_ptr<DcmSegmentation> seg(raw);
-  if (c.bad() || !seg) return condition_status(StatusCode::kDataLoss, name, "not a readable DICOM Segmentation", c);
-  if (seg->getSegmentationType() != DcmSegTypes::ST_BINARY)
-    return invalid_argument(name + " is a FRACTIONAL segmentation; only BINARY ones are read");
-  const int64_t rows = get_number(ds, DCM_Rows).value_or(0), columns = get_number(ds, DCM_Columns).value_or(0);
-  if (rows != grid.dims[1] || columns != grid.dims[0])
-    return invalid_argument(name + " has frames of " + std::to_string(rows) + " rows x " + std::to_string(columns) +
-                            " columns; the grid (" + describe(grid) + ") needs " + std::to_string(grid.dims[1]) +
-                            " x " + std::to_string(grid.dims[0]));
+  // The header and the Pixel Data length are checked before DCMTK reads anything else.
+  SOIQ_ASSIGN_OR_RETURN(const BinaryPixels pixels, binary_pixels(ds, path, seg_name));
+  if (pixels.rows != grid.dims[1] || pixels.columns != grid.dims[0])
+    return invalid_argument(name + " has frames of " + std::to_string(pixels.rows) + " rows x " +
+                            std::to_string(pixels.columns) + " columns; the grid (" + describe(grid) + ") needs " +
+                            std::to_string(grid.dims[1]) + " x " + std::to_string(grid.dims[0]));
+  auto seg = std::make_unique<SegWithoutPixelData>();
+  const OFCondition c = seg->read_without_pixel_data(ds);
+  if (c.bad())
+    return condition_status(StatusCode::kDataLoss, path.empty() ? "SEG bytes" : path,
+                            "not a readable DICOM Segmentation", c);
 
   SegObject out;
   out.sop_instance_uid = get_string(ds, DCM_SOPInstanceUID);
@@ -186,7 +266,10 @@ Result<SegObject> read_dataset(DcmDataset& ds, const std::string& name, const Im
   std::vector<std::vector<FrameOnGrid>> frames_of(segment_count);
   out.segments.resize(segment_count);
   FGInterface& fg = seg->getFunctionalGroups();
-  const size_t frame_count = seg->getNumberOfFrames();
+  const size_t frame_count = seg->getNumberOfFrames();  // Per-Frame Functional Groups items
+  if (static_cast<int64_t>(frame_count) != pixels.frames)
+    return invalid_argument(seg_name + " has " + std::to_string(frame_count) +
+                            " Per-Frame Functional Groups items but NumberOfFrames " + std::to_string(pixels.frames));
   for (size_t f = 0; f < frame_count; ++f) {
     auto* s = dynamic_cast<FGSegmentation*>(fg.get(static_cast<Uint32>(f), DcmFGTypes::EFG_SEGMENTATION));
     Uint16 number = 0;
@@ -211,7 +294,7 @@ Result<SegObject> read_dataset(DcmDataset& ds, const std::string& name, const Im
     r.type_code = code_text(s->getSegmentedPropertyTypeCode());
     auto& frames = frames_of[n];
     std::stable_sort(frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.k < b.k; });
-    SOIQ_ASSIGN_OR_RETURN(r.volume, segment_volume(*seg, frames, grid));
+    SOIQ_ASSIGN_OR_RETURN(r.volume, segment_volume(pixels, frames, grid));
   }
   if (out.referenced_sop_instance_uids.empty())  // no Referenced Series Sequence: the frames' sources
     for (const ReadSegment& r : out.segments)
@@ -234,12 +317,12 @@ Result<SegObject> read_seg(const std::string& bytes, const ImageGeometry& grid) 
   const OFCondition c = file.read(in, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
   file.transferEnd();
   if (c.bad()) return condition_status(StatusCode::kDataLoss, "SEG bytes", "not a readable DICOM file", c);
-  return read_dataset(*file.getDataset(), "SEG bytes", grid);
+  return read_dataset(*file.getDataset(), "", grid);
 }
 
 Result<SegObject> read_seg_file(const std::string& path, const ImageGeometry& grid) {
   SOIQ_ASSIGN_OR_RETURN(auto file, load_dicom_file(path, /*until_pixel_data=*/false));
-  return read_dataset(*file->getDataset(), "'" + path + "'", grid);
+  return read_dataset(*file->getDataset(), path, grid);
 }
 
 }  // namespace soiq::dicom

@@ -1,7 +1,7 @@
 #pragma once
-// A binary DICOM Segmentation read back as plain structs (issue 5 deliverable 3): each segment's
-// voxels on a given image grid, with what the object references. The inverse of write_seg
-// (dicom/seg_export.h), and how SEGs from other tools come into soiq.
+// A binary DICOM Segmentation read back as plain structs: each segment's voxels on a given image
+// grid, with what the object references. The inverse of write_seg (dicom/seg_export.h), and how
+// SEGs from other tools come into soiq.
 //
 // Inputs   bytes (read_seg) or path (read_seg_file): a Part 10 file or bare dataset.
 //          grid: the image grid to map frames onto, normally the referenced series' geometry.
@@ -13,13 +13,22 @@
 //          direction columns i and j to 1e-4, its Pixel Spacing (when given) equals
 //          spacing_mm[1]\spacing_mm[0] to 1e-4 relative, and Rows x Columns = dims[1] x dims[0].
 //          Voxel (i, j, k) is inside iff pixel (row j, column i) of a frame of that segment on
-//          slice k is set; two frames of one segment on one slice are united.
-// Errors   NOT_FOUND: no such file (read_seg_file). DATA_LOSS: bytes DCMTK cannot parse, pixel data
-//          shorter than its frames. INVALID_ARGUMENT: not a Segmentation (names its SOP class), a
-//          FRACTIONAL segmentation, an invalid grid, a frame without position, orientation or
-//          segment number, or one that does not fit grid (message names the frame, from 1, and
-//          what differs).
-// Cost     O(frames x rows x columns + lines of grid) per segment. Thread-safe.
+//          slice k is set; two frames of one segment on one slice are united. Frame f's pixels are
+//          bits f x rows x columns onwards of the whole Pixel Data, LSB first (PS3.5 8.1.1 / 8.2,
+//          seg_bit_packing.h): frames need not start on a byte. DCMTK reads everything else.
+// Errors   NOT_FOUND: no such file (read_seg_file). DATA_LOSS: bytes DCMTK cannot parse.
+//          INVALID_ARGUMENT: not a Segmentation (names the file and its SOP class); checked before
+//          any pixel is read, naming the SEG ("SEG '<path>'" or "SEG in memory"): a FRACTIONAL
+//          segmentation or Bits Allocated other than 1; Rows or Columns absent or 0;
+//          NumberOfFrames absent, below 1, or more pixels than a Pixel Data holds (8 x (2^32 - 2));
+//          no Pixel Data; Pixel Data shorter than ceil(frames x rows x columns / 8) ("SEG 'x' is
+//          truncated: N bytes of pixel data, NumberOfFrames F x Rows R x Columns C needs M"); a
+//          Per-Frame Functional Groups item count other than NumberOfFrames; an invalid grid; a
+//          frame without position, orientation or segment number, or one that does not fit grid
+//          (message names the frame, from 1, and what differs). UNIMPLEMENTED or DATA_LOSS:
+//          compressed Pixel Data that soiq cannot decode (decompress_pixels.h).
+// Cost     O(frames x rows x columns + lines of grid) per segment; memory: the file, one slice
+//          and the segments' runs. Thread-safe.
 // Caveats  grid carries no Frame of Reference: the caller checks SegObject.frame_of_reference_uid
 //          against the series'. FRACTIONAL SEGs and concatenations are not read.
 

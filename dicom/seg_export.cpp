@@ -13,12 +13,15 @@
 #include <dcmtk/dcmseg/segdoc.h>
 #include <dcmtk/dcmseg/segment.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <mutex>
+
+#include "dicom/seg_bit_packing.h"
 
 namespace soiq::dicom {
 namespace {
@@ -133,22 +136,45 @@ std::string new_uid(const char* root) {
   return buf;
 }
 
+// A Type 2 value copied from the source series, or "" when it does not fit its VR. The STS CTs'
+// Study ID "IBSI_1_STS_002_CT" has 17 characters where SH allows 16: an empty Type 2 value says
+// "unknown", a truncated one would name another study, and a copied one makes our object
+// non-conformant (dciodvfy: "Length invalid for this VR").
+std::string type2_value(const std::string& value, bool fits) { return fits ? value : ""; }
+
+bool fits_date(const std::string& v) { return DcmDate::checkStringValue(v.c_str(), "1").good(); }
+bool fits_time(const std::string& v) { return DcmTime::checkStringValue(v.c_str(), "1").good(); }
+// SH: at most 16 characters (DCMTK 3.6.7 leaves the length unchecked); the SEG declares no
+// Specific Character Set, so only the default repertoire (ASCII) fits and characters are bytes.
+bool fits_short_string(const std::string& v) {
+  return v.size() <= 16 && std::all_of(v.begin(), v.end(), [](unsigned char ch) { return ch >= 0x20 && ch < 0x7F; }) &&
+         DcmShortString::checkStringValue(v.c_str(), "1").good();
+}
+
 // Patient, study, frame of reference and series of the new object.
 Status set_identity(DcmSegmentation& seg, const SegSource& src, const SegWriteOptions& options,
                     const std::string& series_uid, const std::string& sop_uid) {
-  // checkValue=OFFalse: these come from files that were already accepted at import; DCMTK's VR
-  // checks would reject e.g. a patient id with a trailing backslash that PACS happily store.
+  const std::string sex =
+      src.patient_sex == "M" || src.patient_sex == "F" || src.patient_sex == "O" ? src.patient_sex : "";
+  const std::string birth_date = type2_value(src.patient_birth_date, fits_date(src.patient_birth_date));
+  const std::string study_date = type2_value(src.study_date, fits_date(src.study_date));
+  const std::string study_time = type2_value(src.study_time, fits_time(src.study_time));
+  const std::string study_id = type2_value(src.study_id, fits_short_string(src.study_id));
+  const std::string accession = type2_value(src.accession_number, fits_short_string(src.accession_number));
+  // checkValue=OFFalse: the patient id is the key that links the SEG to its images, copied even
+  // where DCMTK's VR checks would reject it (e.g. a trailing backslash that PACS happily store);
+  // the other values were checked above.
   IODPatientModule& patient = seg.getPatient();
   OFCondition c = patient.setPatientID(src.patient_id.c_str(), OFFalse);
   if (c.good()) c = patient.setPatientName(src.patient_name.c_str(), OFFalse);
-  if (c.good()) c = patient.setPatientSex(src.patient_sex.c_str(), OFFalse);
-  if (c.good()) c = patient.setPatientBirthDate(src.patient_birth_date.c_str(), OFFalse);
+  if (c.good()) c = patient.setPatientSex(sex.c_str(), OFFalse);
+  if (c.good()) c = patient.setPatientBirthDate(birth_date.c_str(), OFFalse);
   IODGeneralStudyModule& study = seg.getStudy();
   if (c.good()) c = study.setStudyInstanceUID(src.study_uid.c_str(), OFFalse);
-  if (c.good()) c = study.setStudyDate(src.study_date.c_str(), OFFalse);
-  if (c.good()) c = study.setStudyTime(src.study_time.c_str(), OFFalse);
-  if (c.good()) c = study.setStudyID(src.study_id.c_str(), OFFalse);
-  if (c.good()) c = study.setAccessionNumber(src.accession_number.c_str(), OFFalse);
+  if (c.good()) c = study.setStudyDate(study_date.c_str(), OFFalse);
+  if (c.good()) c = study.setStudyTime(study_time.c_str(), OFFalse);
+  if (c.good()) c = study.setStudyID(study_id.c_str(), OFFalse);
+  if (c.good()) c = study.setAccessionNumber(accession.c_str(), OFFalse);
   if (c.good()) c = seg.getFrameOfReference().setFrameOfReferenceUID(src.frame_of_reference_uid.c_str(), OFFalse);
   if (c.good()) c = seg.getSeries().setSeriesInstanceUID(series_uid.c_str());
   if (c.good()) c = seg.getSeries().setSeriesDescription(options.series_description.c_str(), OFFalse);
@@ -211,8 +237,10 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g) {
   return ok_status();
 }
 
+// Adds the frames of segment `s` to seg (for their functional groups) and their pixels to `pixels`, in
+// the same order.
 Status add_frames(DcmSegmentation& seg, const SegSource& src, const SegSegment& s, Uint16 segment_number,
-                  const std::vector<int64_t>& slices) {
+                  const std::vector<int64_t>& slices, BinaryFramePacker& pixels) {
   const ImageGeometry& g = src.geometry;
   const CodeSequenceMacro derivation("113076", "DCM", "Segmentation");
   const CodeSequenceMacro purpose("121322", "DCM", "Source image for image processing operation");
@@ -241,7 +269,8 @@ Status add_frames(DcmSegmentation& seg, const SegSource& src, const SegSegment& 
     groups.push_back(position.get());
     groups.push_back(&content);
     groups.push_back(derived.get());
-    c = seg.addFrame(frame.data(), segment_number, groups);  // copies the groups and packs the pixels
+    pixels.add_frame(frame);                                 // first: addFrame may scribble on the buffer it packs
+    c = seg.addFrame(frame.data(), segment_number, groups);  // copies the groups (its pixels are replaced)
     if (c.bad()) return dcmtk_error("frame of slice " + std::to_string(k) + " of '" + s.label + "'", c);
   }
   return ok_status();
@@ -315,14 +344,22 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
   SOIQ_RETURN_IF_ERROR(set_identity(*seg, source, options, out.series_uid, out.sop_instance_uid));
   for (const SegSegment& s : segments) SOIQ_RETURN_IF_ERROR(add_segment(*seg, s));
   SOIQ_RETURN_IF_ERROR(add_shared_groups(*seg, source.geometry));
+  BinaryFramePacker pixels;
   for (size_t s = 0; s < segments.size(); ++s)
-    SOIQ_RETURN_IF_ERROR(add_frames(*seg, source, segments[s], static_cast<Uint16>(s + 1), slices[s]));
+    SOIQ_RETURN_IF_ERROR(add_frames(*seg, source, segments[s], static_cast<Uint16>(s + 1), slices[s], pixels));
   SOIQ_RETURN_IF_ERROR(add_references(*seg, source, slices));
   out.frame_count = static_cast<int64_t>(seg->getNumberOfFrames());
 
   DcmFileFormat file;
   c = seg->writeDataset(*file.getDataset());
   if (c.bad()) return dcmtk_error("DCMTK refused the object", c);
+  // DCMTK 3.6.7 starts every frame on a byte boundary, which PS3.5 8.1.1 / 8.2 do not allow when
+  // rows x columns is not a multiple of 8 (pydicom and other readers then shift every later frame):
+  // its Pixel Data is replaced by ours, the frames' bits back to back.
+  const std::vector<uint8_t> packed = pixels.bytes();
+  c = file.getDataset()->putAndInsertUint8Array(DCM_PixelData, packed.data(),
+                                                static_cast<unsigned long>(packed.size()));
+  if (c.bad()) return dcmtk_error("setting the Pixel Data", c);
   SOIQ_ASSIGN_OR_RETURN(out.bytes, to_part10(file));
   return out;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Structures as a binary DICOM Segmentation (issue 5 deliverable 3; DESIGN.md "DICOM and PACS": the
-// object soiq C-STOREs back to a PACS), on the grid of the image series they were converted on.
+// Structures as a binary DICOM Segmentation (DESIGN.md "DICOM and PACS": the object soiq C-STOREs
+// back to a PACS), on the grid of the image series they were converted on.
 //
 // Inputs   source: the referenced image series as soiq stored it at import (no file is read).
 //          segments: one per structure, each volume on source.geometry (any orientation, oblique
@@ -18,6 +18,11 @@
 //          Shared: Plane Orientation (Patient) = direction columns i and j, Pixel Measures (Pixel
 //          Spacing = spacing_mm[1]\spacing_mm[0], Slice Thickness = Spacing Between Slices =
 //          spacing_mm[2]). The Referenced Series Sequence lists the slices that frames derive from.
+//          Pixel Data holds the frames' bits back to back, LSB first, as PS3.5 8.1.1 / 8.2 say
+//          (seg_bit_packing.h, not DCMTK's packing): ceil(rows x columns x frames / 8) bytes,
+//          padded to an even length. The Type 2 values Patient's Sex and Birth Date, Study Date,
+//          Time, ID and Accession Number are the source's when they fit their VR, else present and
+//          empty (never truncated: a 17-character Study ID is written empty).
 // Errors   INVALID_ARGUMENT, naming the segment or field: an invalid source geometry, dims[0] or
 //          dims[1] over 65535, slice uid count != dims[2], an empty study/series/frame of
 //          reference/SOP class uid, no segments, an empty label, no algorithm name unless MANUAL, a

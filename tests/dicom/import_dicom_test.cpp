@@ -33,7 +33,7 @@ TEST(ImportDicom, EveryShippedFileIsReadAndEveryProblemNamed) {
     EXPECT_FALSE(p.status.ok());
     EXPECT_FALSE(p.status.message().empty());
   }
-  EXPECT_EQ(r->scan.non_dicom_skipped, 9);  // READMEs, licences, facts.json, rtstruct.dump
+  EXPECT_EQ(r->scan.non_dicom_skipped, 10);  // READMEs, licences, facts.json, rtstruct.dump, make_standard_seg.py
 }
 
 TEST(ImportDicom, MissingPathIsNotFound) {

@@ -5,6 +5,8 @@
 
 #include "dicom/import_seg.h"
 
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dctk.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -145,6 +147,37 @@ TEST(ImportSeg, TwoSegmentsBecomeTwoStructuresInFileOrder) {
   EXPECT_EQ(structures[1].roi_number, 2);
   EXPECT_EQ(voxel_count(structures[0].volume), voxel_count(f.gtv));
   EXPECT_EQ(voxel_count(structures[1].volume), voxel_count(lower));
+}
+
+// A SEG whose Pixel Data was cut short is reported and imports nothing: no structure set that could
+// replace a stored structure with a half-read one.
+TEST(ImportSeg, TruncatedSegIsInvalidArgumentAndImportsNothing) {
+  const Fixture f = sts_ct();
+  auto written = write_seg(f.source, {segment("GTV", f.gtv)});
+  ASSERT_TRUE(written.ok()) << written.status().to_string();
+  TempDir tmp;
+  const std::string dir = folder_with(tmp, written->bytes);
+  const std::string seg_path = (fs::path(dir) / "seg.dcm").string();
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(seg_path.c_str()).good());
+  DcmDataset& ds = *file.getDataset();
+  const Uint8* bytes = nullptr;
+  unsigned long count = 0;
+  ASSERT_TRUE(ds.findAndGetUint8Array(DCM_PixelData, bytes, &count).good());
+  const std::vector<Uint8> half(bytes, bytes + count / 4 * 2);
+  ASSERT_TRUE(ds.putAndInsertUint8Array(DCM_PixelData, half.data(), static_cast<unsigned long>(half.size())).good());
+  ASSERT_TRUE(file.saveFile(seg_path.c_str(), EXS_LittleEndianExplicit).good());
+
+  auto imported = import_dicom({dir});
+  ASSERT_TRUE(imported.ok()) << imported.status().to_string();
+  EXPECT_TRUE(imported->structure_sets.empty());
+  ASSERT_EQ(imported->problems.size(), 1u);
+  const Status& problem = imported->problems[0].status;
+  EXPECT_EQ(problem.code(), StatusCode::kInvalidArgument) << problem.to_string();
+  EXPECT_NE(problem.message().find("SEG '" + seg_path + "' is truncated: " + std::to_string(half.size()) +
+                                   " bytes of pixel data"),
+            std::string::npos)
+      << problem.to_string();
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "dicom/seg_export.h"
 
 #include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dctk.h>
 #include <dcmtk/dcmseg/segdoc.h>
 #include <gtest/gtest.h>
@@ -21,32 +22,14 @@
 #include "dicom/read_seg.h"
 #include "dicom_test_support.h"
 #include "seg_source_of.h"
+#include "seg_test_support.h"
 
 namespace soiq::dicom {
 namespace {
 
 using testing::data_dir;
+using testing::synthetic_source;
 using testing::TempDir;
-
-SegSource synthetic_source(const ImageGeometry& g) {
-  SegSource s;
-  s.patient_id = "SEG-TEST-1";
-  s.patient_sex = "F";
-  s.patient_birth_date = "19700101";
-  s.study_uid = "1.2.826.0.1.3680043.8.498.71";
-  s.study_date = "20240102";
-  s.study_time = "101112";
-  s.study_id = "S1";
-  s.accession_number = "A42";
-  s.series_uid = "1.2.826.0.1.3680043.8.498.72";
-  s.frame_of_reference_uid = "1.2.826.0.1.3680043.8.498.73";
-  s.modality = "CT";
-  s.sop_class_uid = UID_CTImageStorage;
-  for (int64_t k = 0; k < g.dims[2]; ++k)
-    s.slice_sop_instance_uids.push_back("1.2.826.0.1.3680043.8.498.74." + std::to_string(k + 1));
-  s.geometry = g;
-  return s;
-}
 
 // Columns and rows chosen so that a frame is not a whole number of bytes (37 x 29 = 1073 bits): the
 // bit-packed frames then start mid-byte, which the packing must get right.
@@ -257,6 +240,51 @@ struct BadInput {
   SegSource source = synthetic_source(axis_aligned_grid());
   SegSegment segment = segment_of("GTV", from_mask(shapes(axis_aligned_grid(), 1)));
 };
+
+std::string tag_value(DcmDataset& ds, const DcmTagKey& tag) {
+  OFString value;
+  EXPECT_TRUE(ds.tagExists(tag)) << DcmTag(tag).getTagName() << " is missing";
+  ds.findAndGetOFString(tag, value);
+  return value.c_str();
+}
+
+DcmDataset* dataset_of(const std::string& bytes, DcmFileFormat& file) {
+  DcmInputBufferStream in;
+  in.setBuffer(bytes.data(), static_cast<offile_off_t>(bytes.size()));
+  in.setEos();
+  file.transferInit();
+  EXPECT_TRUE(file.read(in).good());
+  file.transferEnd();
+  return file.getDataset();
+}
+
+TEST(SegExport, StudyTimeIdAndAccessionNumberAreCopiedFromTheSource) {
+  BadInput in;
+  auto written = write_seg(in.source, {in.segment});
+  ASSERT_TRUE(written.ok()) << written.status().to_string();
+  DcmFileFormat file;
+  DcmDataset& ds = *dataset_of(written->bytes, file);
+  EXPECT_EQ(tag_value(ds, DCM_StudyDate), "20240102");
+  EXPECT_EQ(tag_value(ds, DCM_StudyTime), "101112");
+  EXPECT_EQ(tag_value(ds, DCM_StudyID), "S1");
+  EXPECT_EQ(tag_value(ds, DCM_AccessionNumber), "A42");
+}
+
+// Type 2: present and empty when the source has no value, or one that does not fit its VR (a
+// 17-character Study ID, SH allows 16), never truncated.
+TEST(SegExport, MissingOrInvalidStudyValuesAreWrittenEmpty) {
+  BadInput in;
+  in.source.study_time = "";
+  in.source.accession_number = "";
+  in.source.study_id = "IBSI_1_STS_002_CT";
+  in.source.study_date = "2024-01-02";
+  auto written = write_seg(in.source, {in.segment});
+  ASSERT_TRUE(written.ok()) << written.status().to_string();
+  DcmFileFormat file;
+  DcmDataset& ds = *dataset_of(written->bytes, file);
+  for (const DcmTagKey& tag : {DCM_StudyTime, DCM_AccessionNumber, DCM_StudyID, DCM_StudyDate})
+    EXPECT_EQ(tag_value(ds, tag), "") << DcmTag(tag).getTagName();
+}
 
 void expect_error(const Result<WrittenSeg>& r, StatusCode code, const std::string& phrase) {
   ASSERT_FALSE(r.ok());
