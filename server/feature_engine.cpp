@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 
+#include "core/memory_estimate.h"
 #include "core/structure_features.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
@@ -60,9 +62,11 @@ Status complete_feature_ask(FeatureAsk& ask) {
   return ok_status();
 }
 
-FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, int64_t cache_budget_bytes)
+FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBudget& budget,
+                             int64_t cache_budget_bytes)
     : store_(store),
       max_grid_voxels_(max_grid_voxels),
+      budget_(budget),
       surfaces_(cache_budget_bytes / 2),
       images_(cache_budget_bytes / 2) {}
 
@@ -148,6 +152,24 @@ Result<Voxelization> FeatureEngine::convert(const db::StructureRecord& structure
   return voxelize_1d(*mesh, geometry, options);
 }
 
+Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord& structure,
+                                                       const ImageGeometry& geometry, const WorkExtras& extras,
+                                                       const std::function<Status()>& stop) {
+  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
+  const ConversionEstimate conversion = conversion_peak_bytes(*mesh, geometry, structure.robust);
+  int64_t bytes = conversion.bytes;
+  auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
+  if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
+  if (extras.mask_export) add(mask_export_extra_bytes(geometry));
+  const auto& d = geometry.dims;
+  return budget_.reserve(bytes,
+                         "structure " + std::to_string(structure.id) + " on a grid of " + std::to_string(d[0]) + "x" +
+                             std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels (" +
+                             std::to_string(conversion.lines) + " row lines)",
+                         stop);
+}
+
 Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const FeatureAsk& ask,
                                              const std::atomic<bool>* cancelled) {
   auto check_cancel = [&]() -> Status {
@@ -155,6 +177,12 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
     return ok_status();
   };
   SOIQ_RETURN_IF_ERROR(check_cancel());
+  WorkExtras extras;
+  extras.features = true;
+  for (const db::SeriesRecord& s : plan.images) extras.image_voxels += s.geometry.voxel_count();
+  extras.regions = plan.images.empty() ? 0 : int(ask.regions.size());
+  SOIQ_ASSIGN_OR_RETURN(const MemoryBudget::Reservation held,
+                        admit(plan.structure, plan.grid.geometry, extras, check_cancel));
   SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(plan.structure, plan.grid.geometry, ask.fill_rule));
   SOIQ_RETURN_IF_ERROR(check_cancel());
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));

@@ -33,6 +33,7 @@
 #include "db/store.h"
 #include "server/grid_choice.h"
 #include "server/lru_cache.h"
+#include "server/memory_budget.h"
 
 namespace soiq::server {
 
@@ -71,7 +72,9 @@ using FeatureValues = std::map<std::string, std::vector<double>>;  // entry -> v
 
 class FeatureEngine {
  public:
-  FeatureEngine(db::Store& store, int64_t max_grid_voxels, int64_t cache_budget_bytes = int64_t(2) << 30);
+  // `budget` admits every conversion and computation by its estimated peak bytes (memory_budget.h).
+  FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBudget& budget,
+                int64_t cache_budget_bytes = int64_t(2) << 30);
 
   Result<FeaturePlan> plan(const db::StructureRecord& structure, const std::vector<db::SeriesRecord>& study_series,
                            const FeatureAsk& ask) const;
@@ -82,8 +85,22 @@ class FeatureEngine {
 
   // The stored surface, decoded (cached).
   Result<std::shared_ptr<const TriangleMesh>> surface(const std::string& sha256);
-  // The structure on a grid by the 1D method (robust when the structure was uploaded so).
+  // The structure on a grid by the 1D method (robust when the structure was uploaded so). The
+  // caller holds an admit() reservation for it.
   Result<Voxelization> convert(const db::StructureRecord& structure, const ImageGeometry& geometry, FillRule fill_rule);
+
+  // What a piece of work will hold besides the conversion itself.
+  struct WorkExtras {
+    bool features = false;     // structure_features on the runs
+    bool mask_export = false;  // a dense mask written as NIfTI
+    int64_t image_voxels = 0;  // images decoded for intensities
+    int regions = 0;           // regions with intensities
+  };
+  // Reserves the estimated peak bytes of converting `structure` on `geometry` plus `extras` in the
+  // memory budget; RESOURCE_EXHAUSTED naming the structure, the grid, the estimate and the limit
+  // when it can never fit; waits while others hold the budget, until `stop` says otherwise.
+  Result<MemoryBudget::Reservation> admit(const db::StructureRecord& structure, const ImageGeometry& geometry,
+                                          const WorkExtras& extras, const std::function<Status()>& stop = {});
 
   int64_t max_grid_voxels() const { return max_grid_voxels_; }
 
@@ -92,6 +109,7 @@ class FeatureEngine {
 
   db::Store& store_;
   const int64_t max_grid_voxels_;
+  MemoryBudget& budget_;
   LruCache<TriangleMesh> surfaces_;
   LruCache<Image> images_;
 };

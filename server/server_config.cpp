@@ -1,8 +1,10 @@
 #include "server/server_config.h"
 
+#include <cctype>
 #include <charconv>
 #include <thread>
 
+#include "server/memory_budget.h"
 #include "server/pacs_address.h"
 
 namespace soiq::server {
@@ -24,15 +26,40 @@ struct Option {
   std::function<Status(const std::string& value, const std::string& what)> set;
 };
 
+// "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a trailing "B" or "iB" allowed).
+Result<int64_t> parse_byte_size(const std::string& text, const std::string& what) {
+  std::string digits = text;
+  int64_t unit = 1;
+  for (const std::string& tail : {std::string("iB"), std::string("B")}) {
+    if (digits.size() > tail.size() && digits.ends_with(tail)) digits.resize(digits.size() - tail.size());
+  }
+  if (!digits.empty()) {
+    const char last = char(std::toupper(static_cast<unsigned char>(digits.back())));
+    const std::string units = "KMGT";
+    if (const size_t at = units.find(last); at != std::string::npos) {
+      unit = int64_t(1) << (10 * (at + 1));
+      digits.pop_back();
+    }
+  }
+  Result<int64_t> n = parse_count(digits, what, 1, (int64_t(1) << 50) / unit);
+  if (!n.ok()) {
+    return invalid_argument(what + " must be a size in bytes such as 8G, 512M or 1073741824, not '" +
+                            text.substr(0, 40) + "'");
+  }
+  return *n * unit;
+}
+
 }  // namespace
 
 const char* server_usage() {
   return "usage: soiqd [--listen HOST:PORT] [--db PATH] [--port-file PATH] [--max-upload-bytes N]\n"
-         "             [--max-grid-voxels N] [--workers N] [--query-result-cap N] [--stage1-cap N]\n"
+         "             [--max-grid-voxels N] [--memory-budget BYTES] [--workers N] [--query-result-cap N]\n"
+         "             [--stage1-cap N]\n"
          "             [--tls-cert PEM --tls-key PEM] [--token-file PATH]\n"
          "             [--pacs AE@HOST:PORT [--pacs-calling-ae AE] [--pacs-timeout SECONDS]]\n"
          "Every flag has an environment default: SOIQ_LISTEN, SOIQ_DB, SOIQ_PORT_FILE, SOIQ_MAX_UPLOAD_BYTES,\n"
-         "SOIQ_MAX_GRID_VOXELS, SOIQ_WORKERS, SOIQ_QUERY_RESULT_CAP, SOIQ_STAGE1_CAP, SOIQ_TLS_CERT,\n"
+         "SOIQ_MAX_GRID_VOXELS, SOIQ_MEMORY_BUDGET, SOIQ_WORKERS, SOIQ_QUERY_RESULT_CAP, SOIQ_STAGE1_CAP, "
+         "SOIQ_TLS_CERT,\n"
          "SOIQ_TLS_KEY, SOIQ_TOKEN_FILE, SOIQ_PACS, SOIQ_PACS_CALLING_AE, SOIQ_PACS_TIMEOUT. Port 0 binds any free "
          "port (see --port-file).\n";
 }
@@ -61,6 +88,11 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--port-file", "SOIQ_PORT_FILE", text(c.port_file)},
       {"--max-upload-bytes", "SOIQ_MAX_UPLOAD_BYTES", count(c.max_upload_bytes, 1, int64_t(1) << 40)},
       {"--max-grid-voxels", "SOIQ_MAX_GRID_VOXELS", count(c.max_grid_voxels, 1, int64_t(1) << 40)},
+      {"--memory-budget", "SOIQ_MEMORY_BUDGET",
+       [&c](const std::string& v, const std::string& what) -> Status {
+         SOIQ_ASSIGN_OR_RETURN(c.memory_budget_bytes, parse_byte_size(v, what));
+         return ok_status();
+       }},
       {"--workers", "SOIQ_WORKERS", count(c.workers, 1, 1024)},
       {"--query-result-cap", "SOIQ_QUERY_RESULT_CAP", count(c.query_result_cap, 1, 10'000'000)},
       {"--stage1-cap", "SOIQ_STAGE1_CAP", count(c.stage1_cap, 1, 100'000'000)},
@@ -104,6 +136,7 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
     if (!peer.ok()) return invalid_argument("--pacs: " + peer.status().message());
     c.pacs_peer = *peer;
   }
+  if (c.memory_budget_bytes == 0) c.memory_budget_bytes = default_memory_budget_bytes();
   if (c.workers == 0) c.workers = std::max(1u, std::thread::hardware_concurrency());
   return c;
 }

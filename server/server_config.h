@@ -8,6 +8,9 @@
 //   --port-file PATH            SOIQ_PORT_FILE             none; the bound port is written there
 //   --max-upload-bytes N        SOIQ_MAX_UPLOAD_BYTES      268435456 (256 MiB)
 //   --max-grid-voxels N         SOIQ_MAX_GRID_VOXELS       500000000
+//   --memory-budget BYTES       SOIQ_MEMORY_BUDGET         half the RAM (or of the cgroup's memory.max):
+//                                                          the peak bytes all conversions and features
+//                                                          may hold at once (8G, 512M, or bytes)
 //   --workers N                 SOIQ_WORKERS               hardware threads (concurrent conversions)
 //   --query-result-cap N        SOIQ_QUERY_RESULT_CAP      10000 rows
 //   --stage1-cap N              SOIQ_STAGE1_CAP            100000 candidate structures
@@ -35,7 +38,8 @@ struct ServerConfig {
   std::string port_file;
   int64_t max_upload_bytes = 256ll << 20;
   int64_t max_grid_voxels = 500'000'000;
-  int workers = 0;  // 0: hardware threads
+  int64_t memory_budget_bytes = 0;  // 0 before parsing: the default (half the RAM)
+  int workers = 0;                  // 0: hardware threads
   int query_result_cap = 10000;
   int64_t stage1_cap = 100000;
   std::string tls_cert, tls_key;

@@ -69,7 +69,8 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
     : store_(store),
       config_(config),
       token_(std::move(token)),
-      features_(store, config.max_grid_voxels),
+      budget_(config.memory_budget_bytes),
+      features_(store, config.max_grid_voxels, budget_),
       pool_(config.workers),
       queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}) {}
 
@@ -261,6 +262,11 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
     SOIQ_ASSIGN_OR_RETURN(GridChoice choice, grid_choice(request->grid()));
     SOIQ_ASSIGN_OR_RETURN(auto series, series_of(store_, s.study_uid));
     SOIQ_ASSIGN_OR_RETURN(ResolvedGrid grid, resolve_grid(choice, s, series, 0, config_.max_grid_voxels));
+    // Held until the last chunk is sent: the runs (and the mask) live that long.
+    FeatureEngine::WorkExtras extras;
+    extras.mask_export = request->encoding() != v1::RUNS;
+    SOIQ_ASSIGN_OR_RETURN(const MemoryBudget::Reservation held,
+                          features_.admit(s, grid.geometry, extras, [&] { return stop_status(*ctx); }));
     SOIQ_ASSIGN_OR_RETURN(Voxelization v, on_pool<Voxelization>([&] {
                             return features_.convert(s, grid.geometry, fill_rule_of(request->fill_rule()));
                           }));
@@ -369,7 +375,11 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_max_upload_bytes(config_.max_upload_bytes);
     response->set_max_grid_voxels(config_.max_grid_voxels);
     response->set_max_concurrent_conversions(config_.workers);
+    response->set_memory_budget_bytes(budget_.limit());
+    response->set_memory_in_use_bytes(budget_.in_use());
+    response->set_memory_peak_bytes(budget_.peak());
     response->set_query_result_cap(config_.query_result_cap);
+    response->set_stage1_cap(config_.stage1_cap);
     response->set_patients(c.patients);
     response->set_studies(c.studies);
     response->set_structures(c.structures);

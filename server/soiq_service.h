@@ -10,6 +10,7 @@
 
 #include "db/store.h"
 #include "server/feature_engine.h"
+#include "server/memory_budget.h"
 #include "server/query_engine.h"
 #include "server/server_config.h"
 #include "server/worker_pool.h"
@@ -80,6 +81,7 @@ class SoiqService final : public v1::Soiq::Service {
   db::Store& store_;
   const ServerConfig config_;
   const std::string token_;
+  MemoryBudget budget_;  // before features_, which admits work against it
   FeatureEngine features_;
   WorkerPool pool_;  // after features_: destroyed (joined) first
   QueryEngine queries_;

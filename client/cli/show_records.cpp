@@ -85,8 +85,12 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("max_upload_bytes", std::to_string(i.max_upload_bytes()));
   line("max_grid_voxels", std::to_string(i.max_grid_voxels()));
   line("max_conversions", std::to_string(i.max_concurrent_conversions()));
+  line("memory_budget_bytes", std::to_string(i.memory_budget_bytes()));
+  line("memory_in_use_bytes", std::to_string(i.memory_in_use_bytes()));
+  line("memory_peak_bytes", std::to_string(i.memory_peak_bytes()));
   line("pacs", i.pacs().empty() ? "none (soiqd --pacs AE@HOST:PORT)" : i.pacs());
   line("query_result_cap", std::to_string(i.query_result_cap()));
+  line("stage1_cap", std::to_string(i.stage1_cap()));
 }
 
 std::vector<std::string> patient_columns() { return {"patient_id", "sex", "birth_date", "studies", "structures"}; }

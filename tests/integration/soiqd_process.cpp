@@ -99,3 +99,16 @@ std::string SoiqdProcess::log() const {
 }
 
 }  // namespace soiq::testing
+
+namespace soiq::testing {
+
+long long SoiqdProcess::peak_rss_bytes() const {
+  std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoll(line.substr(6)) * 1024;  // "VmHWM:  1234 kB"
+  }
+  return -1;
+}
+
+}  // namespace soiq::testing

@@ -41,6 +41,8 @@ class SoiqdProcess {
   // SIGKILL: a crash, nothing flushed by the server itself.
   void kill_hard();
   std::string log() const;  // the server's stderr so far
+  // The server's peak resident memory so far (VmHWM from /proc), in bytes; -1 when unreadable.
+  long long peak_rss_bytes() const;
 
  private:
   pid_t pid_ = -1;

@@ -1,0 +1,111 @@
+// soiqd admits conversions and feature computations by their estimated peak bytes against one
+// budget (--memory-budget): a request that can never fit is refused before it allocates, and
+// parallel requests queue instead of exhausting the machine together.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/primitives.h"
+#include "tests/integration/service_fixture.h"
+
+namespace soiq::testing {
+namespace {
+
+// An axis-aligned box as OBJ text: a few hundred bytes.
+std::string box_obj(double sx, double sy, double sz) {
+  std::string text;
+  for (int v = 0; v < 8; ++v) {
+    text += "v " + std::to_string(v & 1 ? sx : 0) + " " + std::to_string(v & 2 ? sy : 0) + " " +
+            std::to_string(v & 4 ? sz : 0) + "\n";
+  }
+  // Faces as quads, outward; the parser fans them into triangles.
+  text += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  return text;
+}
+
+class MemoryBudgetTest : public ServiceTest {
+ protected:
+  void start_with(const std::vector<std::string>& args) {
+    start(args);
+    client_ = std::make_unique<client::Client>(connect());
+  }
+};
+
+// The bomb: 2.5 x 7500 x 7500 mm at 1 mm is 3.9e8 voxels (under the grid limit) but 5.6e7 row
+// lines, each with its own crossings: ~6 GB for a 300-byte file. Refused before any of it exists.
+TEST_F(MemoryBudgetTest, ARequestThatCanNeverFitIsRefusedBeforeItAllocates) {
+  start_with({"--memory-budget", "1G"});
+  v1::UploadSurfaceHeader h = surface_header("P", "S", "slab", "");
+  h.set_format("obj");
+  Result<v1::UploadSurfaceResponse> up = client_->upload_surface_bytes(h, box_obj(2.5, 7500, 7500));
+  ASSERT_TRUE(up.ok()) << up.status().to_string();
+
+  v1::ConvertRequest c;
+  c.set_structure_id(up->structure().id());
+  c.mutable_grid()->set_spacing_mm(1);
+  c.set_encoding(v1::RUNS);
+  const auto start = std::chrono::steady_clock::now();
+  Result<v1::ConvertSummary> r = client_->convert(c, {});
+  const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("memory budget of 1.07 GB"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("structure " + std::to_string(up->structure().id())), std::string::npos);
+  EXPECT_EQ(r.status().message().find('\n'), std::string::npos);
+  std::printf("refused in %.1f ms: %s\n", ms, r.status().message().c_str());
+
+  v1::FeaturesRequest f;
+  f.set_structure_id(up->structure().id());
+  f.mutable_grid()->set_spacing_mm(1);
+  Result<v1::FeaturesResponse> fr = client_->compute_features(f);
+  EXPECT_EQ(fr.status().code(), StatusCode::kResourceExhausted) << fr.status().to_string();
+
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->memory_budget_bytes(), int64_t(1) << 30);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);
+  EXPECT_LT(server_->peak_rss_bytes(), 1ll << 30);
+}
+
+// Four NIfTI conversions of a 3e8-voxel grid (each ~0.65 GB at its peak, ~1 GB estimated) sent at
+// once to four workers: the 1.2 GB budget runs them one at a time, so soiqd's peak stays under it.
+TEST_F(MemoryBudgetTest, ParallelConversionsQueueWithinTheBudget) {
+  const int64_t budget = int64_t(1200) << 20;
+  start_with({"--memory-budget", std::to_string(budget), "--workers", "4"});
+  Result<v1::UploadSurfaceResponse> up = upload(uv_sphere({0, 0, 0}, 100, 64, 128), "P", "S", "ball");
+  ASSERT_TRUE(up.ok()) << up.status().to_string();
+  std::vector<std::thread> clients;
+  std::vector<Status> results(4);
+  for (int n = 0; n < 4; ++n) {
+    clients.emplace_back([&, n] {
+      client::Client own = connect();
+      v1::ConvertRequest c;
+      c.set_structure_id(up->structure().id());
+      c.mutable_grid()->set_spacing_mm(0.3);  // 673^3 voxels
+      int64_t bytes = 0;
+      client::ConvertHandlers handlers;
+      handlers.on_nifti = [&](std::string_view chunk) {
+        bytes += int64_t(chunk.size());
+        return true;
+      };
+      Result<v1::ConvertSummary> r = own.convert(c, handlers);
+      results[size_t(n)] = r.ok() ? (bytes > 0 ? ok_status() : internal_error("no NIfTI bytes")) : r.status();
+    });
+  }
+  for (auto& t : clients) t.join();
+  for (const Status& s : results) EXPECT_TRUE(s.ok()) << s.to_string();
+  const long long peak = server_->peak_rss_bytes();
+  EXPECT_GT(peak, 0);
+  EXPECT_LT(peak, budget) << "soiqd's VmHWM " << peak << " bytes exceeds its budget of " << budget;
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_LE(info->memory_peak_bytes(), budget);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);
+}
+
+}  // namespace
+}  // namespace soiq::testing
