@@ -1,8 +1,13 @@
 #include "core/memory_estimate.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <vector>
 
@@ -63,6 +68,47 @@ int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGe
 }
 
 int64_t mask_export_extra_bytes(const ImageGeometry& geometry) { return mul_add(geometry.voxel_count(), 3); }
+
+// "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a trailing "B" or "iB" allowed).
+Result<int64_t> parse_byte_size(const std::string& text, const std::string& what) {
+  std::string digits = text;
+  int64_t unit = 1;
+  for (const std::string& tail : {std::string("iB"), std::string("B")}) {
+    if (digits.size() > tail.size() && digits.ends_with(tail)) digits.resize(digits.size() - tail.size());
+  }
+  if (!digits.empty()) {
+    const char last = char(std::toupper(static_cast<unsigned char>(digits.back())));
+    const std::string units = "KMGT";
+    if (const size_t at = units.find(last); at != std::string::npos) {
+      unit = int64_t(1) << (10 * (at + 1));
+      digits.pop_back();
+    }
+  }
+  int64_t n = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || n < 1 ||
+      n > (int64_t(1) << 50) / unit) {
+    return invalid_argument(what + " must be a size in bytes such as 8G, 512M or 1073741824, not '" +
+                            text.substr(0, 40) + "'");
+  }
+  return n * unit;
+}
+
+int64_t default_memory_budget_bytes() {
+  int64_t total = int64_t(sysconf(_SC_PHYS_PAGES)) * int64_t(sysconf(_SC_PAGE_SIZE));
+  // cgroup v2: a container's limit, "max" when there is none.
+  std::ifstream cgroup("/sys/fs/cgroup/memory.max");
+  std::string text;
+  if (cgroup >> text && text != "max") {
+    try {
+      const int64_t limit = std::stoll(text);
+      if (limit > 0 && (total <= 0 || limit < total)) total = limit;
+    } catch (...) {
+    }
+  }
+  if (total <= 0) total = int64_t(4) << 30;
+  return total / 2;
+}
 
 std::string human_bytes(int64_t bytes) {
   const char* units[] = {"bytes", "KB", "MB", "GB", "TB", "PB", "EB"};

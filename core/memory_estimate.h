@@ -27,6 +27,7 @@
 #include <string>
 
 #include "core/image_geometry.h"
+#include "core/status.h"
 #include "core/triangle_mesh.h"
 
 namespace soiq {
@@ -45,6 +46,14 @@ int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGe
                              int64_t uncached_image_voxels, int regions);
 
 int64_t mask_export_extra_bytes(const ImageGeometry& geometry);
+
+// The default memory budget: half of the memory this process may use (the cgroup's memory.max
+// when it is set and lower than the machine's RAM, so a container's limit is respected).
+int64_t default_memory_budget_bytes();
+
+// A byte size as people write it: "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a
+// trailing "B" or "iB" allowed). INVALID_ARGUMENT naming `what` otherwise.
+Result<int64_t> parse_byte_size(const std::string& text, const std::string& what);
 
 // "15.6 GB", "420 MB", "12 KB": bytes for messages (decimal units, 3 significant digits).
 std::string human_bytes(int64_t bytes);

@@ -1,10 +1,7 @@
 #include "server/memory_budget.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 
 #include "core/memory_estimate.h"
 
@@ -93,22 +90,6 @@ int64_t MemoryBudget::in_use() const {
 int64_t MemoryBudget::peak() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return peak_;
-}
-
-int64_t default_memory_budget_bytes() {
-  int64_t total = int64_t(sysconf(_SC_PHYS_PAGES)) * int64_t(sysconf(_SC_PAGE_SIZE));
-  // cgroup v2: a container's limit, "max" when there is none.
-  std::ifstream cgroup("/sys/fs/cgroup/memory.max");
-  std::string text;
-  if (cgroup >> text && text != "max") {
-    try {
-      const int64_t limit = std::stoll(text);
-      if (limit > 0 && (total <= 0 || limit < total)) total = limit;
-    } catch (...) {
-    }
-  }
-  if (total <= 0) total = int64_t(4) << 30;
-  return total / 2;
 }
 
 }  // namespace soiq::server

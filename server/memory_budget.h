@@ -70,8 +70,4 @@ class MemoryBudget {
   std::vector<uint64_t> abandoned_;  // tickets whose waiter stopped before being served
 };
 
-// The default budget: half of the memory this process may use (the cgroup's memory.max when it
-// is set and lower than the machine's RAM), so a container's limit is respected.
-int64_t default_memory_budget_bytes();
-
 }  // namespace soiq::server

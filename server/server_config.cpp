@@ -4,7 +4,7 @@
 #include <charconv>
 #include <thread>
 
-#include "server/memory_budget.h"
+#include "core/memory_estimate.h"
 #include "server/pacs_address.h"
 
 namespace soiq::server {
@@ -25,29 +25,6 @@ struct Option {
   const char* env;
   std::function<Status(const std::string& value, const std::string& what)> set;
 };
-
-// "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a trailing "B" or "iB" allowed).
-Result<int64_t> parse_byte_size(const std::string& text, const std::string& what) {
-  std::string digits = text;
-  int64_t unit = 1;
-  for (const std::string& tail : {std::string("iB"), std::string("B")}) {
-    if (digits.size() > tail.size() && digits.ends_with(tail)) digits.resize(digits.size() - tail.size());
-  }
-  if (!digits.empty()) {
-    const char last = char(std::toupper(static_cast<unsigned char>(digits.back())));
-    const std::string units = "KMGT";
-    if (const size_t at = units.find(last); at != std::string::npos) {
-      unit = int64_t(1) << (10 * (at + 1));
-      digits.pop_back();
-    }
-  }
-  Result<int64_t> n = parse_count(digits, what, 1, (int64_t(1) << 50) / unit);
-  if (!n.ok()) {
-    return invalid_argument(what + " must be a size in bytes such as 8G, 512M or 1073741824, not '" +
-                            text.substr(0, 40) + "'");
-  }
-  return *n * unit;
-}
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 // ones run core/ here, the remote ones talk to soiqd through client/soiq_client.h.
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -112,7 +113,28 @@ const std::vector<std::string> kFeaturesValueOptions = {
 
 }  // namespace
 
+namespace {
+
+int dispatch(int argc, char** argv);
+
+}  // namespace
+
+// Estimates refuse what cannot fit before it is allocated; this is the last line for what they do
+// not cover (a bad_alloc must still end in one readable line and the RESOURCE_EXHAUSTED code).
 int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "soiq: out of memory: the input needs more than this machine can give (try a coarser --spacing "
+                 "or a smaller --margin)\n");
+    return soiq::cli::exit_code(soiq::resource_exhausted(""));
+  }
+}
+
+namespace {
+
+int dispatch(int argc, char** argv) {
   using namespace soiq::cli;
   const soiq::Result<soiq::client::ClientOptions> remote = take_remote_options(argc, argv);
   if (!remote.ok()) {
@@ -153,3 +175,5 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "soiq: unknown command '%s' (try 'soiq help')\n", command.c_str());
   return kExitUsage;
 }
+
+}  // namespace

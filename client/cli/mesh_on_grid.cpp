@@ -1,11 +1,14 @@
 #include "client/cli/mesh_on_grid.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 
 #include "client/cli/cli_args.h"
 #include "core/grid_around.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
+#include "core/memory_estimate.h"
 
 namespace soiq::cli {
 
@@ -45,6 +48,12 @@ Status check_mesh_grid_options(const MeshGridOptions& o) {
   return ok_status();
 }
 
+Result<int64_t> offline_memory_budget() {
+  const char* text = std::getenv("SOIQ_MEMORY_BUDGET");
+  if (!text || !*text) return default_memory_budget_bytes();
+  return parse_byte_size(text, "environment variable SOIQ_MEMORY_BUDGET");
+}
+
 Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOptions& o) {
   MeshOnGrid out;
   SOIQ_ASSIGN_OR_RETURN(out.mesh, read_mesh(path, o.ras));
@@ -54,6 +63,22 @@ Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOpti
     out.grid = reference.geometry;
   } else {
     SOIQ_ASSIGN_OR_RETURN(out.grid, grid_around(out.mesh, o.spacing_mm, o.margin));
+  }
+  // The same estimate soiqd admits work by: a mesh that would need more than this machine can give
+  // is refused here, in one line, instead of dying of bad_alloc (or the OOM killer) minutes later.
+  SOIQ_RETURN_IF_ERROR(check_grid_size(out.grid, kDefaultMaxVoxels));
+  SOIQ_ASSIGN_OR_RETURN(const int64_t budget, offline_memory_budget());
+  const ConversionEstimate estimate = conversion_peak_bytes(out.mesh, out.grid, o.robust);
+  const int64_t needed =
+      estimate.bytes + std::max(features_extra_bytes(estimate, out.grid, 0, 0), mask_export_extra_bytes(out.grid));
+  if (needed > budget) {
+    const auto& d = out.grid.dims;
+    return resource_exhausted("'" + path + "' on a grid of " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+                              std::to_string(d[2]) + " voxels (" + std::to_string(estimate.lines) +
+                              " row lines) needs an estimated " + human_bytes(needed) +
+                              ", more than the memory budget of " + human_bytes(budget) +
+                              " (half this machine's memory; SOIQ_MEMORY_BUDGET sets it): use a coarser --spacing or a "
+                              "smaller --margin");
   }
   VoxelizeOptions options;
   options.robust = o.robust;

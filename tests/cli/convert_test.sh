@@ -75,6 +75,14 @@ expect 2 "--spacing" -- "$soiq" convert "$tmp/pet.stl" --spacing -1 -o "$tmp/x.n
 expect 2 "empty.stl" -- "$soiq" convert "$tmp/empty.stl" --spacing 1 -o "$tmp/x.nii.gz"
 expect 2 "extension" -- "$soiq" convert "$tmp/pet.stl" --spacing 1 -o "$tmp/x.png"
 
+# A 300-byte slab of 2.5 x 7500 x 7500 mm: 5.6e7 row lines at 1 mm, gigabytes of crossings. Refused
+# by its estimate before anything is allocated (it died of bad_alloc before).
+printf 'v 0 0 0\nv 2.5 0 0\nv 0 7500 0\nv 2.5 7500 0\nv 0 0 7500\nv 2.5 0 7500\nv 0 7500 7500\nv 2.5 7500 7500\n' >"$tmp/slab.obj"
+printf 'f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n' >>"$tmp/slab.obj"
+expect 5 "memory budget of 1.07 GB" -- env SOIQ_MEMORY_BUDGET=1G "$soiq" convert "$tmp/slab.obj" --spacing 1 -o "$tmp/x.nii.gz"
+expect 5 "needs an estimated" -- env SOIQ_MEMORY_BUDGET=1G "$soiq" features "$tmp/slab.obj" --spacing 1
+expect 2 "SOIQ_MEMORY_BUDGET" -- env SOIQ_MEMORY_BUDGET=lots "$soiq" convert "$tmp/slab.obj" --spacing 1 -o "$tmp/x.nii.gz"
+
 # Stderr of a failure is one line.
 "$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz" 2>"$tmp/err"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "error output is not one line: $(cat "$tmp/err")"
