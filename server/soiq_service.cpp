@@ -3,6 +3,7 @@
 #include <openssl/crypto.h>
 
 #include <chrono>
+#include <optional>
 
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
@@ -126,8 +127,22 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
     SOIQ_ASSIGN_OR_RETURN(s.study, from_proto(h.study(), s.patient.patient_id));
     if (h.series_uid().empty()) return invalid_argument("series_uid is required");
     if (h.modality().empty()) return invalid_argument("modality is required (e.g. CT, MR, PT)");
-    SOIQ_ASSIGN_OR_RETURN(Image image, parse_image(bytes, h.format(), h.series_uid()));
-    SOIQ_RETURN_IF_ERROR(check_grid_size(image.geometry, config_.max_grid_voxels));
+    // The decoded image and its compressed blob are admitted against the memory budget as soon as
+    // the header tells their size, before a voxel is decoded.
+    std::optional<MemoryBudget::Reservation> held;
+    ImageDecodeLimits limits;
+    limits.max_voxels = config_.max_grid_voxels;
+    limits.before_decoding = [&](const ImageGeometry& g, int64_t decode_bytes) -> Status {
+      const auto& d = g.dims;
+      SOIQ_ASSIGN_OR_RETURN(MemoryBudget::Reservation r,
+                            budget_.reserve(decode_bytes + g.voxel_count() * int64_t(sizeof(float)),
+                                            "image '" + h.series_uid() + "' of " + std::to_string(d[0]) + "x" +
+                                                std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels",
+                                            [&] { return stop_status(*ctx); }));
+      held = std::move(r);
+      return ok_status();
+    };
+    SOIQ_ASSIGN_OR_RETURN(Image image, parse_image(bytes, h.format(), h.series_uid(), limits));
     SOIQ_ASSIGN_OR_RETURN(db::EncodedImage encoded, db::encode_image(image));
     s.series.series_uid = h.series_uid();
     s.series.study_uid = s.study.study_uid;

@@ -45,10 +45,11 @@ Result<ParsedSurface> parse_surface(const std::string& bytes, const std::string&
   return out;
 }
 
-Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name) {
+Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name,
+                          const ImageDecodeLimits& limits) {
   SOIQ_ASSIGN_OR_RETURN(const std::string f, checked_format(format, {"nii", "nii.gz", "nrrd", "mha"}, "image"));
   if (bytes.empty()) return invalid_argument("image '" + name + "' is empty (0 bytes uploaded)");
-  return decode_image(bytes, f, name);
+  return decode_image(bytes, f, name, limits);
 }
 
 Result<std::string> surface_bytes(const TriangleMesh& mesh, const std::string& format, bool ras) {

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/io/image_decode_limits.h"
 #include "core/mesh_defects.h"
 #include "core/status.h"
 #include "core/triangle_mesh.h"
@@ -29,7 +30,8 @@ struct ParsedSurface {
 
 Result<ParsedSurface> parse_surface(const std::string& bytes, const std::string& format, bool ras, bool robust,
                                     const std::string& name);
-Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name);
+Result<Image> parse_image(const std::string& bytes, const std::string& format, const std::string& name,
+                          const ImageDecodeLimits& limits);
 Result<std::string> surface_bytes(const TriangleMesh& mesh, const std::string& format, bool ras);
 
 }  // namespace soiq::server

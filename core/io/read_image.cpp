@@ -18,13 +18,14 @@ Result<Image> read_image(const std::string& path) {
                           "'; soiq reads .nii, .nii.gz, .nrrd, .nhdr, .mha and .mhd");
 }
 
-Result<Image> decode_image(const std::string& bytes, const std::string& format, const std::string& name) {
+Result<Image> decode_image(const std::string& bytes, const std::string& format, const std::string& name,
+                           const ImageDecodeLimits& limits) {
   std::string f = format;
   for (char& c : f) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (f.starts_with(".")) f.erase(0, 1);
-  if (f == "nii" || f == "nii.gz") return parse_nifti(bytes, name);
-  if (f == "nrrd") return parse_nrrd(bytes, name, std::nullopt);
-  if (f == "mha") return parse_metaimage(bytes, name, std::nullopt);
+  if (f == "nii" || f == "nii.gz") return parse_nifti(bytes, name, limits);
+  if (f == "nrrd") return parse_nrrd(bytes, name, std::nullopt, limits);
+  if (f == "mha") return parse_metaimage(bytes, name, std::nullopt, limits);
   return invalid_argument("unknown image format '" + format + "' of '" + name + "'; known: nii, nii.gz, nrrd, mha");
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/io/image_decode_limits.h"
 #include "core/status.h"
 
 namespace soiq {
@@ -20,8 +21,10 @@ Result<Image> read_image(const std::string& path);
 // An image from bytes that are not a local file (an upload): `format` is nii, nii.gz, nrrd or mha
 // (a leading '.' and case are ignored), `name` stands for it in messages. Parsed in memory, never
 // through a path; a header that names a separate data file (NRRD `data file`, MetaImage
-// `ElementDataFile`, a NIfTI .hdr/.img pair) is INVALID_ARGUMENT.
-Result<Image> decode_image(const std::string& bytes, const std::string& format, const std::string& name);
+// `ElementDataFile`, a NIfTI .hdr/.img pair) is INVALID_ARGUMENT. `limits` are checked once the
+// header is parsed, before any voxel is inflated or decoded (image_decode_limits.h).
+Result<Image> decode_image(const std::string& bytes, const std::string& format, const std::string& name,
+                           const ImageDecodeLimits& limits = {});
 
 // The voxels equal to `label` (or nonzero when label < 0) as a 0/1 mask on the image's grid.
 Mask mask_from_image(const Image& image, int label = -1);

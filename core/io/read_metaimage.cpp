@@ -115,11 +115,11 @@ Result<ImageGeometry> parse_geometry(const MetaHeader& h, const std::string& pat
 
 Result<Image> read_metaimage(const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
-  return parse_metaimage(bytes, path, directory_of(path));
+  return parse_metaimage(bytes, path, directory_of(path), {});
 }
 
 Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
-                              const std::optional<std::string>& detached_dir) {
+                              const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
   SOIQ_ASSIGN_OR_RETURN(const MetaHeader header, parse_header(bytes, path));
   if (const std::string* object = find_first(header, {"ObjectType"}); object && *object != "Image") {
@@ -134,7 +134,7 @@ Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
   const auto type = met_voxel_type(*type_name);
   if (!type) return bad_field(path, "ElementType", *type_name, "soiq reads MET_UCHAR..MET_INT, MET_FLOAT, MET_DOUBLE");
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, parse_geometry(header, path));
-  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, kDefaultMaxVoxels));
+  SOIQ_RETURN_IF_ERROR(check_before_decoding(geometry, voxel_type_size(*type), limits));
   const size_t count = size_t(geometry.voxel_count());
   const size_t needed = count * voxel_type_size(*type);
 

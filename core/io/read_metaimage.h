@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/io/image_decode_limits.h"
 #include "core/status.h"
 
 namespace soiq {
@@ -27,6 +28,6 @@ Result<Image> read_metaimage(const std::string& path);
 // The same from bytes named `path` in messages; `detached_dir` as for parse_nrrd: nullopt refuses
 // any ElementDataFile but LOCAL.
 Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
-                              const std::optional<std::string>& detached_dir);
+                              const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits);
 
 }  // namespace soiq

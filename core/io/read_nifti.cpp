@@ -174,7 +174,7 @@ Result<NiftiHeader> header_from_bytes(std::string_view head, const std::string& 
 
 }  // namespace
 
-Result<Image> parse_nifti(std::string_view bytes, const std::string& name) {
+Result<Image> parse_nifti(std::string_view bytes, const std::string& name, const ImageDecodeLimits& limits) {
   if (bytes.empty()) return invalid_argument("image '" + name + "' is empty");
   // libnifti prints its errors to stderr unless its debug level is 0; we report our own.
   static std::once_flag quiet;
@@ -200,7 +200,7 @@ Result<Image> parse_nifti(std::string_view bytes, const std::string& name) {
                             nifti_datatype_string(nim->datatype) + "), which soiq does not read");
   }
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, nifti_geometry(*nim, name));
-  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, kDefaultMaxVoxels));
+  SOIQ_RETURN_IF_ERROR(check_before_decoding(geometry, voxel_type_size(*type), limits));
   const int64_t count = geometry.voxel_count();
   const int64_t needed = count * int64_t(voxel_type_size(*type));
   // vox_offset is where the voxels start; it cannot lie inside the header, nor past the data.
@@ -245,7 +245,7 @@ Result<Image> parse_nifti(std::string_view bytes, const std::string& name) {
 
 Result<Image> read_nifti(const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
-  return parse_nifti(bytes, path);
+  return parse_nifti(bytes, path, {});
 }
 
 }  // namespace soiq

@@ -21,12 +21,13 @@
 #include <string_view>
 
 #include "core/image.h"
+#include "core/io/image_decode_limits.h"
 #include "core/status.h"
 
 namespace soiq {
 
 Result<Image> read_nifti(const std::string& path);
 // The same from the file's bytes (gzip-compressed or not); `name` stands for the file in messages.
-Result<Image> parse_nifti(std::string_view bytes, const std::string& name);
+Result<Image> parse_nifti(std::string_view bytes, const std::string& name, const ImageDecodeLimits& limits);
 
 }  // namespace soiq

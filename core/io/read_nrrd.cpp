@@ -173,11 +173,11 @@ Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, co
 
 Result<Image> read_nrrd(const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(path, "image"));
-  return parse_nrrd(bytes, path, directory_of(path));
+  return parse_nrrd(bytes, path, directory_of(path), {});
 }
 
 Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
-                         const std::optional<std::string>& detached_dir) {
+                         const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
   SOIQ_ASSIGN_OR_RETURN(const NrrdHeader header, parse_header(bytes, path));
   SOIQ_ASSIGN_OR_RETURN(const std::string type_name, field(header, "type", path));
@@ -185,7 +185,7 @@ Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
   if (!type) return bad_field(path, "type", type_name, "soiq reads 8-32 bit integers, float and double");
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, parse_geometry(header, path));
   Image image{geometry, {}};
-  SOIQ_RETURN_IF_ERROR(check_grid_size(image.geometry, kDefaultMaxVoxels));
+  SOIQ_RETURN_IF_ERROR(check_before_decoding(image.geometry, voxel_type_size(*type), limits));
   const size_t count = size_t(image.geometry.voxel_count());
   const size_t needed = count * voxel_type_size(*type);
 

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/io/image_decode_limits.h"
 #include "core/status.h"
 
 namespace soiq {
@@ -26,6 +27,6 @@ Result<Image> read_nrrd(const std::string& path);
 // upload): a header naming a data file is then INVALID_ARGUMENT, so no header can make soiqd read
 // a file of the sender's choosing.
 Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
-                         const std::optional<std::string>& detached_dir);
+                         const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits);
 
 }  // namespace soiq

@@ -71,6 +71,27 @@ TEST_F(MemoryBudgetTest, ARequestThatCanNeverFitIsRefusedBeforeItAllocates) {
   EXPECT_LT(server_->peak_rss_bytes(), 1ll << 30);
 }
 
+// A 100-byte NRRD announcing 4e8 float voxels: admitted (or not) on its header, before a voxel is
+// inflated.
+TEST_F(MemoryBudgetTest, AnImageThatCanNeverFitIsRefusedOnItsHeader) {
+  start_with({"--memory-budget", "1G"});
+  v1::UploadImageHeader h;
+  h.mutable_patient()->set_patient_id("P");
+  h.mutable_study()->set_study_uid("S");
+  h.set_series_uid("1.2.3");
+  h.set_modality("CT");
+  h.set_format("nrrd");
+  const std::string nrrd =
+      "NRRD0004\ntype: float\ndimension: 3\nsizes: 1000 1000 400\nendian: little\nencoding: gzip\n\nnot gzip";
+  Result<v1::UploadImageResponse> r = client_->upload_image_bytes(h, nrrd);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("image '1.2.3' of 1000x1000x400 voxels needs an estimated 4.80 GB"),
+            std::string::npos)
+      << r.status().message();
+  EXPECT_EQ(client_->server_info()->series(), 0);
+}
+
 // Four NIfTI conversions of a 3e8-voxel grid (each ~0.65 GB at its peak, ~1 GB estimated) sent at
 // once to four workers: the 1.2 GB budget runs them one at a time, so soiqd's peak stays under it.
 TEST_F(MemoryBudgetTest, ParallelConversionsQueueWithinTheBudget) {
