@@ -1,0 +1,85 @@
+#include "core/memory_estimate.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "core/grid_around.h"
+#include "core/primitives.h"
+#include "core/voxelize_1d.h"
+
+namespace soiq {
+namespace {
+
+// An axis-aligned box from (0,0,0) to `size`, closed and outward.
+TriangleMesh box(const Vec3& size) {
+  TriangleMesh m;
+  for (int v = 0; v < 8; ++v) m.vertices_mm.push_back({v & 1 ? size[0] : 0, v & 2 ? size[1] : 0, v & 4 ? size[2] : 0});
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return m;
+}
+
+// The crossing bound is a bound: each run of the real conversion starts and ends at a crossing.
+TEST(MemoryEstimate, CrossingsBoundTheRunsOfTheRealConversion) {
+  for (const double spacing : {2.0, 1.0, 0.37}) {
+    for (const TriangleMesh& mesh : {uv_sphere({1, 2, 3}, 20, 24, 48), box({7.3, 30.1, 12.9})}) {
+      const auto grid = grid_around(mesh, {spacing, spacing, spacing}, 2);
+      ASSERT_TRUE(grid.ok());
+      const ConversionEstimate e = conversion_peak_bytes(mesh, *grid, false);
+      const auto v = voxelize_1d(mesh, *grid, {});
+      ASSERT_TRUE(v.ok()) << v.status().to_string();
+      EXPECT_EQ(e.lines, grid->dims[1] * grid->dims[2]);
+      EXPECT_LE(2 * int64_t(v->volume.runs.size()), e.crossings) << spacing;
+    }
+  }
+}
+
+// Peaks measured on this project's reference machine with
+//   /usr/bin/time -f %M soiq features MESH --spacing S [--margin 0] --features voxel_count
+// minus ~30 MB of process baseline: the estimate must not be below them. The slab is the memory
+// bomb (2.5 x 12000 x 12000 mm at 1 mm: 4 x 12001 x 12001 voxels, 15.6 GB measured).
+TEST(MemoryEstimate, IsAboveTheMeasuredPeaks) {
+  const TriangleMesh slab = box({2.5, 12000, 12000});
+  const auto slab_grid = grid_around(slab, {1, 1, 1}, 0);
+  ASSERT_TRUE(slab_grid.ok());
+  const ConversionEstimate e = conversion_peak_bytes(slab, *slab_grid, false);
+  EXPECT_GE(e.bytes, int64_t(15'600'000'000));
+  EXPECT_LE(e.bytes, int64_t(30'000'000'000));  // and not absurdly above: it must still admit real work
+
+  const TriangleMesh sphere = uv_sphere({0, 0, 0}, 100, 64, 128);
+  for (const auto& [spacing, measured] : {std::pair{0.5, int64_t(67'000'000)}, std::pair{0.3, int64_t(162'000'000)}}) {
+    const auto grid = grid_around(sphere, {spacing, spacing, spacing}, 2);
+    ASSERT_TRUE(grid.ok());
+    const ConversionEstimate c = conversion_peak_bytes(sphere, *grid, false);
+    EXPECT_GE(c.bytes + features_extra_bytes(c, *grid, 0, 0), measured) << spacing;
+  }
+}
+
+TEST(MemoryEstimate, AbsurdMeshesSaturateInsteadOfOverflowing) {
+  const TriangleMesh huge = box({1e12, 1e12, 1e12});
+  ImageGeometry g;
+  g.dims = {1'000'000'000, 1'000'000'000, 1'000'000'000};
+  const ConversionEstimate e = conversion_peak_bytes(huge, g, true);
+  EXPECT_EQ(e.bytes, std::numeric_limits<int64_t>::max());
+  EXPECT_EQ(features_extra_bytes(e, g, std::numeric_limits<int64_t>::max(), 3), std::numeric_limits<int64_t>::max());
+}
+
+TEST(MemoryEstimate, ByteSizesAreReadAndWrittenAsPeopleDo) {
+  EXPECT_EQ(*parse_byte_size("8G", "x"), int64_t(8) << 30);
+  EXPECT_EQ(*parse_byte_size("512MiB", "x"), int64_t(512) << 20);
+  EXPECT_EQ(*parse_byte_size("64k", "x"), int64_t(64) << 10);
+  EXPECT_EQ(*parse_byte_size("1234", "x"), 1234);
+  for (const char* bad : {"", "G", "-1G", "1.5G", "lots", "99999999999T"}) {
+    auto r = parse_byte_size(bad, "--memory-budget");
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << bad;
+    EXPECT_NE(r.status().message().find("--memory-budget"), std::string::npos);
+  }
+  EXPECT_EQ(human_bytes(999), "999 bytes");
+  EXPECT_EQ(human_bytes(15'600'000'000), "15.6 GB");
+  EXPECT_EQ(human_bytes(int64_t(1) << 30), "1.07 GB");
+  EXPECT_GT(default_memory_budget_bytes(), 0);
+}
+
+}  // namespace
+}  // namespace soiq
