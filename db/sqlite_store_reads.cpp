@@ -26,7 +26,7 @@ Result<PatientRecord> SqliteStore::get_patient(const std::string& patient_id) {
 Result<Page<PatientRecord>> SqliteStore::list_patients(const PatientFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("patients", p.page_token));
-  SOIQ_RETURN_IF_ERROR(validate_sex(f.sex));
+  SOIQ_RETURN_IF_ERROR(validate_patient_filter(f));
   SqlConditions where;
   if (!p.page_token.empty()) where.compare("p.patient_id", ">", after);
   if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
@@ -169,7 +169,7 @@ Result<StructureRecord> SqliteStore::get_structure(int64_t id) {
 Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("structures", p.page_token));
-  SOIQ_RETURN_IF_ERROR(validate_laterality(f.laterality));
+  SOIQ_RETURN_IF_ERROR(validate_structure_filter(f));
   int64_t after_id = 0;
   if (!after.empty()) {
     size_t used = 0;

@@ -191,6 +191,7 @@ Status validate_new_structure(const NewStructure& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
   if (s.name.empty()) return invalid_argument("structure name is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.name, "structure name", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_laterality(s.laterality));
   SOIQ_RETURN_IF_ERROR(validate_sha256(s.surface.sha256, "surface"));
   if (s.surface_blob.empty()) return invalid_argument("surface blob is empty");
@@ -202,6 +203,8 @@ Status validate_new_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
   if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
   if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
     return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
                             "' but is sent with study '" + s.study.study_uid + "'");

@@ -6,6 +6,32 @@
 
 namespace soiq::db {
 
+namespace {
+
+// The value as a message may quote it: 40 bytes at most, control bytes as '?'.
+std::string quoted(const std::string& value) {
+  std::string q = value.substr(0, 40);
+  for (char& c : q) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return "'" + q + (value.size() > 40 ? "...'" : "'");
+}
+
+}  // namespace
+
+Status validate_text(const std::string& value, const std::string& what, size_t max_bytes) {
+  if (value.size() > max_bytes) {
+    return invalid_argument(what + " " + quoted(value) + " is " + std::to_string(value.size()) +
+                            " bytes long; the limit is " + std::to_string(max_bytes));
+  }
+  for (const char c : value) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return invalid_argument(what + " " + quoted(value) + " contains a control character (newline, tab, ...)");
+    }
+  }
+  return ok_status();
+}
+
 Status validate_sex(const std::string& sex) {
   if (sex.empty() || sex == "M" || sex == "F" || sex == "O") return ok_status();
   return invalid_argument("sex '" + sex + "' is not one of M, F, O or empty");
@@ -32,12 +58,16 @@ Status validate_uid(const std::string& uid, const std::string& what) {
 
 Status validate_patient(const PatientRecord& p) {
   if (p.patient_id.empty()) return invalid_argument("patient_id is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(p.patient_id, "patient_id", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_sex(p.sex));
   return validate_date(p.birth_date, "birth date of patient '" + p.patient_id + "'");
 }
 
 Status validate_study(const StudyRecord& s, const std::string& patient_id) {
   if (s.study_uid.empty()) return invalid_argument("study_uid is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.study_uid, "study_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.description, "study description", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.modality, "study modality", kMaxIdBytes));
   if (!s.patient_id.empty() && s.patient_id != patient_id) {
     return invalid_argument("study '" + s.study_uid + "' names patient '" + s.patient_id +
                             "' but is sent with patient '" + patient_id + "'");
@@ -50,6 +80,10 @@ Status validate_study(const StudyRecord& s, const std::string& patient_id) {
 }
 
 Status validate_stage1_filter(const Stage1Filter& f) {
+  SOIQ_RETURN_IF_ERROR(validate_text(f.patient_id_glob, "patient id glob", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(f.modality, "modality", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(f.study_description_glob, "study description glob", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(f.structure_name_glob, "structure name glob", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_sex(f.sex));
   SOIQ_RETURN_IF_ERROR(validate_laterality(f.laterality));
   SOIQ_RETURN_IF_ERROR(validate_date(f.birth_date_from, "birth_date_from"));
@@ -64,6 +98,18 @@ Status validate_stage1_filter(const Stage1Filter& f) {
                             std::to_string(*f.max_age_years));
   }
   return ok_status();
+}
+
+Status validate_patient_filter(const PatientFilter& f) {
+  SOIQ_RETURN_IF_ERROR(validate_text(f.patient_id_glob, "patient id glob", kMaxNameBytes));
+  return validate_sex(f.sex);
+}
+
+Status validate_structure_filter(const StructureFilter& f) {
+  SOIQ_RETURN_IF_ERROR(validate_text(f.patient_id, "patient_id", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(f.study_uid, "study_uid", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(f.name_glob, "structure name glob", kMaxNameBytes));
+  return validate_laterality(f.laterality);
 }
 
 }  // namespace soiq::db

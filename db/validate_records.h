@@ -9,16 +9,29 @@
 
 namespace soiq::db {
 
+// Lengths of what a client may name, in bytes: identifiers as DICOM bounds them (LO and UI are 64
+// characters), names, descriptions and globs generously above any DICOM value, so that a 1 MB
+// "name" is refused rather than stored, logged and echoed.
+inline constexpr size_t kMaxIdBytes = 64;
+inline constexpr size_t kMaxNameBytes = 256;
+
+// At most `max_bytes` bytes and no control characters (a newline in an id splits log lines and CSV
+// rows). INVALID_ARGUMENT naming `what` and quoting at most 40 printable characters of the value.
+Status validate_text(const std::string& value, const std::string& what, size_t max_bytes);
+
 Status validate_sex(const std::string& sex);                                 // "", "M", "F", "O"
 Status validate_laterality(const std::string& laterality);                   // "", "L", "R"
 Status validate_sha256(const std::string& sha256, const std::string& what);  // 64 lower-case hex
 // "" or a DICOM UID: at most 64 characters, digits and '.' only.
 Status validate_uid(const std::string& uid, const std::string& what);
-// patient_id non-empty; sex; birth date.
+// patient_id non-empty, validate_text within kMaxIdBytes; sex; birth date.
 Status validate_patient(const PatientRecord& p);
-// study_uid non-empty; study date; age finite and >= 0 when given; patient_id "" or `patient_id`.
+// study_uid non-empty and within kMaxIdBytes, description within kMaxNameBytes; study date; age finite and >= 0 when
+// given; patient_id "" or `patient_id`.
 Status validate_study(const StudyRecord& s, const std::string& patient_id);
-// Sex, laterality, dates; ages finite and min <= max.
+// Sex, laterality, dates; ages finite and min <= max; globs and modality as validate_text.
 Status validate_stage1_filter(const Stage1Filter& f);
+Status validate_patient_filter(const PatientFilter& f);
+Status validate_structure_filter(const StructureFilter& f);
 
 }  // namespace soiq::db

@@ -1,11 +1,14 @@
 #include "server/pacs_find_request.h"
 
+#include "server/proto_records.h"
+
 namespace soiq::server {
 
 Result<dicom::PacsQuery> pacs_query_of(const v1::PacsFindRequest& r) {
   if (r.max_matches() < 0 || r.max_matches() > kMaxPacsMatches)
     return invalid_argument("max_matches " + std::to_string(r.max_matches()) + " is outside 0.." +
                             std::to_string(kMaxPacsMatches) + " (0: " + std::to_string(kDefaultPacsMatches) + ")");
+  SOIQ_RETURN_IF_ERROR(check_enum(r.level(), v1::PacsLevel_IsValid, "level"));
   dicom::PacsQuery q;
   const bool patient_level = r.level() == v1::PACS_LEVEL_PATIENT;
   q.level = patient_level ? dicom::PacsLevel::kPatient : dicom::PacsLevel::kStudy;

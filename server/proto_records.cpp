@@ -119,4 +119,10 @@ Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patien
   return r;
 }
 
+Status check_enum(int value, bool (*is_valid)(int), const char* field) {
+  if (is_valid(value)) return ok_status();
+  return invalid_argument(std::string(field) + " has the value " + std::to_string(value) +
+                          ", which this server does not know (see proto/soiq/v1/soiq.proto for the values)");
+}
+
 }  // namespace soiq::server

@@ -22,5 +22,8 @@ Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patien
 Status check_laterality(const std::string& laterality);
 Status check_date(const std::string& date, const char* field);
 Status check_sex(const std::string& sex, const char* field);
+// Proto3 enums are open: a client may send any number, which would otherwise fall silently into a
+// default branch. INVALID_ARGUMENT naming the field and the value.
+Status check_enum(int value, bool (*is_valid)(int), const char* field);
 
 }  // namespace soiq::server

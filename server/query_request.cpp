@@ -130,6 +130,7 @@ Result<ParsedQuery> parse_query(const v1::QueryRequest& request, int result_cap)
   q.limit = request.limit() == 0 ? result_cap : std::min(request.limit(), result_cap);
 
   SOIQ_ASSIGN_OR_RETURN(q.ask.grid, grid_choice(request.grid()));
+  SOIQ_RETURN_IF_ERROR(check_enum(request.interpolation(), v1::Interpolation_IsValid, "interpolation"));
   q.ask.interpolation = request.interpolation() == v1::LINEAR ? Interpolation::kLinear : Interpolation::kNearest;
   for (const ParsedRef& r : q.refs) {
     q.needs_twins = q.needs_twins || r.asymmetry;

@@ -100,6 +100,7 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
     SOIQ_ASSIGN_OR_RETURN(s.study, from_proto(h.study(), s.patient.patient_id));
     if (h.structure_name().empty()) return invalid_argument("structure_name is required");
     SOIQ_RETURN_IF_ERROR(check_laterality(h.laterality()));
+    SOIQ_RETURN_IF_ERROR(check_enum(h.coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
     s.name = h.structure_name();
     s.laterality = h.laterality();
     s.robust = h.robust();
@@ -236,6 +237,7 @@ grpc::Status SoiqService::GetStructure(grpc::ServerContext* ctx, const v1::GetSt
 grpc::Status SoiqService::DownloadSurface(grpc::ServerContext* ctx, const v1::DownloadSurfaceRequest* request,
                                           grpc::ServerWriter<v1::DataChunk>* writer) {
   return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_RETURN_IF_ERROR(check_enum(request->coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
     SOIQ_ASSIGN_OR_RETURN(auto s, store_.get_structure(request->id()));
     SOIQ_ASSIGN_OR_RETURN(auto mesh, features_.surface(s.surface.sha256));
     SOIQ_ASSIGN_OR_RETURN(std::string bytes,
@@ -273,6 +275,8 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
                                   grpc::ServerWriter<v1::ConvertResponse>* writer) {
   return handle(__func__, *ctx, [&]() -> Status {
     const Clock::time_point start = Clock::now();
+    SOIQ_RETURN_IF_ERROR(check_enum(request->fill_rule(), v1::FillRule_IsValid, "fill_rule"));
+    SOIQ_RETURN_IF_ERROR(check_enum(request->encoding(), v1::VolumeEncoding_IsValid, "encoding"));
     SOIQ_ASSIGN_OR_RETURN(auto s, store_.get_structure(request->structure_id()));
     SOIQ_ASSIGN_OR_RETURN(GridChoice choice, grid_choice(request->grid()));
     SOIQ_ASSIGN_OR_RETURN(auto series, series_of(store_, s.study_uid));
@@ -343,6 +347,7 @@ grpc::Status SoiqService::ComputeFeatures(grpc::ServerContext* ctx, const v1::Fe
       for (const auto& n : intensity_feature_names())
         if (std::find(ask.names.begin(), ask.names.end(), n) == ask.names.end()) ask.names.push_back(n);
     }
+    SOIQ_RETURN_IF_ERROR(check_enum(request->interpolation(), v1::Interpolation_IsValid, "interpolation"));
     ask.interpolation = request->interpolation() == v1::LINEAR ? Interpolation::kLinear : Interpolation::kNearest;
     SOIQ_ASSIGN_OR_RETURN(ask.grid, grid_choice(request->grid()));
     SOIQ_RETURN_IF_ERROR(complete_feature_ask(ask));

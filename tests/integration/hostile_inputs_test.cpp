@@ -127,5 +127,59 @@ TEST_F(HostileInputs, ASeriesNeverChangesPatient) {
   expect_serving_with(1, 0);
 }
 
+// Identifiers and names that would break logs, CSV and DICOM (newlines, megabytes) are refused; a
+// glob too long for SQLite is INVALID_ARGUMENT naming the field, not INTERNAL quoting SQL.
+TEST_F(HostileInputs, OversizeAndControlCharacterTextIsRefused) {
+  const TriangleMesh ball = uv_sphere({0, 0, 0}, 10, 12, 24);
+  for (const auto& [patient, name, says] : {std::tuple{std::string(1 << 20, 'P'), std::string("ok"), "patient_id"},
+                                            std::tuple{std::string("P\nX"), std::string("ok"), "control character"},
+                                            std::tuple{std::string("P"), std::string(300, 'n'), "structure name"},
+                                            std::tuple{std::string("P"), std::string("a\tb"), "control character"}}) {
+    Result<v1::UploadSurfaceResponse> r = upload(ball, patient, "S", name);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+    EXPECT_NE(r.status().message().find(says), std::string::npos) << r.status().message();
+    EXPECT_TRUE(one_line(r.status()));
+    EXPECT_LT(r.status().message().size(), 400u);
+  }
+  const std::string glob = "*" + std::string(100'000, 'a');
+  Result<v1::ListStructuresResponse> listed = client_->list_structures(v1::ListStructuresRequest());
+  ASSERT_TRUE(listed.ok());
+  v1::ListStructuresRequest by_name;
+  by_name.set_name_glob(glob);
+  listed = client_->list_structures(by_name);
+  EXPECT_EQ(listed.status().code(), StatusCode::kInvalidArgument) << listed.status().to_string();
+  EXPECT_EQ(listed.status().message().find("SELECT"), std::string::npos) << listed.status().message();
+  v1::QueryRequest q;
+  q.mutable_stage1()->set_structure_name_glob(glob);
+  Result<v1::QuerySummary> summary = client_->query(q, {});
+  EXPECT_EQ(summary.status().code(), StatusCode::kInvalidArgument) << summary.status().to_string();
+  EXPECT_NE(summary.status().message().find("structure name glob"), std::string::npos);
+  expect_serving_with(0, 0);
+}
+
+// Proto3 enums are open: a number no version of the API defines is refused, not read as a default.
+TEST_F(HostileInputs, UnknownEnumValuesAreRefused) {
+  Result<v1::UploadSurfaceResponse> up = upload(uv_sphere({0, 0, 0}, 10, 12, 24), "P", "S", "ball");
+  ASSERT_TRUE(up.ok()) << up.status().to_string();
+  v1::ConvertRequest c;
+  c.set_structure_id(up->structure().id());
+  c.mutable_grid()->set_spacing_mm(1);
+  c.set_fill_rule(static_cast<v1::FillRule>(77));
+  Result<v1::ConvertSummary> r = client_->convert(c, {});
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("fill_rule has the value 77"), std::string::npos) << r.status().message();
+  v1::FeaturesRequest f;
+  f.set_structure_id(up->structure().id());
+  f.set_interpolation(static_cast<v1::Interpolation>(-3));
+  EXPECT_EQ(client_->compute_features(f).status().code(), StatusCode::kInvalidArgument);
+  v1::UploadSurfaceHeader h = surface_header("P", "S", "ras?", "");
+  h.set_format("stl");
+  h.set_coordinates(static_cast<v1::CoordinateSystem>(9));
+  EXPECT_EQ(client_->upload_surface(h, write_mesh_file(uv_sphere({0, 0, 0}, 5, 8, 16), "stl")).status().code(),
+            StatusCode::kInvalidArgument);
+  expect_serving_with(0, 1);
+}
+
 }  // namespace
 }  // namespace soiq::testing
