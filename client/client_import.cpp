@@ -57,7 +57,7 @@ Result<v1::ImportDicomResponse> Client::import_dicom(const std::vector<std::stri
   }
   if (open) writer->WritesDone();
   // A closed stream means the server ended the call: Finish() says why.
-  SOIQ_RETURN_IF_ERROR(map(writer->Finish(), options_.stream_deadline));
+  SOIQ_RETURN_IF_ERROR(map(writer->Finish(), options_.stream_deadline, *ctx));
   return response;
 }
 

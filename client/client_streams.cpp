@@ -79,7 +79,7 @@ Result<Response> Client::upload(const Header& header, std::string_view bytes, co
     }
     if (open) writer->WritesDone();
     // A closed stream means the server ended the call: Finish() says why.
-    return map(writer->Finish(), options_.stream_deadline);
+    return map(writer->Finish(), options_.stream_deadline, *ctx);
   });
   if (!s.ok()) return s;
   return response;
@@ -144,7 +144,7 @@ Status Client::stream_to_file(
             },
             delivered, stopped);
         if (!local.ok()) return local;
-        return map(g, options_.stream_deadline);
+        return map(g, options_.stream_deadline, *ctx);
       },
       [&] { return !delivered; });
   if (!s.ok()) std::remove(out_path.c_str());
@@ -185,7 +185,7 @@ Result<v1::ConvertSummary> Client::convert(const v1::ConvertRequest& request, co
             },
             delivered, stopped);
         fired = watcher.fired();
-        return map(g, options_.stream_deadline);
+        return map(g, options_.stream_deadline, *ctx);
       },
       [&] { return !delivered; });
   if (stopped || fired) return cancelled_by_client("conversion");
@@ -217,7 +217,7 @@ Result<v1::QuerySummary> Client::query(const v1::QueryRequest& request, const Qu
             },
             any, stopped);
         fired = watcher.fired();
-        return map(g, options_.stream_deadline);
+        return map(g, options_.stream_deadline, *ctx);
       },
       [&] { return !row_seen && !stopped; });
   if (stopped || fired) return cancelled_by_client("query");
@@ -266,7 +266,7 @@ Result<v1::ImportDicomResponse> Client::pacs_pull(const v1::PacsPullRequest& req
       },
       delivered, stopped);
   if (stopped || watcher.fired()) return cancelled_by_client("pull");
-  SOIQ_RETURN_IF_ERROR(map(g, options_.stream_deadline));
+  SOIQ_RETURN_IF_ERROR(map(g, options_.stream_deadline, *ctx));
   if (!imported) return data_loss("soiqd at " + options_.address + " ended the pull without the import result");
   return *imported;
 }

@@ -6,11 +6,12 @@
 
 namespace soiq::client {
 
-Status from_grpc_status(const grpc::Status& status, const std::string& address, std::chrono::milliseconds deadline) {
+Status from_grpc_status(const grpc::Status& status, const std::string& address, std::chrono::milliseconds deadline,
+                        bool answered_by_soiqd) {
   if (status.ok()) return ok_status();
   const auto code = static_cast<StatusCode>(static_cast<int>(status.error_code()));
   std::string message = status.error_message();
-  if (code == StatusCode::kUnavailable) {
+  if (code == StatusCode::kUnavailable && !answered_by_soiqd) {
     message = "cannot reach soiqd at " + address + ": " + (message.empty() ? "unavailable" : message);
   } else if (code == StatusCode::kDeadlineExceeded && (message.empty() || message == "Deadline Exceeded")) {
     // gRPC's own text: the client gave up, the server said nothing.

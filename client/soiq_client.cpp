@@ -77,8 +77,10 @@ std::unique_ptr<grpc::ClientContext> Client::context(std::chrono::milliseconds d
   return ctx;
 }
 
-Status Client::map(const grpc::Status& status, std::chrono::milliseconds deadline) const {
-  return from_grpc_status(status, options_.address, deadline);
+Status Client::map(const grpc::Status& status, std::chrono::milliseconds deadline,
+                   const grpc::ClientContext& ctx) const {
+  const bool answered = ctx.GetServerTrailingMetadata().count(kSoiqOriginKey) > 0;
+  return from_grpc_status(status, options_.address, deadline, answered);
 }
 
 // `call(stub, context, response)` performs one attempt and returns gRPC's status.
@@ -92,7 +94,7 @@ Result<Response> Client::unary(Call call, bool retry, bool long_running) const {
   const Status s = with_retries(policy, [&]() -> Status {
     response.Clear();
     auto ctx = context(deadline);
-    return map(call(*stub_, ctx.get(), &response), deadline);
+    return map(call(*stub_, ctx.get(), &response), deadline, *ctx);
   });
   if (!s.ok()) return s;
   return response;
@@ -196,7 +198,7 @@ Result<bool> Client::serving(const std::string& service) const {
   grpc::health::v1::HealthCheckResponse response;
   auto ctx = context(options_.deadline);
   const Status s =
-      map(grpc::health::v1::Health::NewStub(channel_)->Check(ctx.get(), request, &response), options_.deadline);
+      map(grpc::health::v1::Health::NewStub(channel_)->Check(ctx.get(), request, &response), options_.deadline, *ctx);
   if (!s.ok()) return s;
   return response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
 }
@@ -207,7 +209,7 @@ Result<v1::FeaturesResponse> Client::compute_features(const v1::FeaturesRequest&
   const Status s = with_retries(options_.retry, [&]() -> Status {
     response.Clear();
     auto ctx = context(options_.stream_deadline);
-    return map(stub_->ComputeFeatures(ctx.get(), request, &response), options_.stream_deadline);
+    return map(stub_->ComputeFeatures(ctx.get(), request, &response), options_.stream_deadline, *ctx);
   });
   if (!s.ok()) return s;
   return response;

@@ -131,7 +131,8 @@ class Client {
   Client(ClientOptions options, std::string token, std::shared_ptr<grpc::Channel> channel);
   // A fresh context per attempt: deadline and authorization.
   std::unique_ptr<grpc::ClientContext> context(std::chrono::milliseconds deadline) const;
-  Status map(const grpc::Status& status, std::chrono::milliseconds deadline) const;
+  // `ctx` tells whether soiqd itself answered (its "soiq-origin" trailer) or the transport failed.
+  Status map(const grpc::Status& status, std::chrono::milliseconds deadline, const grpc::ClientContext& ctx) const;
   template <typename Response, typename Call>
   Result<Response> unary(Call call, bool retry, bool long_running = false) const;
   // A server stream written to `out_path` (replaced; removed on failure), retried while nothing

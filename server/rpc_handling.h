@@ -33,11 +33,13 @@ inline void log_rpc(const char* method, const Status& status, double ms) {
 }
 
 template <typename Body>
-grpc::Status SoiqService::handle(const char* method, const grpc::ServerContext& ctx, Body&& body) {
+grpc::Status SoiqService::handle(const char* method, grpc::ServerContext& ctx, Body&& body) {
   const Clock::time_point start = Clock::now();
   Status status = authorize(ctx);
   if (status.ok()) status = body();
   log_rpc(method, status, ms_since(start));
+  // Tells the client that soiqd itself answered: an UNAVAILABLE from here is the PACS's, not ours.
+  if (!status.ok()) ctx.AddTrailingMetadata("soiq-origin", "soiqd");
   return to_grpc(status);
 }
 

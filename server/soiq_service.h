@@ -76,7 +76,7 @@ class SoiqService final : public v1::Soiq::Service {
   template <typename T>
   Result<T> on_pool(const std::function<Result<T>()>& work);
   template <typename Body>
-  grpc::Status handle(const char* method, const grpc::ServerContext& ctx, Body&& body);
+  grpc::Status handle(const char* method, grpc::ServerContext& ctx, Body&& body);
 
   db::Store& store_;
   const ServerConfig config_;

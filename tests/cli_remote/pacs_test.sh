@@ -114,5 +114,9 @@ kill -- -"$pacs_pid" 2>/dev/null
 wait "$pacs_pid" 2>/dev/null
 expect 6 "127.0.0.1:$pacs_port" -- "$soiq" pacs echo
 expect 6 "127.0.0.1:$pacs_port" -- "$soiq" pacs push "$ct_id"
+# ... and the message blames the PACS, not soiqd (which answered).
+"$soiq" pacs echo 2>"$tmp/down.err"
+grep -q "cannot reach soiqd" "$tmp/down.err" && fail "a PACS that is down is reported as soiqd: $(cat "$tmp/down.err")"
+grep -q "PACS" "$tmp/down.err" || fail "a PACS that is down is not named: $(cat "$tmp/down.err")"
 
 finish pacs_test

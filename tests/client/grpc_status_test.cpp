@@ -32,6 +32,15 @@ TEST(FromGrpcStatus, UnavailableNamesTheAddress) {
   EXPECT_EQ(s.message(), "cannot reach soiqd at 127.0.0.1:50051: Connection refused");
 }
 
+// soiqd answered UNAVAILABLE itself (its PACS is down): the PACS is named, soiqd is not blamed.
+TEST(FromGrpcStatus, UnavailableFromSoiqdItselfKeepsItsMessage) {
+  const Status s = from_grpc_status(
+      grpc::Status(grpc::StatusCode::UNAVAILABLE, "C-ECHO with PACS 'X' at 127.0.0.1:4242 failed: connection refused"),
+      "127.0.0.1:50051", milliseconds(1000), /*answered_by_soiqd=*/true);
+  EXPECT_EQ(s.code(), StatusCode::kUnavailable);
+  EXPECT_EQ(s.message(), "C-ECHO with PACS 'X' at 127.0.0.1:4242 failed: connection refused");
+}
+
 TEST(FromGrpcStatus, ClientDeadlineSaysWhatToDo) {
   const Status s = from_grpc_status(grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED, "Deadline Exceeded"), "h:1",
                                     milliseconds(2500));
