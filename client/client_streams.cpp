@@ -17,13 +17,23 @@ namespace v1 = soiq::v1;
 
 namespace {
 
-Result<std::string> read_whole_file(const std::string& path, const char* what) {
+// The file's bytes, read in pieces and never more than `max_bytes`: the path may be a pipe or
+// /dev/stdin that never ends, which must fail at soiqd's limit rather than fill the memory.
+Result<std::string> read_whole_file(const std::string& path, const char* what, int64_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return not_found(std::string("cannot read ") + what + " '" + path + "'");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (!in.good() && !in.eof()) return data_loss(std::string("error reading ") + what + " '" + path + "'");
-  return bytes.str();
+  std::string bytes;
+  std::string piece(size_t(1) << 20, '\0');
+  while (in) {
+    in.read(piece.data(), std::streamsize(piece.size()));
+    bytes.append(piece.data(), size_t(in.gcount()));
+    if (int64_t(bytes.size()) > max_bytes) {
+      return resource_exhausted(std::string(what) + " '" + path + "' is larger than soiqd's upload limit of " +
+                                std::to_string(max_bytes) + " bytes (soiqd --max-upload-bytes)");
+    }
+  }
+  if (in.bad()) return data_loss(std::string("error reading ") + what + " '" + path + "'");
+  return bytes;
 }
 
 Status cancelled_by_client(const char* what) {
@@ -95,9 +105,10 @@ Result<v1::UploadSurfaceResponse> Client::upload_surface(v1::UploadSurfaceHeader
                                                          const ProgressFn& progress) const {
   if (header.format().empty()) header.set_format(format_from_path(path));
   if (header.format().empty()) {
-    return invalid_argument("'" + path + "' has no mesh extension; use .stl, .obj, .ply, .vtk or .vtp");
+    return invalid_argument("'" + path + "' has no mesh extension; use .stl, .obj, .ply, .off, .vtk or .vtp");
   }
-  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_whole_file(path, "surface model"));
+  SOIQ_ASSIGN_OR_RETURN(const v1::ServerInfo info, server_info());
+  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_whole_file(path, "surface model", info.max_upload_bytes()));
   return upload_surface_bytes(header, bytes, progress);
 }
 
@@ -112,7 +123,8 @@ Result<v1::UploadImageResponse> Client::upload_image(v1::UploadImageHeader heade
   if (header.format().empty()) {
     return invalid_argument("'" + path + "' has no image extension; use .nii, .nii.gz, .nrrd or .mha");
   }
-  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_whole_file(path, "image"));
+  SOIQ_ASSIGN_OR_RETURN(const v1::ServerInfo info, server_info());
+  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, read_whole_file(path, "image", info.max_upload_bytes()));
   return upload_image_bytes(header, bytes, progress);
 }
 

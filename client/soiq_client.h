@@ -70,7 +70,9 @@ class Client {
   const ClientOptions& options() const { return options_; }
 
   // Uploads: `header.format` may be empty when it follows from the path's extension (stl, obj, ply,
-  // vtk, vtp; nii, nii.gz, nrrd, mha). The file is read whole, then sent in chunk_bytes chunks.
+  // off, vtk, vtp; nii, nii.gz, nrrd, mha). The file is read whole, then sent in chunk_bytes chunks;
+  // soiqd's upload limit is asked first and reading stops past it (RESOURCE_EXHAUSTED), so a pipe
+  // that never ends is not buffered forever.
   Result<soiq::v1::UploadSurfaceResponse> upload_surface(soiq::v1::UploadSurfaceHeader header, const std::string& path,
                                                          const ProgressFn& progress = {}) const;
   Result<soiq::v1::UploadSurfaceResponse> upload_surface_bytes(const soiq::v1::UploadSurfaceHeader& header,

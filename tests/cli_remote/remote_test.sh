@@ -118,6 +118,13 @@ expect 7 "" -- "$soiq" info --server "$server"
 expect 3 "token file" -- "$soiq" info --server "$server" --token-file "$tmp/token-missing"
 stop_soiqd
 
+# An endless input (a pipe that never ends) is cut at soiqd's upload limit, not buffered forever.
+start_soiqd limited --max-upload-bytes 100000
+mkfifo "$tmp/endless.stl"
+(yes "solid endless" >"$tmp/endless.stl" 2>/dev/null &)
+expect 5 "upload limit of 100000 bytes" -- "$soiq" upload "$tmp/endless.stl" --server "$server" "${record[@]}" --name endless
+stop_soiqd
+
 # Server down: exit 6, naming the address.
 expect 6 "cannot reach soiqd at $server" -- "$soiq" ls --server "$server"
 expect 6 "cannot reach soiqd at $server" -- "$soiq" health --server "$server"
