@@ -8,6 +8,7 @@
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
 #include "core/structure_features.h"
+#include "db/validate_records.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 #include "server/dicom_import.h"
@@ -400,6 +401,8 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_memory_peak_bytes(budget_.peak());
     response->set_query_result_cap(config_.query_result_cap);
     response->set_stage1_cap(config_.stage1_cap);
+    response->set_max_id_bytes(int32_t(db::kMaxIdBytes));
+    response->set_max_name_bytes(int32_t(db::kMaxNameBytes));
     response->set_patients(c.patients);
     response->set_studies(c.studies);
     response->set_structures(c.structures);

@@ -91,6 +91,8 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("pacs", i.pacs().empty() ? "none (soiqd --pacs AE@HOST:PORT)" : i.pacs());
   line("query_result_cap", std::to_string(i.query_result_cap()));
   line("stage1_cap", std::to_string(i.stage1_cap()));
+  line("max_id_bytes", std::to_string(i.max_id_bytes()));
+  line("max_name_bytes", std::to_string(i.max_name_bytes()));
 }
 
 std::vector<std::string> patient_columns() { return {"patient_id", "sex", "birth_date", "studies", "structures"}; }
