@@ -75,6 +75,14 @@ expect 2 "--spacing" -- "$soiq" convert "$tmp/pet.stl" --spacing -1 -o "$tmp/x.n
 expect 2 "empty.stl" -- "$soiq" convert "$tmp/empty.stl" --spacing 1 -o "$tmp/x.nii.gz"
 expect 2 "extension" -- "$soiq" convert "$tmp/pet.stl" --spacing 1 -o "$tmp/x.png"
 
+# Hostile meshes read offline by the same strict parsers as soiqd's uploads: one line, exit 2.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n' >"$tmp/short.ply"
+expect 2 "vertex has 2 values" -- "$soiq" convert "$tmp/short.ply" --spacing 1 -o "$tmp/x.nii.gz"
+printf 'v 0 0 0\nv 1 0 nan\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n' >"$tmp/nan.obj"
+expect 2 "nan" -- "$soiq" convert "$tmp/nan.obj" --spacing 1 -o "$tmp/x.nii.gz"
+printf 'v 0 0 0\nv 5abc 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n' >"$tmp/junk.obj"
+expect 2 "5abc" -- "$soiq" convert "$tmp/junk.obj" --spacing 1 -o "$tmp/x.nii.gz"
+
 # A 300-byte slab of 2.5 x 7500 x 7500 mm: 5.6e7 row lines at 1 mm, gigabytes of crossings. Refused
 # by its estimate before anything is allocated (it died of bad_alloc before).
 printf 'v 0 0 0\nv 2.5 0 0\nv 0 7500 0\nv 2.5 7500 0\nv 0 0 7500\nv 2.5 0 7500\nv 0 7500 7500\nv 2.5 7500 7500\n' >"$tmp/slab.obj"
