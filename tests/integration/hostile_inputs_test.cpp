@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -124,6 +125,48 @@ TEST_F(HostileInputs, ASeriesNeverChangesPatient) {
   Result<v1::Study> s1 = client_->get_study("S1");
   ASSERT_TRUE(s1.ok());
   EXPECT_EQ(s1->series_size(), 1);
+  expect_serving_with(1, 0);
+}
+
+// A SEG whose NumberOfFrames is 0 reached a null frame pointer and killed soiqd; one truncated
+// short of its frames overwrote a structure. Both are refused, and soiqd keeps serving.
+TEST_F(HostileInputs, HostileSegsAreRefusedAndSoiqdKeepsServing) {
+  const std::string source = std::string(SOIQ_TEST_DATA_DIR) + "/dicom/standard_seg.dcm";
+  const std::string zero = dir_.file("zero_frames.dcm");
+  const std::string cut = dir_.file("cut_frames.dcm");
+  ASSERT_EQ(std::system(
+                ("cp '" + source + "' '" + zero + "' && dcmodify -nb -m '(0028,0008)=0' '" + zero + "' >/dev/null 2>&1")
+                    .c_str()),
+            0);
+  ASSERT_EQ(std::system(
+                ("cp '" + source + "' '" + cut + "' && dcmodify -nb -m '(0028,0008)=400' '" + cut + "' >/dev/null 2>&1")
+                    .c_str()),
+            0);
+  // The image series the fixture's frames lie on (make_standard_seg.py), so that reading gets as
+  // far as the frames.
+  std::string nrrd =
+      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 11 7 6\nspace: left-posterior-superior\n"
+      "space directions: (0.9,0,0) (0,1.2,0) (0,0,3)\nspace origin: (10,-5.5,20)\nencoding: raw\n\n";
+  nrrd += std::string(11 * 7 * 6, '\0');
+  v1::UploadImageHeader h =
+      image_header("SEG-FIXTURE", "1.2.826.0.1.3680043.8.498.9917.2", "1.2.826.0.1.3680043.8.498.9917.6", "nrrd");
+  Result<v1::UploadImageResponse> image = client_->upload_image_bytes(h, nrrd);
+  ASSERT_TRUE(image.ok()) << image.status().to_string();
+  for (const auto& [path, says] :
+       {std::pair{zero, std::string("NumberOfFrames")}, std::pair{cut, std::string("truncated")}}) {
+    Result<v1::ImportDicomResponse> r = client_->import_dicom({path});
+    std::string message;
+    if (r.ok()) {
+      EXPECT_EQ(r->structures_size(), 0);
+      ASSERT_GT(r->problems_size(), 0);
+      message = r->problems(0).message();
+    } else {
+      EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+      message = r.status().message();
+    }
+    EXPECT_NE(message.find(says), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
   expect_serving_with(1, 0);
 }
 
