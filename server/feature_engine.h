@@ -98,7 +98,9 @@ class FeatureEngine {
   };
   // Reserves the estimated peak bytes of converting `structure` on `geometry` plus `extras` in the
   // memory budget; RESOURCE_EXHAUSTED naming the structure, the grid, the estimate and the limit
-  // when it can never fit; waits while others hold the budget, until `stop` says otherwise.
+  // when it can never fit; waits while others hold the budget, until `stop` says otherwise. Call it
+  // on a worker: a reservation held while waiting for a worker could starve the workers waiting
+  // for the budget (a cycle).
   Result<MemoryBudget::Reservation> admit(const db::StructureRecord& structure, const ImageGeometry& geometry,
                                           const WorkExtras& extras, const std::function<Status()>& stop = {});
 

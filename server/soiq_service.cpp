@@ -8,9 +8,9 @@
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
 #include "core/structure_features.h"
-#include "db/validate_records.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
+#include "db/validate_records.h"
 #include "server/dicom_import.h"
 #include "server/grpc_status.h"
 #include "server/log.h"
@@ -282,14 +282,24 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
     SOIQ_ASSIGN_OR_RETURN(GridChoice choice, grid_choice(request->grid()));
     SOIQ_ASSIGN_OR_RETURN(auto series, series_of(store_, s.study_uid));
     SOIQ_ASSIGN_OR_RETURN(ResolvedGrid grid, resolve_grid(choice, s, series, 0, config_.max_grid_voxels));
-    // Held until the last chunk is sent: the runs (and the mask) live that long.
+    // Admitted on the worker, never before: a reservation held while waiting for a worker could
+    // block workers that wait for the budget. Held until the last chunk is sent: the runs (and
+    // the mask) live that long.
     FeatureEngine::WorkExtras extras;
     extras.mask_export = request->encoding() != v1::RUNS;
-    SOIQ_ASSIGN_OR_RETURN(const MemoryBudget::Reservation held,
-                          features_.admit(s, grid.geometry, extras, [&] { return stop_status(*ctx); }));
-    SOIQ_ASSIGN_OR_RETURN(Voxelization v, on_pool<Voxelization>([&] {
-                            return features_.convert(s, grid.geometry, fill_rule_of(request->fill_rule()));
-                          }));
+    struct Admitted {
+      MemoryBudget::Reservation held;
+      Voxelization v;
+    };
+    SOIQ_ASSIGN_OR_RETURN(
+        Admitted admitted, on_pool<Admitted>([&]() -> Result<Admitted> {
+          SOIQ_ASSIGN_OR_RETURN(MemoryBudget::Reservation held,
+                                features_.admit(s, grid.geometry, extras, [&] { return stop_status(*ctx); }));
+          SOIQ_ASSIGN_OR_RETURN(Voxelization v,
+                                features_.convert(s, grid.geometry, fill_rule_of(request->fill_rule())));
+          return Admitted{std::move(held), std::move(v)};
+        }));
+    const Voxelization& v = admitted.v;
     v1::ConvertResponse first;
     v1::ConvertSummary* summary = first.mutable_summary();
     *summary->mutable_geometry() = to_proto(grid.geometry);
