@@ -97,10 +97,13 @@ Status rejected_status(const PacsPeer& peer, const std::string& service) {
   // not recognized".
   if (why.source == 1 && why.reason == 3)
     return Status(StatusCode::kPermissionDenied, msg + "; ask the PACS administrator to register our AE title");
+  // Reason 7 is "called AE title not recognized", but some PACS (dcmqrscp among them) give it for an
+  // unknown calling AE too: either way the PACS refuses this pair of AE titles, which is a matter
+  // of its configuration (permission), not of the request.
   if (why.source == 1 && why.reason == 7)
-    return failed_precondition(msg + "; check the PACS's AE title ('" + peer.called_ae +
-                               "') and that the PACS lists ours ('" + peer.calling_ae +
-                               "'): some PACS, dcmqrscp among them, give this reason for both");
+    return Status(StatusCode::kPermissionDenied, msg + "; check the PACS's AE title ('" + peer.called_ae +
+                                                     "') and that the PACS lists ours ('" + peer.calling_ae +
+                                                     "'): some PACS, dcmqrscp among them, give this reason for both");
   return failed_precondition(msg);
 }
 

@@ -3,7 +3,8 @@
 # free loopback port, loaded with storescu), a real soiqd started with --pacs, the real `soiq`.
 # echo, find (patient and study level, csv), pull (rows as `soiq import`), export-seg (checked with
 # DCMTK's dcmdump), push and the push seen on the PACS; errors with their exit codes and one line:
-# no PACS configured 4, PACS down 6, uploaded structure 4, unknown id 3, bad usage 2.
+# no PACS configured 4, our AE title unknown to the PACS 7, PACS down 6, uploaded structure 4,
+# unknown id 3, bad usage 2.
 # Usage: pacs_test.sh SOIQ SOIQD TEST_DATA_DIR
 soiq=$1
 soiqd=$2
@@ -26,17 +27,19 @@ free_port() {
 }
 
 pacs_port=$(free_port)
-mkdir -p "$tmp/pacs/SOIQTEST"
+mkdir -p "$tmp/pacs/SOIQTEST" "$tmp/pacs/PICKY"
 cat >"$tmp/pacs/dcmqrscp.cfg" <<CFG
 NetworkTCPPort = $pacs_port
 MaxPDUSize = 65536
 MaxAssociations = 16
 HostTable BEGIN
+soiqonly = (SOIQ, localhost, 0)
 HostTable END
 VendorTable BEGIN
 VendorTable END
 AETable BEGIN
 SOIQTEST $tmp/pacs/SOIQTEST RW (1000, 1024mb) ANY
+PICKY $tmp/pacs/PICKY RW (10, 16mb) soiqonly
 AETable END
 CFG
 TCP_NODELAY=1 setsid dcmqrscp -c "$tmp/pacs/dcmqrscp.cfg" "$pacs_port" >"$tmp/pacs.log" 2>&1 &
@@ -108,6 +111,13 @@ seg_uid=$(sed -n 's/^stored DICOM SEG \([0-9.]*\) .*/\1/p' "$tmp/push.out")
 findscu -v -S +sr -aec SOIQTEST -k QueryRetrieveLevel=IMAGE -k StudyInstanceUID="$sts_study" -k SeriesInstanceUID -k SOPInstanceUID="$seg_uid" \
   127.0.0.1 "$pacs_port" >"$tmp/findscu.log" 2>&1 || fail "findscu: $(cat "$tmp/findscu.log")"
 grep -q "Find Response: 1 (Pending)" "$tmp/findscu.log" || fail "the pushed SEG is not on the PACS: $(cat "$tmp/findscu.log")"
+
+# A PACS that does not know our calling AE title: exit 7, the PACS's reason kept.
+main_server=$server main_pid=$soiqd_pid
+start_soiqd picky --pacs "PICKY@127.0.0.1:$pacs_port" --pacs-calling-ae STRANGER --pacs-timeout 5
+expect 7 "rejected the C-ECHO association (calling AE 'STRANGER')" -- "$soiq" pacs echo --server "$server"
+stop_soiqd
+server=$main_server soiqd_pid=$main_pid
 
 # A PACS that is down: unavailable, exit 6, naming where it was looked for.
 kill -- -"$pacs_pid" 2>/dev/null

@@ -167,7 +167,7 @@ TEST_F(Pacs, EchoToUnknownCalledAeIsRejectedWithTheReason) {
   PacsPeer p = peer();
   p.called_ae = "NOT_THE_PACS";
   const Status s = pacs_echo(p);
-  EXPECT_EQ(s.code(), StatusCode::kFailedPrecondition) << s.to_string();
+  EXPECT_EQ(s.code(), StatusCode::kPermissionDenied) << s.to_string();
   EXPECT_NE(s.message().find("rejected"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find("Called AE Title Not Recognized"), std::string::npos) << s.message();
 }

@@ -369,12 +369,12 @@ TEST_F(PacsServiceTest, PacsThatIsDownIsUnavailableNamingIt) {
 TEST_F(PacsServiceTest, PacsThatRefusesTheAssociationGivesItsReason) {
   start_with_pacs("NOSUCHAE@127.0.0.1:" + std::to_string(pacs_.port()));
   Result<v1::PacsEchoResponse> r = client_->pacs_echo();
-  // dcmqrscp rejects with "Called AE Title Not Recognized", which dicom/ maps to FAILED_PRECONDITION
-  // (PERMISSION_DENIED is for "Calling AE Title Not Recognized"), keeping the PACS's reason.
-  EXPECT_EQ(r.status().code(), StatusCode::kFailedPrecondition) << r.status().to_string();
+  // dcmqrscp rejects with "Called AE Title Not Recognized" (for an unknown calling AE too): the PACS
+  // refuses our pair of AE titles, PERMISSION_DENIED (exit 7), keeping the PACS's reason.
+  EXPECT_EQ(r.status().code(), StatusCode::kPermissionDenied) << r.status().to_string();
   EXPECT_TRUE(contains(r.status().message(), "NOSUCHAE")) << r.status().message();
   EXPECT_TRUE(contains(r.status().message(), "Called AE Title Not Recognized")) << r.status().message();
-  EXPECT_EQ(pull_sts().status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_EQ(pull_sts().status().code(), StatusCode::kPermissionDenied);
   EXPECT_EQ(stored_structures(), 0);
 }
 
