@@ -110,6 +110,25 @@ Status check_dims(const Header& h, bool swapped, const std::string& name) {
   return ok_status();
 }
 
+// The header of version 1 or 2 copied out of `head` (long enough), once its magic says it is a
+// single file ("n+1"/"n+2") and its dims are sane. A two-file header ("ni1"/"ni2", or Analyze
+// without magic) names a companion .img file: soiq reads self-contained files only, so no header
+// can make it open another file.
+template <typename Header, typename Dim>
+Result<Header> single_file_header(std::string_view head, bool swapped, const std::string& name) {
+  constexpr int version = sizeof(Header) == sizeof(nifti_1_header) ? 1 : 2;
+  Header h;
+  std::memcpy(&h, head.data(), sizeof h);
+  const char magic[4] = {'n', '+', char('0' + version), '\0'};
+  if (std::memcmp(h.magic, magic, 4) != 0) {
+    return invalid_argument("NIfTI '" + name + "' is not a single-file NIfTI-" + std::to_string(version) +
+                            " (magic is not '" + magic +
+                            "'); a .hdr/.img pair is not read: convert it to one .nii file");
+  }
+  SOIQ_RETURN_IF_ERROR((check_dims<Header, Dim>(h, swapped, name)));
+  return h;
+}
+
 // A single-file NIfTI header read from memory into libnifti's image description (no data), with
 // vox_offset as the file says it (libnifti silently moves an offset inside the header to 352).
 struct NiftiHeader {
@@ -131,17 +150,8 @@ Result<NiftiHeader> header_from_bytes(std::string_view head, const std::string& 
   uint32_t sizeof_hdr = 0;
   std::memcpy(&sizeof_hdr, head.data(), 4);
   const bool swapped = sizeof_hdr != header_size;
-  // A two-file header ("ni1"/"ni2", or Analyze without magic) names a companion .img file: soiq
-  // reads self-contained files only, so no header can make it open another file.
   if (version == 1) {
-    nifti_1_header h;
-    std::memcpy(&h, head.data(), sizeof h);
-    if (std::memcmp(h.magic, "n+1", 4) != 0) {
-      return invalid_argument("NIfTI '" + name +
-                              "' is not a single-file NIfTI-1 (magic is not 'n+1'); a .hdr/.img pair is "
-                              "not read: convert it to one .nii file");
-    }
-    SOIQ_RETURN_IF_ERROR((check_dims<nifti_1_header, int16_t>(h, swapped, name)));
+    SOIQ_ASSIGN_OR_RETURN(const nifti_1_header h, (single_file_header<nifti_1_header, int16_t>(head, swapped, name)));
     // NIfTI-1 stores vox_offset as a float, which libnifti casts to an integer: out of range, that
     // cast is undefined, so it is checked first.
     uint32_t raw_offset = 0;
@@ -157,14 +167,7 @@ Result<NiftiHeader> header_from_bytes(std::string_view head, const std::string& 
     if (!nim) return invalid_argument("'" + name + "' has a NIfTI-1 header that libnifti rejects");
     return NiftiHeader{std::move(nim), int64_t(vox_offset), int64_t(header_size)};
   }
-  nifti_2_header h;
-  std::memcpy(&h, head.data(), sizeof h);
-  if (std::memcmp(h.magic, "n+2", 4) != 0) {
-    return invalid_argument("NIfTI '" + name +
-                            "' is not a single-file NIfTI-2 (magic is not 'n+2'); a .hdr/.img pair is not "
-                            "read: convert it to one .nii file");
-  }
-  SOIQ_RETURN_IF_ERROR((check_dims<nifti_2_header, int64_t>(h, swapped, name)));
+  SOIQ_ASSIGN_OR_RETURN(const nifti_2_header h, (single_file_header<nifti_2_header, int64_t>(head, swapped, name)));
   int64_t vox_offset = h.vox_offset;
   if (swapped) vox_offset = int64_t(__builtin_bswap64(uint64_t(vox_offset)));
   NiftiPtr nim(nifti_convert_n2hdr2nim(h, name.c_str()));
