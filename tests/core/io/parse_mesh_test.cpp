@@ -16,10 +16,7 @@
 namespace soiq {
 namespace {
 
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using testing_io::file_bytes;
 
 class ParseMeshFormats : public ::testing::TestWithParam<std::string> {};
 

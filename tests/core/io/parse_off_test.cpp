@@ -9,18 +9,14 @@
 #include <vector>
 
 #include "core/mesh_defects.h"
+#include "tests/core/io/io_test_files.h"
 
 namespace soiq {
 namespace {
 
-using Triangles = std::vector<std::array<int32_t, 3>>;
+using testing_io::expect_invalid;
 
-void expect_invalid(const Result<TriangleMesh>& mesh, const std::string& phrase) {
-  ASSERT_FALSE(mesh.ok()) << phrase;
-  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(mesh.status().message().find(phrase), std::string::npos) << mesh.status().message();
-  EXPECT_EQ(mesh.status().message().find('\n'), std::string::npos) << "one line: " << mesh.status().message();
-}
+using Triangles = std::vector<std::array<int32_t, 3>>;
 
 const char* kTetra = "OFF\n# a tetrahedron\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 

@@ -25,19 +25,10 @@
 namespace soiq {
 namespace {
 
+using testing_io::expect_invalid;
+using testing_io::file_bytes;
+
 using Triangles = std::vector<std::array<int32_t, 3>>;
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void expect_invalid(const Result<TriangleMesh>& mesh, const std::string& phrase) {
-  ASSERT_FALSE(mesh.ok()) << phrase;
-  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(mesh.status().message().find(phrase), std::string::npos) << mesh.status().message();
-  EXPECT_EQ(mesh.status().message().find('\n'), std::string::npos) << "one line: " << mesh.status().message();
-}
 
 // Appends `value` in the given byte order.
 template <typename T>

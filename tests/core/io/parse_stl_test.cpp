@@ -23,10 +23,8 @@
 namespace soiq {
 namespace {
 
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using testing_io::expect_invalid;
+using testing_io::file_bytes;
 
 // A binary STL of the given facets (normal zero), with `header` at the start of its 80 bytes.
 std::string binary_stl(const std::vector<std::array<std::array<float, 3>, 3>>& facets, std::string header = "") {
@@ -45,13 +43,6 @@ std::string binary_stl(const std::vector<std::array<std::array<float, 3>, 3>>& f
 
 std::string ascii_facet(const std::string& a, const std::string& b, const std::string& c) {
   return "facet normal 0 0 1\nouter loop\nvertex " + a + "\nvertex " + b + "\nvertex " + c + "\nendloop\nendfacet\n";
-}
-
-void expect_invalid(const Result<TriangleMesh>& mesh, const std::string& phrase) {
-  ASSERT_FALSE(mesh.ok()) << phrase;
-  EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(mesh.status().message().find(phrase), std::string::npos) << mesh.status().message();
-  EXPECT_EQ(mesh.status().message().find('\n'), std::string::npos) << "one line: " << mesh.status().message();
 }
 
 TEST(ParseStl, BinaryFromVtkWriterEqualsVtkReaderVertexForVertex) {

@@ -18,6 +18,8 @@
 namespace soiq {
 namespace {
 
+using testing_io::file_bytes;
+
 using testing_io::data_path;
 using testing_io::write_bytes;
 
@@ -219,11 +221,6 @@ TEST(ReadImage, HugeNrrdGridIsResourceExhausted) {
   const auto image = read_image(
       write_bytes("huge.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n\n"));
   EXPECT_EQ(image.status().code(), StatusCode::kResourceExhausted);
-}
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 // An uncompressed single-file NIfTI-1 of a 10x10x10 uint8 mask, written by our writer (libnifti).
