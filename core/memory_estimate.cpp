@@ -27,23 +27,41 @@ int64_t saturating(double x) { return x >= 9.0e18 ? kMax : int64_t(std::max(0.0,
 
 }  // namespace
 
-ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGeometry& geometry, bool robust) {
+SurfaceMeasure surface_measure(const TriangleMesh& mesh) {
+  SurfaceMeasure m;
+  m.vertices = int64_t(mesh.vertices_mm.size());
+  m.triangles = int64_t(mesh.triangles.size());
+  // L1 norms bound the Euclidean ones from above (by at most sqrt(3)) without square roots: this
+  // pass must stay cheap beside the conversion it guards. Four partial sums break the dependency
+  // chain of one accumulator.
+  auto l1 = [](const Vec3& v) { return std::abs(v[0]) + std::abs(v[1]) + std::abs(v[2]); };
+  double area[4] = {0, 0, 0, 0}, perimeter[4] = {0, 0, 0, 0};
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const Vec3& a = mesh.vertices_mm[size_t(t[0])];
+    const Vec3& b = mesh.vertices_mm[size_t(t[1])];
+    const Vec3& c = mesh.vertices_mm[size_t(t[2])];
+    const Vec3 ab = b - a, ac = c - a;
+    area[i & 3] += 0.5 * l1(cross(ab, ac));
+    perimeter[i & 3] += l1(ab) + l1(ac) + l1(c - b);
+  }
+  m.area_mm2 = (area[0] + area[1]) + (area[2] + area[3]);
+  m.perimeter_mm = (perimeter[0] + perimeter[1]) + (perimeter[2] + perimeter[3]);
+  return m;
+}
+
+ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry, bool robust) {
   ConversionEstimate e;
   e.lines = mul_add(geometry.dims[1], geometry.dims[2]);
-  // Lattice points (j,k) inside each triangle's (y,z) projection in index space, summed in double
-  // (it can exceed int64 for absurd meshes; saturating() clamps).
-  double crossings = 0;
-  std::vector<Vec3> index(mesh.vertices_mm.size());
-  for (size_t v = 0; v < index.size(); ++v) index[v] = geometry.physical_to_index(mesh.vertices_mm[v]);
-  for (const auto& t : mesh.triangles) {
-    const Vec3& a = index[size_t(t[0])];
-    const Vec3& b = index[size_t(t[1])];
-    const Vec3& c = index[size_t(t[2])];
-    const double area = 0.5 * std::abs((b[1] - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (b[2] - a[2]));
-    const double perimeter = std::hypot(b[1] - a[1], b[2] - a[2]) + std::hypot(c[1] - b[1], c[2] - b[2]) +
-                             std::hypot(a[1] - c[1], a[2] - c[2]);
-    crossings += area + 0.5 * perimeter + 1;
-  }
+  // The row lines through a triangle are the lattice points (j,k) inside its projection on the
+  // (y,z) index plane: at most its projected area plus half its perimeter plus one (Pick). A
+  // projection is no larger than the triangle, and index units are spacing_mm long, so the sum over
+  // the surface is bounded by its area and perimeter alone, whatever the grid's orientation: one
+  // measure per surface serves every grid (in double: absurd meshes exceed int64, saturating()
+  // clamps).
+  const double sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
+  const double crossings =
+      surface.area_mm2 / (sy * sz) + 0.5 * surface.perimeter_mm / std::min(sy, sz) + double(surface.triangles);
   e.crossings = saturating(crossings);
   constexpr int64_t kPerLine = 4 * 24 + 3 * 8;  // reserved crossings, line starts (slab and result), sort counts
   const int64_t reserved = mul_add(e.lines, 4);
@@ -51,11 +69,15 @@ ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGe
   int64_t bytes = mul_add(e.lines, kPerLine);
   bytes = mul_add(beyond, 48, bytes);
   bytes = mul_add(e.crossings / 2 + 1, 16, bytes);  // runs, and their copy into the result
-  bytes = mul_add(int64_t(mesh.vertices_mm.size()), 24, bytes);
-  bytes = mul_add(int64_t(mesh.triangles.size()), 32, bytes);
+  bytes = mul_add(surface.vertices, 24, bytes);
+  bytes = mul_add(surface.triangles, 32, bytes);
   if (robust) bytes = mul_add(geometry.voxel_count(), 2, bytes);
   e.bytes = bytes;
   return e;
+}
+
+ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGeometry& geometry, bool robust) {
+  return conversion_peak_bytes(surface_measure(mesh), geometry, robust);
 }
 
 int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGeometry& geometry,

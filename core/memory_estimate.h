@@ -9,9 +9,11 @@
 //                         reserves four crossings of 24 bytes per line); per crossing beyond that
 //                         reserve 48 bytes (buffer growth doubles); per run 16 bytes; the mesh in
 //                         index space; robust mode's dense 2-of-3 votes (2 bytes per voxel).
-//                         Crossings are bounded from the mesh: a triangle is crossed by the row
-//                         lines through its (y,z) projection in index space, at most its projected
-//                         area plus half its perimeter plus one (Pick).
+//                         Crossings are bounded from the surface's area and perimeter (its
+//                         SurfaceMeasure, computed once per surface): a triangle is crossed by the
+//                         row lines through its (y,z) projection in index space, at most its
+//                         projected area plus half its perimeter plus one (Pick), and a projection
+//                         is never larger than the triangle, whatever the grid's orientation.
 // features_extra_bytes    what structure_features adds on top of the runs: mask-surface sweep and
 //                         hulls (~64 bytes per run), ~0.5 byte per grid voxel measured (1 counted),
 //                         the decoded images not yet cached (4 bytes per voxel) and the
@@ -21,7 +23,8 @@
 // Calibrated on measured peaks (VmHWM) of `soiq features`/`soiq convert`: the estimate is above
 // the measured peak for a thin 12 m box (15.6 GB measured), a 100 mm sphere at 1, 0.5 and 0.3 mm,
 // and a 12 m long bar; see tests/core/memory_estimate_test.cpp.
-// Cost O(triangles); thread-safe. Results saturate at INT64_MAX rather than overflow.
+// Cost surface_measure O(triangles), once per surface; the estimates O(1); thread-safe. Results
+// saturate at INT64_MAX rather than overflow.
 
 #include <cstdint>
 #include <string>
@@ -38,6 +41,16 @@ struct ConversionEstimate {
   int64_t bytes = 0;      // peak bytes of voxelize_1d
 };
 
+// What the estimate needs of a surface, independent of the grid.
+struct SurfaceMeasure {
+  int64_t vertices = 0;
+  int64_t triangles = 0;
+  double area_mm2 = 0;      // an upper bound (L1 norms)
+  double perimeter_mm = 0;  // summed over triangles (shared edges twice); an upper bound too
+};
+SurfaceMeasure surface_measure(const TriangleMesh& mesh);
+
+ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry, bool robust);
 ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGeometry& geometry, bool robust);
 
 // Extra bytes of a feature computation over a conversion estimated as `conversion`, with

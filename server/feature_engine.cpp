@@ -68,6 +68,7 @@ FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBu
       max_grid_voxels_(max_grid_voxels),
       budget_(budget),
       surfaces_(cache_budget_bytes / 2),
+      measures_(int64_t(64) << 20),
       images_(cache_budget_bytes / 2) {}
 
 Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
@@ -156,8 +157,16 @@ Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord
                                                        const ImageGeometry& geometry, const WorkExtras& extras,
                                                        const std::function<Status()>& stop) {
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
-  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
-  const ConversionEstimate conversion = conversion_peak_bytes(*mesh, geometry, structure.robust);
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const SurfaceMeasure> measure,
+                        measures_.get_or_load(
+                            structure.surface.sha256,
+                            [&]() -> Result<SurfaceMeasure> {
+                              SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh,
+                                                    surface(structure.surface.sha256));
+                              return surface_measure(*mesh);
+                            },
+                            [](const SurfaceMeasure&) { return int64_t(sizeof(SurfaceMeasure)); }));
+  const ConversionEstimate conversion = conversion_peak_bytes(*measure, geometry, structure.robust);
   int64_t bytes = conversion.bytes;
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));

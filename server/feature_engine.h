@@ -25,6 +25,7 @@
 
 #include "core/fill_rule.h"
 #include "core/image.h"
+#include "core/memory_estimate.h"
 #include "core/regions.h"
 #include "core/resample.h"
 #include "core/status.h"
@@ -113,6 +114,7 @@ class FeatureEngine {
   const int64_t max_grid_voxels_;
   MemoryBudget& budget_;
   LruCache<TriangleMesh> surfaces_;
+  LruCache<SurfaceMeasure> measures_;  // a few dozen bytes per surface: admission without a pass
   LruCache<Image> images_;
 };
 
