@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "core/grid_around.h"
@@ -31,6 +32,14 @@ TEST(MemoryEstimate, CrossingsBoundTheRunsOfTheRealConversion) {
       ASSERT_TRUE(v.ok()) << v.status().to_string();
       EXPECT_EQ(e.lines, grid->dims[1] * grid->dims[2]);
       EXPECT_LE(2 * int64_t(v->volume.runs.size()), e.crossings) << spacing;
+      // An oblique grid (rotated 30 degrees about z, then 20 about x): the bound ignores orientation.
+      ImageGeometry oblique = *grid;
+      const double c1 = std::cos(0.5236), s1 = std::sin(0.5236), c2 = std::cos(0.349), s2 = std::sin(0.349);
+      oblique.direction = {{{c1, -s1 * c2, s1 * s2}, {s1, c1 * c2, -c1 * s2}, {0, s2, c2}}};
+      const auto w = voxelize_1d(mesh, oblique, {});
+      ASSERT_TRUE(w.ok()) << w.status().to_string();
+      EXPECT_GT(w->volume.runs.size(), 0u);
+      EXPECT_LE(2 * int64_t(w->volume.runs.size()), conversion_peak_bytes(mesh, oblique, false).crossings);
     }
   }
 }
