@@ -23,6 +23,9 @@ int64_t mul_add(int64_t a, int64_t b, int64_t c = 0) {
   return a * b + c;
 }
 
+// dims[0] x dims[1] x dims[2], saturating (ImageGeometry::voxel_count() trusts its caller's checks).
+int64_t voxels(const ImageGeometry& g) { return mul_add(mul_add(g.dims[0], g.dims[1]), g.dims[2]); }
+
 int64_t saturating(double x) { return x >= 9.0e18 ? kMax : int64_t(std::max(0.0, x)); }
 
 }  // namespace
@@ -71,7 +74,7 @@ ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const Im
   bytes = mul_add(e.crossings / 2 + 1, 16, bytes);  // runs, and their copy into the result
   bytes = mul_add(surface.vertices, 24, bytes);
   bytes = mul_add(surface.triangles, 32, bytes);
-  if (robust) bytes = mul_add(geometry.voxel_count(), 2, bytes);
+  if (robust) bytes = mul_add(voxels(geometry), 2, bytes);
   e.bytes = bytes;
   return e;
 }
@@ -83,13 +86,13 @@ ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGe
 int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGeometry& geometry,
                              int64_t uncached_image_voxels, int regions) {
   int64_t bytes = mul_add(conversion.crossings / 2 + 1, 64);
-  bytes = mul_add(geometry.voxel_count(), 1, bytes);  // measured ~0.5 byte per grid voxel (sweeps)
+  bytes = mul_add(voxels(geometry), 1, bytes);  // measured ~0.5 byte per grid voxel (sweeps)
   bytes = mul_add(uncached_image_voxels, 4, bytes);
-  if (regions > 0) bytes = mul_add(geometry.voxel_count(), 4, bytes);
+  if (regions > 0) bytes = mul_add(voxels(geometry), 4, bytes);
   return bytes;
 }
 
-int64_t mask_export_extra_bytes(const ImageGeometry& geometry) { return mul_add(geometry.voxel_count(), 3); }
+int64_t mask_export_extra_bytes(const ImageGeometry& geometry) { return mul_add(voxels(geometry), 3); }
 
 // "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a trailing "B" or "iB" allowed).
 Result<int64_t> parse_byte_size(const std::string& text, const std::string& what) {
