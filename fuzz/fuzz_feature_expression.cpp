@@ -1,0 +1,38 @@
+// Feeds each input, as text, to the query expression parsers: parse_feature and parse_predicate
+// (client/feature_expression.h; `soiq query --where/--select/--order-by`) and parse_region
+// (core/regions.h; the region of every feature a query names, which soiqd parses from the request).
+// A bug is any crash or sanitizer report, a run over -timeout, or a broken round trip: a feature
+// parse_feature accepts must come back from feature_text as text parse_feature reads to the same
+// feature, and a region parse_region accepts likewise through region_name.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "client/feature_expression.h"
+#include "core/regions.h"
+#include "fuzz/require.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+
+  auto feature = soiq::client::parse_feature(text);
+  if (feature.ok()) {
+    auto again = soiq::client::parse_feature(soiq::client::feature_text(*feature));
+    soiq::fuzz::require(again.ok(), "parse_feature refused feature_text of a feature it accepted");
+    soiq::fuzz::require(again->SerializeAsString() == feature->SerializeAsString(),
+                        "parse_feature(feature_text(f)) differs from f");
+  }
+
+  auto predicate = soiq::client::parse_predicate(text);
+  if (predicate.ok()) (void)soiq::client::comparison_text(predicate->op());
+
+  auto region = soiq::parse_region(text);
+  if (region.ok()) {
+    auto again = soiq::parse_region(soiq::region_name(*region));
+    soiq::fuzz::require(again.ok(), "parse_region refused region_name of a region it accepted");
+    soiq::fuzz::require(again->kind == region->kind && again->radius_mm == region->radius_mm,
+                        "parse_region(region_name(r)) differs from r");
+  }
+  return 0;
+}
