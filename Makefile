@@ -2,8 +2,9 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+FUZZ_SECONDS ?= 60
 
-.PHONY: deps build run demo test test-sanitize bench format clean
+.PHONY: deps build run demo test test-sanitize fuzz bench format clean
 
 deps:
 	scripts/install-deps
@@ -26,6 +27,13 @@ test: build
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs this too).
 test-sanitize:
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DSOIQ_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+
+# Every libFuzzer harness of fuzz/ (clang-14, ASan + UBSan, build-fuzz/) for FUZZ_SECONDS each, after
+# replaying fuzz/regressions/; fails on any crash, leak, timeout or out-of-memory (FUZZING.md).
+fuzz: deps
+	cmake -C fuzz/config.cmake -S . -B build-fuzz >/dev/null
+	cmake --build build-fuzz --target soiq_fuzzers -j $(JOBS)
+	fuzz/run build-fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
 bench: build
 	bench/run $(BUILD)

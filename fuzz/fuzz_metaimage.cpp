@@ -1,6 +1,6 @@
 // Feeds each input to decode_image (core/io/read_image.h) as a .mha upload, as soiqd does with an
-// image a client sends: MetaImage header text with raw or zlib-compressed voxels, soiq's own parser. Decoded under soiqd-like limits
-// (fuzz/image_contract.h). A bug is any crash or sanitizer report, a run over -timeout or
+// image a client sends: MetaImage header text with raw or zlib-compressed voxels, soiq's own parser. Decoded under
+// soiqd-like limits (fuzz/image_contract.h). A bug is any crash or sanitizer report, a run over -timeout or
 // -rss_limit_mb, or an OK image that breaks decode_image's contract; any error status is a correct
 // answer.
 

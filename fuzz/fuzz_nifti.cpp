@@ -1,5 +1,6 @@
 // Feeds each input to decode_image (core/io/read_image.h) as a .nii upload, as soiqd does with an
-// image a client sends: NIfTI-1 or -2, gzip-compressed or not (the reader tells by the bytes, so .nii and .nii.gz are one harness and one corpus), header through soiq's checks, then libnifti. Decoded under soiqd-like limits
+// image a client sends: NIfTI-1 or -2, gzip-compressed or not (the reader tells by the bytes, so .nii and .nii.gz are
+// one harness and one corpus), header through soiq's checks, then libnifti. Decoded under soiqd-like limits
 // (fuzz/image_contract.h). A bug is any crash or sanitizer report, a run over -timeout or
 // -rss_limit_mb, or an OK image that breaks decode_image's contract; any error status is a correct
 // answer.

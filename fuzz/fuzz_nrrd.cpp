@@ -1,8 +1,7 @@
 // Feeds each input to decode_image (core/io/read_image.h) as a .nrrd upload, as soiqd does with an
-// image a client sends: NRRD header text, raw, gzip or ASCII encodings, soiq's own parser. Decoded under soiqd-like limits
-// (fuzz/image_contract.h). A bug is any crash or sanitizer report, a run over -timeout or
-// -rss_limit_mb, or an OK image that breaks decode_image's contract; any error status is a correct
-// answer.
+// image a client sends: NRRD header text, raw, gzip or ASCII encodings, soiq's own parser. Decoded under soiqd-like
+// limits (fuzz/image_contract.h). A bug is any crash or sanitizer report, a run over -timeout or -rss_limit_mb, or an
+// OK image that breaks decode_image's contract; any error status is a correct answer.
 
 #include <cstddef>
 #include <cstdint>

@@ -33,7 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const auto& segment : seg->segments) {
     const soiq::RunLengthVolume& v = segment.volume;
     soiq::fuzz::require(v.geometry.dims == grid.dims, "read_seg returned a segment on another grid");
-    soiq::fuzz::require(int64_t(v.line_start.size()) == v.line_count() + 1, "read_seg returned a line table of the wrong size");
+    soiq::fuzz::require(int64_t(v.line_start.size()) == v.line_count() + 1,
+                        "read_seg returned a line table of the wrong size");
     for (const soiq::Run& run : v.runs)
       soiq::fuzz::require(0 <= run.begin && run.begin < run.end && run.end <= grid.dims[0],
                           "read_seg returned a run outside its line");

@@ -1,8 +1,8 @@
 // Feeds each input to parse_mesh as a .stl upload (core/io/parse_mesh.h), as soiqd does with a
-// surface a client sends: binary or ASCII STL (chosen by the bytes, as soiqd does), soiq's own parser, no third-party code. A bug is any crash or
-// sanitizer report (out-of-bounds read, overflow, leak), a run over libFuzzer's -timeout or its
-// -rss_limit_mb (every allocation must be bounded by the input's size), or an OK result that breaks
-// parse_mesh's contract (fuzz/mesh_contract.h). Any error status is a correct answer.
+// surface a client sends: binary or ASCII STL (chosen by the bytes, as soiqd does), soiq's own parser, no third-party
+// code. A bug is any crash or sanitizer report (out-of-bounds read, overflow, leak), a run over libFuzzer's -timeout or
+// its -rss_limit_mb (every allocation must be bounded by the input's size), or an OK result that breaks parse_mesh's
+// contract (fuzz/mesh_contract.h). Any error status is a correct answer.
 
 #include <cstddef>
 #include <cstdint>
