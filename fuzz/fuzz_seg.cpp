@@ -1,19 +1,23 @@
-// Feeds each input to read_seg (dicom/read_seg.h) from memory, as an import does with a DICOM
-// Segmentation a client sends, on the grid of tests/data/dicom/standard_seg.dcm (11 x 7 x 6 voxels of
-// 0.9 x 1.2 x 3 mm from (10, -5.5, 20) mm), so mutations of that seed map frames onto slices and
-// unpack their bits. DCMTK parses the dataset; it is not instrumented, so only its crashes show. A
-// bug is any crash or sanitizer report, a run over -timeout or -rss_limit_mb (frames x rows x
-// columns must be checked against the Pixel Data before anything is allocated for them), or an OK
-// result whose segment volumes are not well-formed runs on that grid; any error status is a correct answer.
+// Feeds each input, written to a private temp file, to read_seg_file (dicom/read_seg.h), as an import
+// does with a DICOM Segmentation a client sends (dicom/import_seg.cpp), on the grid of
+// tests/data/dicom/standard_seg.dcm (11 x 7 x 6 voxels of 0.9 x 1.2 x 3 mm from (10, -5.5, 20) mm),
+// so mutations of that seed map frames onto slices and unpack their bits. The file, not read_seg's
+// in-memory form: DCMTK checks an element's length against a file's size, not against a memory
+// buffer's, so read_seg(bytes) allocates whatever length a header announces (FUZZING.md, findings).
+// DCMTK is not instrumented, so only its crashes show. A bug is any crash or sanitizer report, a run
+// over -timeout or -rss_limit_mb (frames x rows x columns must be checked against the Pixel Data
+// before anything is allocated for them), or an OK result whose segment volumes are not well-formed
+// runs on that grid; any error status is a correct answer.
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <string_view>
 
 #include "core/image_geometry.h"
 #include "dicom/read_seg.h"
 #include "fuzz/dicom_quiet.h"
 #include "fuzz/require.h"
+#include "fuzz/temp_input_files.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   soiq::fuzz::quiet_dcmtk();
@@ -28,7 +32,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     g.dims = {11, 7, 6};
     return g;
   }();
-  auto seg = soiq::dicom::read_seg(std::string(reinterpret_cast<const char*>(data), size), grid);
+  static soiq::fuzz::TempInputFiles files;
+  const auto paths = files.write({std::string_view(reinterpret_cast<const char*>(data), size)});
+  auto seg = soiq::dicom::read_seg_file(paths.front(), grid);
   if (!seg.ok()) return 0;
   for (const auto& segment : seg->segments) {
     const soiq::RunLengthVolume& v = segment.volume;
