@@ -2,6 +2,7 @@
 
 #include <nifti2_io.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -64,7 +65,13 @@ Result<ImageGeometry> nifti_geometry(const nifti_image& nim, const std::string& 
     origin[r] = -origin[r];
     for (int c = 0; c < 3; ++c) axes[r][c] = -axes[r][c];
   }
-  return geometry_from_axes(axes, origin, {nim.nx, nim.ny, nim.nz}, path);
+  // Sizes beyond dim[0] are unused by the standard and count as 1, whatever the file holds there (a
+  // 0 there made an empty grid that later steps did not expect).
+  std::array<int64_t, 3> dims{1, 1, 1};
+  for (int a = 1; a <= 3; ++a) {
+    if (nim.dim[0] >= a) dims[size_t(a - 1)] = nim.dim[a];
+  }
+  return geometry_from_axes(axes, origin, dims, path);
 }
 
 bool is_gzip(std::string_view bytes) {

@@ -333,6 +333,17 @@ TEST(DecodeImage, NiftiWithAbsurdDimsInATinyGzipFailsWithoutAllocating) {
   EXPECT_EQ(decode_image(bytes, "nii", "rank.nii").status().code(), StatusCode::kInvalidArgument);
 }
 
+// Found by fuzz_nifti: a 0 in dim[3] of a 2D header made an empty grid. Sizes beyond dim[0] count as 1.
+TEST(DecodeImage, NiftiSizesBeyondDim0CountAsOne) {
+  std::string bytes = small_nifti_bytes();
+  const int16_t dims[4] = {2, 10, 10, 0};
+  std::memcpy(bytes.data() + 40, dims, sizeof dims);
+  const auto image = decode_image(bytes, "nii", "flat.nii");
+  ASSERT_TRUE(image.ok()) << image.status().to_string();
+  EXPECT_EQ(image->geometry.dims, (std::array<int64_t, 3>{10, 10, 1}));
+  EXPECT_EQ(image->voxels.size(), 100u);
+}
+
 TEST(DecodeImage, NiftiScalingBeyondFloatIsRefused) {
   std::string bytes = small_nifti_bytes();
   const float slope = 3e38f, inter = 1e38f;    // a voxel of 1 becomes 4e38, beyond float
