@@ -17,33 +17,67 @@ std::string fmt(double v) {
 
 std::string fmt(const Vec3& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
 
+std::string fmt_orientation(const std::array<double, 6>& o) {
+  std::string out;
+  for (int i = 0; i < 6; ++i) out += (i ? "\\" : "") + fmt(o[i]);
+  return out;
+}
+
 bool near(double a, double b, double tol) { return std::abs(a - b) <= tol; }
+
+// Beyond any scanner: a pixel of a metre, a position a kilometre from the origin. Bounded so that
+// every distance computed from them stays far from overflow.
+constexpr double kMaxPixelSpacingMm = 1e3;
+constexpr double kMaxPositionMm = 1e6;
 
 }  // namespace
 
 Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double single_slice_spacing_mm) {
   if (slices.empty()) return invalid_argument("image series has no slices");
+  // Every number a slice brings is checked before any is used: a NaN position would break the
+  // sort's ordering and pass every distance test below (NaN compares false), an infinite spacing
+  // would pass "> 0".
+  for (const SliceInfo& s : slices) {
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(s.position_mm[a]) || std::abs(s.position_mm[a]) > kMaxPositionMm)
+        return invalid_argument("slice " + s.label + ": Image Position (Patient) (0020,0032) " + fmt(s.position_mm) +
+                                " is not a finite position within " + fmt(kMaxPositionMm) + " mm; fix the tag");
+    for (int i = 0; i < 6; ++i)
+      if (!std::isfinite(s.orientation[i]))
+        return invalid_argument("slice " + s.label + ": Image Orientation (Patient) (0020,0037) " +
+                                fmt_orientation(s.orientation) + " is not finite; fix the tag");
+    for (int i = 0; i < 2; ++i)
+      if (!(s.pixel_spacing_mm[i] > 0) || !(s.pixel_spacing_mm[i] <= kMaxPixelSpacingMm))
+        return invalid_argument("slice " + s.label + ": Pixel Spacing (0028,0030) " + fmt(s.pixel_spacing_mm[0]) +
+                                "\\" + fmt(s.pixel_spacing_mm[1]) + " must be finite, > 0 and at most " +
+                                fmt(kMaxPixelSpacingMm) + " mm; fix the tag");
+    if (s.rows <= 0 || s.columns <= 0)
+      return invalid_argument("slice " + s.label + ": Rows (0028,0010) " + std::to_string(s.rows) +
+                              " and Columns (0028,0011) " + std::to_string(s.columns) + " must be positive");
+  }
   const SliceInfo& first = slices[0];
   const Vec3 row{first.orientation[0], first.orientation[1], first.orientation[2]};
   const Vec3 col{first.orientation[3], first.orientation[4], first.orientation[5]};
   if (!near(norm(row), 1, 1e-4) || !near(norm(col), 1, 1e-4) || std::abs(dot(row, col)) > 1e-4)
-    return invalid_argument("slice " + first.label + ": Image Orientation (Patient) is not two orthonormal vectors");
-  if (!(first.pixel_spacing_mm[0] > 0) || !(first.pixel_spacing_mm[1] > 0) || first.rows <= 0 || first.columns <= 0)
-    return invalid_argument("slice " + first.label + ": Pixel Spacing, Rows and Columns must be positive");
+    return invalid_argument("slice " + first.label + ": Image Orientation (Patient) (0020,0037) " +
+                            fmt_orientation(first.orientation) +
+                            " is not two orthonormal vectors (unit length and perpendicular to 1e-4); fix the tag");
   const Vec3 n = cross(row, col);
 
   for (const SliceInfo& s : slices) {
     for (int i = 0; i < 6; ++i)
       if (!near(s.orientation[i], first.orientation[i], 1e-4))
-        return invalid_argument("slice " + s.label + " has a different Image Orientation (Patient) than slice " +
-                                first.label + "; a series must have one orientation");
+        return invalid_argument("slice " + s.label +
+                                " has a different Image Orientation (Patient) (0020,0037) than slice " + first.label +
+                                "; a series must have one orientation");
     if (s.rows != first.rows || s.columns != first.columns)
       return invalid_argument("slice " + s.label + " is " + std::to_string(s.columns) + "x" + std::to_string(s.rows) +
                               ", slice " + first.label + " is " + std::to_string(first.columns) + "x" +
                               std::to_string(first.rows) + "; a series must have one size");
     for (int i = 0; i < 2; ++i)
       if (!near(s.pixel_spacing_mm[i], first.pixel_spacing_mm[i], 1e-6 * first.pixel_spacing_mm[i]))
-        return invalid_argument("slice " + s.label + " has a different Pixel Spacing than slice " + first.label);
+        return invalid_argument("slice " + s.label + " has a different Pixel Spacing (0028,0030) than slice " +
+                                first.label);
   }
 
   StackGeometry out;
@@ -53,7 +87,8 @@ Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double s
   for (size_t i = 0; i < slices.size(); ++i) along[i] = dot(n, slices[i].position_mm);
   std::stable_sort(out.order.begin(), out.order.end(), [&](size_t a, size_t b) { return along[a] < along[b]; });
 
-  double spacing = single_slice_spacing_mm > 0 ? single_slice_spacing_mm : 1.0;
+  double spacing =
+      single_slice_spacing_mm > 0 && std::isfinite(single_slice_spacing_mm) ? single_slice_spacing_mm : 1.0;
   if (slices.size() > 1) {
     const size_t last = out.order.back(), lowest = out.order.front();
     spacing = (along[last] - along[lowest]) / static_cast<double>(slices.size() - 1);

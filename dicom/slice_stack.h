@@ -13,12 +13,16 @@
 //          n = row x column, direction columns (row, column, n), spacing (column spacing, row
 //          spacing, mean distance between consecutive slices along n), dims (columns, rows,
 //          slices); `order[k]` is the input index of slice k.
-// Errors   INVALID_ARGUMENT naming the slice(s) and position(s): no slices; a slice whose
-//          orientation, pixel spacing, rows or columns differ from the first slice's; an
-//          orientation that is not two orthonormal vectors (to 1e-4); two slices at the same
-//          position; a slice offset in-plane from the normal line (gantry tilt / sheared stack);
-//          a gap of about twice the others ("missing slice between ...") or any other step that
-//          differs from the smallest step by more than max(0.01 mm, 1%) ("irregular slice spacing").
+// Errors   INVALID_ARGUMENT naming the slice(s), the tag and the value: no slices; a position
+//          (0020,0032) that is not finite or over 1e6 mm from the origin; an orientation (0020,0037)
+//          that is not finite, or (first slice) not two orthonormal vectors to 1e-4; a pixel
+//          spacing (0028,0030) that is not finite, not > 0 or over 1000 mm; rows or columns <= 0;
+//          a slice whose orientation, pixel spacing, rows or columns differ from the first
+//          slice's; two slices at the same position; a slice offset in-plane from the normal line
+//          (gantry tilt / sheared stack); a gap of about twice the others ("missing slice between
+//          ...") or any other step that differs from the smallest step by more than max(0.01 mm,
+//          1%) ("irregular slice spacing"). A single_slice_spacing_mm that is not finite and > 0
+//          becomes 1.
 // Cost     O(n log n); thread-safe.
 
 #include <cstdint>

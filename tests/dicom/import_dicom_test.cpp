@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ct_slice_writer.h"
 #include "dicom_test_support.h"
 
 namespace soiq::dicom {
@@ -34,6 +35,26 @@ TEST(ImportDicom, EveryShippedFileIsReadAndEveryProblemNamed) {
     EXPECT_FALSE(p.status.message().empty());
   }
   EXPECT_EQ(r->scan.non_dicom_skipped, 10);  // READMEs, licences, facts.json, rtstruct.dump, make_standard_seg.py
+}
+
+TEST(ImportDicom, SeriesWithAHostileHeaderIsAProblemNamingTheFileAndYieldsNoImage) {
+  testing::TempDir dir;
+  testing::write_ct_series(dir, 3, [](DcmDataset& ds, int k) {
+    if (k == 2) {
+      ASSERT_TRUE(ds.putAndInsertString(DCM_RescaleSlope, "1e308").good());
+    }
+  });
+  auto r = import_dicom({dir.path().string()});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_TRUE(r->images.empty());
+  ASSERT_EQ(r->problems.size(), 1u);
+  EXPECT_EQ(r->problems[0].path, testing::kSyntheticCtSeriesUid);
+  EXPECT_EQ(r->problems[0].status.code(), StatusCode::kInvalidArgument);
+  const std::string& m = r->problems[0].status.message();
+  EXPECT_NE(m.find(std::string("series ") + testing::kSyntheticCtSeriesUid + ": '" + dir.file("ct_2.dcm") +
+                   "': Rescale Slope (0028,1053) 1e+308"),
+            std::string::npos)
+      << m;
 }
 
 TEST(ImportDicom, MissingPathIsNotFound) {

@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 
 #include "core/io/read_image.h"
+#include "ct_slice_writer.h"
 #include "dicom/scan_dicom.h"
 #include "dicom_test_support.h"
 
@@ -130,6 +132,122 @@ TEST(ReadImageSeries, ImagesWithoutPositionAreRefusedNamingTheFile) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(r.status().message().find("CR1"), std::string::npos) << r.status().message();
+}
+
+// A header the pixels or the grid cannot honour: one behaviour (refused before any value is
+// trusted, naming the file and the tag) over many hostile headers written on CT_small's pixels.
+struct HostileHeader {
+  std::string name;
+  int slices;
+  std::function<void(DcmDataset&, int)> edit;  // on slice k
+  std::string file;                            // the file the message must name
+  std::string phrase;                          // what the message must say (tag and value)
+};
+
+void PrintTo(const HostileHeader& h, std::ostream* os) { *os << h.name; }
+
+void put(DcmDataset& ds, const DcmTagKey& tag, const char* value) {
+  ASSERT_TRUE(ds.putAndInsertString(tag, value).good());
+}
+void put_us(DcmDataset& ds, const DcmTagKey& tag, Uint16 value) {
+  ASSERT_TRUE(ds.putAndInsertUint16(tag, value).good());
+}
+// The edit on slice `only` alone.
+std::function<void(DcmDataset&, int)> on_slice(int only, std::function<void(DcmDataset&)> edit) {
+  return [only, edit](DcmDataset& ds, int k) {
+    if (k == only) edit(ds);
+  };
+}
+std::function<void(DcmDataset&, int)> on_all(std::function<void(DcmDataset&)> edit) {
+  return [edit](DcmDataset& ds, int) { edit(ds); };
+}
+
+class ReadImageSeriesHostile : public ::testing::TestWithParam<HostileHeader> {};
+
+TEST_P(ReadImageSeriesHostile, IsInvalidArgumentNamingTheFileAndTheTagInOneLine) {
+  const HostileHeader& h = GetParam();
+  testing::TempDir dir;
+  testing::write_ct_series(dir, h.slices, h.edit);
+  auto scan = scan_dicom({dir.path().string()});
+  ASSERT_TRUE(scan.ok()) << scan.status().to_string();
+  ASSERT_EQ(scan->series.size(), 1u);
+  auto r = read_image_series(scan->series[0]);
+  ASSERT_FALSE(r.ok()) << "accepted";
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+  const std::string& m = r.status().message();
+  EXPECT_NE(m.find(dir.file(h.file)), std::string::npos) << m;
+  EXPECT_NE(m.find(h.phrase), std::string::npos) << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Headers, ReadImageSeriesHostile,
+    ::testing::Values(
+        HostileHeader{"RowsSmallerThanThePixelData", 2, on_all([](DcmDataset& ds) { put_us(ds, DCM_Rows, 64); }),
+                      "ct_0.dcm", "Pixel Data (7FE0,0010) has 32768 bytes but Rows (0028,0010)"},
+        HostileHeader{"RowsLargerThanThePixelData", 2, on_all([](DcmDataset& ds) { put_us(ds, DCM_Rows, 256); }),
+                      "ct_0.dcm", "needs 65536"},
+        HostileHeader{"ColumnsZero", 1, on_all([](DcmDataset& ds) { put_us(ds, DCM_Columns, 0); }), "ct_0.dcm",
+                      "Columns (0028,0011) is missing or 0"},
+        HostileHeader{"RowsOfOneSliceDiffer", 3, on_slice(1, [](DcmDataset& ds) { put_us(ds, DCM_Rows, 64); }),
+                      "ct_1.dcm", "Rows (0028,0010) x Columns (0028,0011) is 64 x 128"},
+        HostileHeader{"BitsAllocatedTwelve", 1, on_all([](DcmDataset& ds) { put_us(ds, DCM_BitsAllocated, 12); }),
+                      "ct_0.dcm", "Bits Allocated (0028,0100) 12"},
+        HostileHeader{"BitsStoredAboveBitsAllocated", 1, on_all([](DcmDataset& ds) { put_us(ds, DCM_BitsStored, 17); }),
+                      "ct_0.dcm", "Bits Stored (0028,0101) 17"},
+        HostileHeader{"ThreeSamplesPerPixel", 1, on_all([](DcmDataset& ds) { put_us(ds, DCM_SamplesPerPixel, 3); }),
+                      "ct_0.dcm", "Samples per Pixel (0028,0002) is 3"},
+        HostileHeader{"ZeroFrames", 1, on_all([](DcmDataset& ds) { put(ds, DCM_NumberOfFrames, "0"); }), "ct_0.dcm",
+                      "Number of Frames (0028,0008) '0' is not a positive integer"},
+        HostileHeader{"TwoFrames", 1, on_all([](DcmDataset& ds) { put(ds, DCM_NumberOfFrames, "2"); }), "ct_0.dcm",
+                      "Number of Frames (0028,0008) is 2"},
+        HostileHeader{"HugeRescaleSlope", 2, on_slice(1, [](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "1e308"); }),
+                      "ct_1.dcm", "Rescale Slope (0028,1053) 1e+308 takes stored value"},
+        HostileHeader{"SlopeThatOverflowsTheLargestStoredValue", 1,
+                      on_all([](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "1e35"); }), "ct_0.dcm",
+                      "Rescale Slope (0028,1053) 1e+35 takes stored value -32768"},
+        HostileHeader{"InfiniteRescaleSlope", 1, on_all([](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "inf"); }),
+                      "ct_0.dcm", "Rescale Slope (0028,1053) 'inf' is not a finite number"},
+        HostileHeader{"NanRescaleSlope", 1, on_all([](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "nan"); }),
+                      "ct_0.dcm", "Rescale Slope (0028,1053) 'nan' is not a finite number"},
+        HostileHeader{"ZeroRescaleSlope", 1, on_all([](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "0"); }), "ct_0.dcm",
+                      "Rescale Slope (0028,1053) 0 would make every voxel the same value"},
+        HostileHeader{"RescaleSlopeThatIsNoNumber", 1, on_all([](DcmDataset& ds) { put(ds, DCM_RescaleSlope, "abc"); }),
+                      "ct_0.dcm", "Rescale Slope (0028,1053) 'abc' is not a number"},
+        HostileHeader{"HugeRescaleIntercept", 1, on_all([](DcmDataset& ds) { put(ds, DCM_RescaleIntercept, "1e39"); }),
+                      "ct_0.dcm", "Rescale Intercept (0028,1052) 1e+39 is beyond float's range"},
+        HostileHeader{"InfinitePixelSpacing", 1, on_all([](DcmDataset& ds) { put(ds, DCM_PixelSpacing, "inf\\inf"); }),
+                      "ct_0.dcm", "Pixel Spacing (0028,0030) inf\\inf must be finite, > 0"},
+        HostileHeader{"ZeroPixelSpacing", 2, on_all([](DcmDataset& ds) { put(ds, DCM_PixelSpacing, "0\\0.66"); }),
+                      "ct_0.dcm", "Pixel Spacing (0028,0030) 0\\0.66 must be finite, > 0"},
+        HostileHeader{"OrientationNotOrthogonal", 2, on_all([](DcmDataset& ds) {
+                        put(ds, DCM_ImageOrientationPatient, "1\\0\\0\\0.70710678\\0.70710678\\0");
+                      }),
+                      "ct_0.dcm", "Image Orientation (Patient) (0020,0037) 1\\0\\0\\0.707107\\0.707107\\0 is not two"},
+        HostileHeader{"OrientationNotUnit", 1,
+                      on_all([](DcmDataset& ds) { put(ds, DCM_ImageOrientationPatient, "2\\0\\0\\0\\1\\0"); }),
+                      "ct_0.dcm", "Image Orientation (Patient) (0020,0037) 2\\0\\0\\0\\1\\0 is not two"},
+        HostileHeader{"NanOrientationOnOneSlice", 3,
+                      on_slice(2, [](DcmDataset& ds) { put(ds, DCM_ImageOrientationPatient, "1\\0\\0\\0\\nan\\0"); }),
+                      "ct_2.dcm", "Image Orientation (Patient) (0020,0037) 1\\0\\0\\0\\nan\\0 is not finite"},
+        HostileHeader{
+            "NanPositionOnOneSlice", 3,
+            on_slice(1, [](DcmDataset& ds) { put(ds, DCM_ImagePositionPatient, "-158.135803\\-179.035797\\nan"); }),
+            "ct_1.dcm", "Image Position (Patient) (0020,0032) (-158.136, -179.036, nan) is not a finite"},
+        HostileHeader{"InfiniteSpacingBetweenSlicesOfOneSlice", 1,
+                      on_all([](DcmDataset& ds) { put(ds, DCM_SpacingBetweenSlices, "inf"); }), "ct_0.dcm",
+                      "Spacing Between Slices (0018,0088) inf is not a finite number"}),
+    [](const ::testing::TestParamInfo<HostileHeader>& i) { return i.param.name; });
+
+TEST(ReadImageSeries, SyntheticCtSeriesIsReadWhenItsHeadersAreSound) {
+  testing::TempDir dir;
+  testing::write_ct_series(dir, 3);
+  auto scan = scan_dicom({dir.path().string()});
+  ASSERT_TRUE(scan.ok());
+  auto r = read_image_series(scan->series[0]);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_EQ(r->image.geometry.dims, (std::array<int64_t, 3>{128, 128, 3}));
+  EXPECT_EQ(r->image.geometry.spacing_mm[2], 5);
 }
 
 }  // namespace

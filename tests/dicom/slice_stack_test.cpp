@@ -107,5 +107,36 @@ TEST(SliceStack, TiltedStackIsRefused) {
   EXPECT_NE(r.status().message().find("gantry tilt"), std::string::npos) << r.status().message();
 }
 
+TEST(SliceStack, NonFinitePositionOfAnySliceIsRefusedNamingItAndTheTag) {
+  // A NaN passes every "<=" test: without its own check it broke the sort and reached the grid.
+  for (double bad : {std::nan(""), HUGE_VAL, 1e7}) {
+    auto slices = stack(4, 2);
+    slices[2].position_mm[2] = bad;
+    auto r = slice_stack(slices);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(r.status().message().find("slice #3: Image Position (Patient) (0020,0032)"), std::string::npos)
+        << r.status().message();
+  }
+}
+
+TEST(SliceStack, NonFiniteOrOversizedPixelSpacingIsRefusedNamingTheTag) {
+  for (double bad : {std::nan(""), HUGE_VAL, 0.0, -0.5, 2e3}) {
+    auto slices = stack(1, 1);
+    slices[0].pixel_spacing_mm[1] = bad;
+    auto r = slice_stack(slices);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(r.status().message().find("slice #1: Pixel Spacing (0028,0030)"), std::string::npos)
+        << r.status().message();
+  }
+}
+
+TEST(SliceStack, SingleSliceWithANonFiniteSpacingTakesOneMillimetre) {
+  auto r = slice_stack(stack(1, 1), HUGE_VAL);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_EQ(r->geometry.spacing_mm[2], 1);
+}
+
 }  // namespace
 }  // namespace soiq::dicom

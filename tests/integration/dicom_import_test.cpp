@@ -1,10 +1,11 @@
 // ImportDicom through a real soiqd: the STS_002 CT and PET with their RT Structure Sets, features on
-// the patient's own grids and images, problems that do not stop an import, and a failed import that
-// stores nothing.
+// the patient's own grids and images, problems that do not stop an import, and failed imports (a
+// corrupt file, a header that disagrees with its pixels) that store nothing.
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include "core/io/read_image.h"
@@ -152,6 +153,41 @@ TEST_F(ServiceTest, ImportOfACorruptFileAloneIsInvalidAndStoresNothing) {
   Result<v1::ServerInfo> after = client_->server_info();
   ASSERT_TRUE(after.ok());
   EXPECT_EQ(after->patients(), before->patients());
+  EXPECT_EQ(after->series(), before->series());
+  EXPECT_EQ(after->structures(), before->structures());
+}
+
+TEST_F(ServiceTest, ImportOfACtWhoseRowsDisagreeWithItsPixelsIsInvalidNamingFileAndTagAndStoresNothing) {
+  // CT_small is 128 x 128 x 16 bit; its header made to say 64 rows. Patched in place (the tag,
+  // VR US, length 2, value 128 little-endian) so the file is otherwise the real one.
+  std::string bytes;
+  {
+    std::ifstream in(data("dicom/CT_small.dcm"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string rows("\x28\x00\x10\x00US\x02\x00\x80\x00", 10);
+  const size_t at = bytes.find(rows);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 8] = 64;
+  const std::string path = dir_.file("hostile_ct.dcm");
+  std::ofstream(path, std::ios::binary) << bytes;
+  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT/image")}).ok());
+  Result<v1::ServerInfo> before = client_->server_info();
+  ASSERT_TRUE(before.ok());
+
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({path});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+  const std::string& m = r.status().message();
+  EXPECT_NE(m.find("'hostile_ct.dcm': Pixel Data (7FE0,0010) has 32768 bytes but Rows (0028,0010)"), std::string::npos)
+      << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  EXPECT_EQ(m.find("soiqd-import-"), std::string::npos) << m;  // the name as sent, not the server's folder
+  // Still serving, and nothing of the file was kept.
+  Result<v1::ServerInfo> after = client_->server_info();
+  ASSERT_TRUE(after.ok()) << after.status().to_string();
+  EXPECT_EQ(after->patients(), before->patients());
+  EXPECT_EQ(after->studies(), before->studies());
   EXPECT_EQ(after->series(), before->series());
   EXPECT_EQ(after->structures(), before->structures());
 }
