@@ -143,11 +143,21 @@ ALTER TABLE structures ADD COLUMN source_uid TEXT NOT NULL DEFAULT '';
 CREATE UNIQUE INDEX structures_source_uid ON structures(source_uid) WHERE source_uid <> '';
 )sql";
 
+// Version 3: the study's DICOM Study Time, Study ID and Accession Number, so a SEG soiq exports on
+// the study carries them as the study's other instances do (a RIS matches on the accession
+// number). '' for studies stored before, or uploaded: the export then writes them empty.
+constexpr char kSchemaV3[] = R"sql(
+ALTER TABLE studies ADD COLUMN study_time TEXT NOT NULL DEFAULT '';
+ALTER TABLE studies ADD COLUMN study_id TEXT NOT NULL DEFAULT '';
+ALTER TABLE studies ADD COLUMN accession_number TEXT NOT NULL DEFAULT '';
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
       {1, kSchemaV1},
       {2, kSchemaV2},
+      {3, kSchemaV3},
   };
   return kMigrations;
 }

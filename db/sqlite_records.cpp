@@ -42,6 +42,9 @@ StudyRecord read_study(const Statement& row, int col) {
   s.modality = row.text(col + 4);
   s.age_years = row.optional_real(col + 5);
   s.structure_count = row.int64(col + 6);
+  s.study_time = row.text(col + 7);
+  s.study_id = row.text(col + 8);
+  s.accession_number = row.text(col + 9);
   return s;
 }
 

@@ -22,8 +22,9 @@ inline constexpr int kPatientColumnCount = 5;
 // StudyRecord with its structure count; needs st and p.
 inline constexpr char kStudyColumns[] =
     "st.study_uid, p.patient_id, st.study_date, st.description, st.modality, st.age_years, "
-    "(SELECT count(*) FROM structures cs WHERE cs.study_pk = st.pk)";
-inline constexpr int kStudyColumnCount = 7;
+    "(SELECT count(*) FROM structures cs WHERE cs.study_pk = st.pk), st.study_time, st.study_id, "
+    "st.accession_number";
+inline constexpr int kStudyColumnCount = 10;
 
 // StructureRecord with its SurfaceInfo; needs s, st, p, sf.
 inline constexpr char kStructureColumns[] =

@@ -36,11 +36,12 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
   // The ownership check comes first so that a refused study leaves no patient behind even
   // without the rollback.
   std::optional<int64_t> study_pk;
-  std::string stored_date, stored_description, stored_modality;
+  std::string stored_date, stored_description, stored_modality, stored_time, stored_study_id, stored_accession;
   std::optional<double> stored_given_age;
   {
     SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT st.pk, p.patient_id, st.study_date, st.description, "
-                                                 "st.modality, st.age_years, st.age_given FROM studies st JOIN "
+                                                 "st.modality, st.age_years, st.age_given, st.study_time, "
+                                                 "st.study_id, st.accession_number FROM studies st JOIN "
                                                  "patients p ON p.pk = st.patient_pk WHERE st.study_uid = ?1"));
     q.bind(1, study.study_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
@@ -55,6 +56,9 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
       stored_description = q.text(3);
       stored_modality = q.text(4);
       if (q.int64(6) != 0) stored_given_age = q.optional_real(5);
+      stored_time = q.text(7);
+      stored_study_id = q.text(8);
+      stored_accession = q.text(9);
     }
   }
 
@@ -95,10 +99,12 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
   {
     SOIQ_ASSIGN_OR_RETURN(Statement up,
                           c.prepare(study_pk ? "UPDATE studies SET study_date = ?3, description = ?4, modality = ?5, "
-                                               "age_years = ?6, age_given = ?7 WHERE pk = ?1 AND study_uid = ?2 AND "
+                                               "age_years = ?6, age_given = ?7, study_time = ?9, study_id = ?10, "
+                                               "accession_number = ?11 WHERE pk = ?1 AND study_uid = ?2 AND "
                                                "patient_pk = ?8 RETURNING pk"
                                              : "INSERT INTO studies(study_uid, patient_pk, study_date, description, "
-                                               "modality, age_years, age_given) VALUES (?2, ?8, ?3, ?4, ?5, ?6, ?7) "
+                                               "modality, age_years, age_given, study_time, study_id, "
+                                               "accession_number) VALUES (?2, ?8, ?3, ?4, ?5, ?6, ?7, ?9, ?10, ?11) "
                                                "RETURNING pk"));
     // Both forms use every parameter (an unused one is a bind error); the update's extra
     // conditions hold by the ownership check above.
@@ -110,6 +116,9 @@ Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& p
     up.bind(6, age);
     up.bind(7, int64_t{age_given});
     up.bind(8, keys.patient_pk);
+    up.bind(9, merged(study.study_time, stored_time));
+    up.bind(10, merged(study.study_id, stored_study_id));
+    up.bind(11, merged(study.accession_number, stored_accession));
     SOIQ_ASSIGN_OR_RETURN(const bool row, up.step());
     if (!row) return internal_error("upsert of study '" + study.study_uid + "' returned no key");
     keys.study_pk = up.int64(0);

@@ -33,6 +33,12 @@ struct StudyRecord {
   std::string study_uid;
   std::string patient_id;
   std::string study_date;  // YYYYMMDD or ""
+  // DICOM Study Time (0008,0030), Study ID (0020,0010) and Accession Number (0008,0050) as
+  // imported, "" when unknown: a SEG soiq writes on the study repeats them (dicom/seg_export.h), so
+  // a PACS and a RIS file it with its study.
+  std::string study_time;
+  std::string study_id;
+  std::string accession_number;
   std::string description;
   std::string modality;  // the study's own modality, may be ""
   // Given (DICOM Patient's Age) or, when absent, computed by the store from birth and study date.

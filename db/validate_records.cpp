@@ -68,6 +68,9 @@ Status validate_study(const StudyRecord& s, const std::string& patient_id) {
   SOIQ_RETURN_IF_ERROR(validate_text(s.study_uid, "study_uid", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.description, "study description", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.modality, "study modality", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.study_time, "study time", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.study_id, "study id", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.accession_number, "accession number", kMaxIdBytes));
   if (!s.patient_id.empty() && s.patient_id != patient_id) {
     return invalid_argument("study '" + s.study_uid + "' names patient '" + s.patient_id +
                             "' but is sent with patient '" + patient_id + "'");

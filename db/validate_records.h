@@ -26,8 +26,8 @@ Status validate_sha256(const std::string& sha256, const std::string& what);  // 
 Status validate_uid(const std::string& uid, const std::string& what);
 // patient_id non-empty, validate_text within kMaxIdBytes; sex; birth date.
 Status validate_patient(const PatientRecord& p);
-// study_uid non-empty and within kMaxIdBytes, description within kMaxNameBytes; study date; age finite and >= 0 when
-// given; patient_id "" or `patient_id`.
+// study_uid non-empty and within kMaxIdBytes, description within kMaxNameBytes; modality, study time, study id and
+// accession number within kMaxIdBytes; study date; age finite and >= 0 when given; patient_id "" or `patient_id`.
 Status validate_study(const StudyRecord& s, const std::string& patient_id);
 // Sex, laterality, dates; ages finite and min <= max; globs and modality as validate_text.
 Status validate_stage1_filter(const Stage1Filter& f);

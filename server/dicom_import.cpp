@@ -7,6 +7,7 @@
 #include "core/run_length_volume.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
+#include "db/validate_records.h"
 #include "dicom/import_dicom.h"
 #include "server/proto_records.h"
 
@@ -45,6 +46,12 @@ db::StudyRecord study_of(const dicom::DicomStudy& s) {
   r.study_uid = s.study_uid;
   r.patient_id = s.patient_id;
   if (check_date(s.study_date, "study_date").ok()) r.study_date = s.study_date;
+  // Kept for the SEGs soiq writes on the study (server/structure_seg.h), which checks each against
+  // its VR; here only what the store takes.
+  const auto storable = [](const std::string& v) { return db::validate_text(v, "", db::kMaxIdBytes).ok(); };
+  if (storable(s.study_time)) r.study_time = s.study_time;
+  if (storable(s.study_id)) r.study_id = s.study_id;
+  if (storable(s.accession_number)) r.accession_number = s.accession_number;
   r.description = s.description;
   r.age_years = s.age_years;
   return r;

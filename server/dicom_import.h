@@ -15,6 +15,8 @@
 //            surface of the ROI's volume on the referenced grid;
 //          - structures also from each binary DICOM SEG, one per non-empty segment, named by its
 //            Segment Label, on the series it references (dicom/import_seg.h);
+//          - series and study records keep Study Time, Study ID and Accession Number (when at
+//            most 64 characters without control characters) for the SEGs exported on them;
 //          - a structure set or SEG whose series is not among the files but already stored is
 //            converted on the stored series' grid and filed in its study (same patient and frame
 //            of reference required, else a problem);

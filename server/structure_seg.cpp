@@ -69,6 +69,9 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
   source.patient_birth_date = patient.birth_date;
   source.study_uid = study.study_uid;
   source.study_date = study.study_date;
+  source.study_time = study.study_time;
+  source.study_id = study.study_id;
+  source.accession_number = study.accession_number;
   source.series_uid = series->series_uid;
   source.frame_of_reference_uid = series->frame_of_reference_uid;
   source.modality = series->modality;

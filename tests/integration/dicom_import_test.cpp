@@ -1,9 +1,13 @@
 // ImportDicom through a real soiqd: the STS_002 CT and PET with their RT Structure Sets, features on
 // the patient's own grids and images, problems that do not stop an import, and failed imports (a
 // corrupt file, a header that disagrees with its pixels) that store nothing.
+// The study identity an exported SEG carries.
 
+#include <dcmtk/config/osconfig.h>  // must come first for DCMTK
+#include <dcmtk/dcmdata/dctk.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -240,6 +244,64 @@ TEST_F(ServiceTest, StructureSetSentAfterItsImagesLandsOnTheStoredSeries) {
   Result<v1::ServerInfo> info = client_->server_info();
   ASSERT_TRUE(info.ok());
   EXPECT_EQ(info->structures(), 1);
+}
+
+}  // namespace
+}  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+std::string sts002(const std::string& relative) {
+  return std::string(SOIQ_TEST_DATA_DIR) + "/sts/STS_002/dicom/" + relative;
+}
+
+const v1::ImportedStructure* only_structure(const v1::ImportDicomResponse& r) {
+  return r.structures_size() == 1 ? &r.structures(0) : nullptr;
+}
+
+std::string text_of(DcmDataset& ds, const DcmTagKey& tag) {
+  OFString v;
+  return ds.findAndGetOFString(tag, v).good() ? std::string(v.c_str()) : "<absent>";
+}
+
+// STS_002's CT (images and structure set) copied to `to`, its Study ID shortened in place (same
+// length, space padded) to one DICOM SH can hold: the shipped "IBSI_1_STS_002_CT" has 17
+// characters, one over SH's 16, so no SEG could carry it.
+void copy_sts002_ct_with_a_short_study_id(const std::filesystem::path& to) {
+  const std::string from = "IBSI_1_STS_002_CT ", short_id = "STS_002_CT        ";
+  for (const auto& e : std::filesystem::recursive_directory_iterator(sts002("CT"))) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    std::string bytes(std::istreambuf_iterator<char>(in), {});
+    for (size_t at = bytes.find(from); at != std::string::npos; at = bytes.find(from, at))
+      bytes.replace(at, from.size(), short_id);
+    std::ofstream(to / (e.path().parent_path().filename().string() + "_" + e.path().filename().string()),
+                  std::ios::binary)
+        << bytes;
+  }
+}
+
+TEST_F(ServiceTest, ExportedSegCarriesTheStudyTimeIdAndAccessionNumberOfItsStudy) {
+  const std::filesystem::path copy = dir_.file("sts002_ct");
+  std::filesystem::create_directories(copy);
+  copy_sts002_ct_with_a_short_study_id(copy);
+  Result<v1::ImportDicomResponse> ct = client_->import_dicom({copy.string()});
+  ASSERT_TRUE(ct.ok()) << ct.status().to_string();
+  const v1::ImportedStructure* gtv = only_structure(*ct);
+  ASSERT_NE(gtv, nullptr);
+  v1::ExportSegRequest e;
+  e.add_structure_ids(gtv->structure().id());
+  const std::string seg = dir_.file("gtv_seg.dcm");
+  ASSERT_TRUE(client_->export_seg(e, seg).ok());
+
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(seg.c_str()).good());
+  DcmDataset& ds = *file.getDataset();
+  // The values of the CT files (dcmdump tests/data/sts/STS_002/dicom/CT/image/*).
+  EXPECT_EQ(text_of(ds, DCM_StudyTime), "145427");
+  EXPECT_EQ(text_of(ds, DCM_AccessionNumber), "3912173256621705");
+  EXPECT_EQ(text_of(ds, DCM_StudyID), "STS_002_CT");
 }
 
 }  // namespace
