@@ -287,6 +287,22 @@ Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
       return out;
     }
   }
+  if (s.same_content_is_same_structure) {
+    // The lowest id: when copies already exist (stored before this rule), always the same one.
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT id FROM structures WHERE study_pk = ?1 AND "
+                                                 "source_series_uid = ?2 AND name = ?3 AND surface_sha256 = ?4 "
+                                                 "ORDER BY id LIMIT 1"));
+    q.bind(1, keys.study_pk);
+    q.bind(2, s.source_series_uid);
+    q.bind(3, s.name);
+    q.bind(4, s.surface.sha256);
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    if (row) {
+      out.recognised = true;
+      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, q.int64(0)));
+      return out;
+    }
+  }
   int64_t id = 0;
   {
     SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare("INSERT INTO structures(study_pk, name, laterality, robust, "

@@ -96,12 +96,19 @@ struct NewStructure {
   std::string surface_blob;       // encoded (db/surface_blob.h)
   std::string source_series_uid;  // see StructureRecord
   std::string source_uid;         // non-empty: replaces the structure with this source_uid, if any
+  // True for a structure that may be one soiq already holds coming back (a DICOM SEG soiq
+  // exported, server/structure_seg.h, imported again): when no structure has source_uid, a stored
+  // structure of the same study with the same source_series_uid, name and surface sha256 (the
+  // same voxels on the same grid) is this structure. Nothing is written for it (its source_uid
+  // stays the one it was first imported with) and it is returned with `recognised`.
+  bool same_content_is_same_structure = false;
 };
 
 struct AddedStructure {
   StructureRecord structure;
   bool surface_already_stored = false;
-  bool replaced = false;  // an existing structure with the same source_uid was updated (same id)
+  bool replaced = false;    // an existing structure with the same source_uid was updated (same id)
+  bool recognised = false;  // same_content_is_same_structure found it stored: nothing written
 };
 
 struct NewSeries {

@@ -11,7 +11,9 @@
 //          segment with at least one voxel (roi_number = Segment Number, name = Segment Label or
 //          "segment N", contour_count 0, volume = read_seg's on the referenced series' grid,
 //          surface = volume_surface); segments without voxels are listed in `skipped`.
-//          The referenced series is the SEG's Referenced Series Sequence; a SEG without one
+//          Re-imports are the store's business: soiqd recognises a segment that repeats a stored
+//          structure of its series (server/dicom_import.h), so soiq's own SEG coming back adds
+//          no copy. The referenced series is the SEG's Referenced Series Sequence; a SEG without one
 //          (allowed for single-series SEGs by some tools) falls back to the one imported image
 //          series of its study with its Frame of Reference.
 // Errors   NOT_FOUND naming the SEG and the series when the referenced series is not among the

@@ -148,6 +148,11 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
       s.laterality = laterality_of(name);
       s.source_series_uid = set.referenced_series_uid;
       s.source_uid = set.sop_instance_uid + "/" + std::to_string(roi.roi_number);
+      // A SEG segment with exactly the voxels and name of a structure already on its series is
+      // that structure, typically soiq's own export coming back from a PACS: a second copy would
+      // double every cohort count. RT Structure Sets keep replace-by-source-uid only: their ROIs
+      // are the originals that SEGs are exported from.
+      s.same_content_is_same_structure = set.segmentation;
       SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(roi.surface));
       s.surface = encoded.info;
       s.surface_blob = std::move(encoded.blob);
@@ -207,7 +212,8 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
     *s->mutable_structure() = to_proto(stored.structures[i].structure);
     s->set_referenced_series_uid(planned.referenced_series[i]);
     s->set_voxel_count(planned.voxel_counts[i]);
-    s->set_replaced(stored.structures[i].replaced);
+    // Recognised counts as imported before: the response names the stored structure, same id.
+    s->set_replaced(stored.structures[i].replaced || stored.structures[i].recognised);
   }
   r.set_milliseconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return r;

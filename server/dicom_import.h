@@ -14,7 +14,13 @@
 //            "_L", " L", "_R" or " R" (upper case), else "". The surface is the marching-cubes
 //            surface of the ROI's volume on the referenced grid;
 //          - structures also from each binary DICOM SEG, one per non-empty segment, named by its
-//            Segment Label, on the series it references (dicom/import_seg.h);
+//            Segment Label, on the series it references (dicom/import_seg.h). Importing the same
+//            SEG again updates its structures in place (source uid = SEG SOP Instance UID /
+//            segment number). A segment with the same study, series, name and voxels as a stored
+//            structure is that structure, recognised, not stored twice: so a SEG soiq exported
+//            (ExportSeg, PacsPush) and pulled back, any number of times, adds nothing; the
+//            response lists the stored structure (its id, its original source uid) with
+//            replaced = true. Edited voxels or a new label make it a new structure;
 //          - series and study records keep Study Time, Study ID and Accession Number (when at
 //            most 64 characters without control characters) for the SEGs exported on them;
 //          - a structure set or SEG whose series is not among the files but already stored is

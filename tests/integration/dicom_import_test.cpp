@@ -1,7 +1,7 @@
 // ImportDicom through a real soiqd: the STS_002 CT and PET with their RT Structure Sets, features on
 // the patient's own grids and images, problems that do not stop an import, and failed imports (a
 // corrupt file, a header that disagrees with its pixels) that store nothing.
-// The study identity an exported SEG carries.
+// Exported SEGs coming back, and the study identity they carry.
 
 #include <dcmtk/config/osconfig.h>  // must come first for DCMTK
 #include <dcmtk/dcmdata/dctk.h>
@@ -258,6 +258,37 @@ std::string sts002(const std::string& relative) {
 
 const v1::ImportedStructure* only_structure(const v1::ImportDicomResponse& r) {
   return r.structures_size() == 1 ? &r.structures(0) : nullptr;
+}
+
+TEST_F(ServiceTest, OurOwnSegImportedBackTwiceIsRecognisedAndAddsNoStructure) {
+  Result<v1::ImportDicomResponse> ct = client_->import_dicom({sts002("CT")});
+  ASSERT_TRUE(ct.ok()) << ct.status().to_string();
+  const v1::ImportedStructure* gtv = only_structure(*ct);
+  ASSERT_NE(gtv, nullptr);
+  v1::ExportSegRequest e;
+  e.add_structure_ids(gtv->structure().id());
+  const std::string seg = dir_.file("gtv_seg.dcm");
+  Result<v1::SegInfo> exported = client_->export_seg(e, seg);
+  ASSERT_TRUE(exported.ok()) << exported.status().to_string();
+
+  for (int i = 0; i < 2; ++i) {
+    Result<v1::ImportDicomResponse> back = client_->import_dicom({seg});
+    ASSERT_TRUE(back.ok()) << back.status().to_string();
+    for (const v1::ImportProblem& p : back->problems()) ADD_FAILURE() << p.path() << ": " << p.message();
+    const v1::ImportedStructure* same = only_structure(*back);
+    ASSERT_NE(same, nullptr) << back->structures_size();
+    EXPECT_EQ(same->structure().id(), gtv->structure().id()) << "import " << i + 1;
+    EXPECT_EQ(same->structure().source_uid(), gtv->structure().source_uid());
+    EXPECT_TRUE(same->replaced());
+    EXPECT_EQ(same->voxel_count(), gtv->voxel_count());
+    Result<v1::ServerInfo> info = client_->server_info();
+    ASSERT_TRUE(info.ok());
+    EXPECT_EQ(info->structures(), 1) << "import " << i + 1;
+  }
+  // The structure set itself still updates the same structure.
+  Result<v1::ImportDicomResponse> rt = client_->import_dicom({sts002("CT")});
+  ASSERT_TRUE(rt.ok());
+  EXPECT_EQ(client_->server_info()->structures(), 1);
 }
 
 std::string text_of(DcmDataset& ds, const DcmTagKey& tag) {
