@@ -111,9 +111,11 @@ Result<RegionSpec> parse_region(std::string_view text) {
 
 std::string region_name(const RegionSpec& spec) {
   if (spec.kind == RegionKind::kInside) return "inside";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s:%g", kind_word(spec.kind), spec.radius_mm);
-  return buf;
+  // The shortest text that reads back to the same radius: region names key soiqd's feature cache
+  // and label rows, so two radii must never print alike (%g made shell:1.0000001 "shell:1").
+  char digits[32];
+  const auto end = std::to_chars(digits, digits + sizeof digits, spec.radius_mm).ptr;
+  return std::string(kind_word(spec.kind)) + ":" + std::string(digits, end);
 }
 
 namespace {

@@ -352,3 +352,22 @@ INSTANTIATE_TEST_SUITE_P(Grids, RegionsSphere, ::testing::Values(Vec3{1, 1, 1}, 
 
 }  // namespace
 }  // namespace soiq
+
+namespace soiq {
+namespace {
+
+// Found by fuzz_feature_expression: names printed with %g lost digits, so two radii shared one name
+// (and soiqd's cache entries). A name now reads back to exactly its radius.
+TEST(RegionName, ReadsBackToExactlyItsRadius) {
+  for (const double r : {3.0, 2.5, 1.0000001, 0.1, 123456.789, 1e-7}) {
+    const RegionSpec shell{RegionKind::kShell, r};
+    const auto back = parse_region(region_name(shell));
+    ASSERT_TRUE(back.ok()) << region_name(shell) << ": " << back.status().to_string();
+    EXPECT_EQ(back->radius_mm, r) << region_name(shell);
+  }
+  EXPECT_EQ(region_name(RegionSpec{RegionKind::kShell, 3.0}), "shell:3");
+  EXPECT_NE(region_name(RegionSpec{RegionKind::kCore, 1.0000001}), region_name(RegionSpec{RegionKind::kCore, 1.0}));
+}
+
+}  // namespace
+}  // namespace soiq
