@@ -1,5 +1,5 @@
 #pragma once
-// `soiq-bench import DIR... [--runs N] [--soiqd PATH]`: DICOM import throughput (issue 5), one
+// `soiq-bench import DIR... [--runs N] [--soiqd PATH]`: DICOM import throughput, one
 // case per DIR (a patient's files, e.g. ../shared/data/sts/dicom/STS_002), best of N runs each:
 //   dcmdump      DCMTK's own dcmdump reading every file of the case, one process, output to
 //                /dev/null: the floor (parsing every element, nothing converted)

@@ -1,5 +1,5 @@
 #pragma once
-// soiq-bench query (issue 4, item 9): the two-stage query through a real soiqd and the real
+// soiq-bench query: the two-stage query through a real soiqd and the real
 // client, on a synthetic cohort of 100,000 patients of whom stage 1 keeps 100 (1,000 surfaces of
 // 10k-100k triangles, query_cohort.h). It prints a markdown section for BENCHMARKS.md:
 //   - the load: background patients through db::SqliteStore, matched ones uploaded through gRPC;

@@ -1,5 +1,5 @@
 #pragma once
-// The cohort of `soiq-bench query` (issue 4, item 9): many patients with realistic demographics,
+// The cohort of `soiq-bench query`: many patients with realistic demographics,
 // of whom exactly `matched` pass the benchmark's stage-1 filter (query_stage1_filter()), each of
 // those with 5 bilateral deep-brain structures as smooth deformations of ellipsoids and one MR
 // image; every other patient has one study and one structure whose surface is one of a few shared

@@ -1,6 +1,6 @@
 #pragma once
 // The regions in which intensity features are measured (DESIGN.md "Features": region inside,
-// shell(r mm); issue 3 adds core(r mm)), all computed from a structure's voxels on its own grid:
+// shell(r mm); and core(r mm), its inward twin), all computed from a structure's voxels on its own grid:
 //   inside     the structure itself;
 //   shell(r)   the voxels not inside whose centre lies within r mm (Euclidean, in mm, each axis with
 //              its own spacing: not a dilation by a number of voxels) of an inside voxel centre;

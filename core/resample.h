@@ -1,7 +1,7 @@
 #pragma once
 // The values of an image at the voxel centres of a region given on another grid in the same frame
 // of reference (DESIGN.md "Features": intensity over an image series in the same frame of reference;
-// issue 3: "resampled by voxel centre, nearest or linear, stated").
+// each value taken at a voxel centre, by nearest neighbour or linear interpolation, as asked).
 //
 // Inputs
 //   image          voxels on a valid geometry (LPS mm); voxels.size() == nx*ny*nz.

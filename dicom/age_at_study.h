@@ -1,6 +1,6 @@
 #pragma once
 // A patient's age at a study, in years, from what the DICOM files carry (DESIGN.md "DICOM and
-// PACS"; issue 5: "age at study from Patient's Age or from birth and study dates").
+// PACS": stage 1 filters on age at study, which files give as Patient's Age or through dates).
 //
 // Inputs   patient_age: Patient's Age (0010,1010), VR AS "nnnD", "nnnW", "nnnM" or "nnnY";
 //          birth_date, study_date: DA "YYYYMMDD"; any may be "".

@@ -1,6 +1,6 @@
 #pragma once
 // RT Structure Set ROIs -> volume and surface models on the referenced series' grid (DESIGN.md
-// "The 1D method, precisely", step 7; issue 5 deliverable 1).
+// "The 1D method, precisely", step 7: planar contours go straight to the line filler).
 //
 // Inputs   rs: from read_rt_struct; grid: the geometry of the referenced image series
 //          (read_image_series), any orientation (oblique series included: contours are mapped

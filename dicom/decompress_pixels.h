@@ -1,5 +1,5 @@
 #pragma once
-// Compressed pixel data -> uncompressed, in place (issue 5: PACS and modality files often come
+// Compressed pixel data -> uncompressed, in place (PACS and modality files often come
 // JPEG Lossless, JPEG-LS or RLE encoded). Internal to dicom/ (includes DCMTK).
 //
 // Inputs   ds: a fully loaded dataset (pixel data included); path: the file, for messages.

@@ -1,5 +1,5 @@
 #pragma once
-// Everything soiq takes from a set of DICOM files, ready to store (issue 5 deliverable 1): the
+// Everything soiq takes from a set of DICOM files, ready to store: the
 // records of dicom/scan_dicom.h, each CT, MR and PET series as an image (read_image_series.h),
 // each RT Structure Set converted on its referenced series' grid (referenced_series.h,
 // convert_rt_struct.h), and each binary DICOM Segmentation read on its referenced series' grid

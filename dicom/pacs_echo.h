@@ -1,6 +1,6 @@
 #pragma once
-// C-ECHO: is the PACS there and does it talk to us (DESIGN.md "DICOM and PACS"; issue 5
-// deliverable 4). Opens an association proposing only the Verification SOP class.
+// C-ECHO: is the PACS there and does it talk to us (DESIGN.md "DICOM and PACS").
+// Opens an association proposing only the Verification SOP class.
 //
 // Inputs   peer: validated by validate_pacs_peer (pacs_peer.h).
 // Output   OK when the association was accepted and the C-ECHO answered.

@@ -1,6 +1,6 @@
 #pragma once
-// C-FIND: which patients or studies a PACS holds (DESIGN.md "DICOM and PACS"; issue 5
-// deliverable 4), for the demographics soiq shows before a pull.
+// C-FIND: which patients or studies a PACS holds (DESIGN.md "DICOM and PACS"),
+// for the demographics soiq shows before a pull.
 //
 // Inputs   peer: see pacs_peer.h.
 //          query.level: PATIENT or STUDY. query.model: Patient Root (PATIENT or STUDY level) or

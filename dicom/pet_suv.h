@@ -1,6 +1,6 @@
 #pragma once
 // The factor that turns PET voxel values (after rescale slope/intercept) into SUV body weight, or
-// the reason there is none (issue 5: "SUV for PET where the files carry it").
+// the reason there is none (SUV only where the files carry what it needs).
 //
 //   SUVbw = C(t) [Bq/ml] * W [g] / D(t)  with  D(t) = D0 * 2^(-(t - t0) / T_half)
 //

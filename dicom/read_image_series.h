@@ -1,5 +1,5 @@
 #pragma once
-// An image series as a soiq::Image (issue 5 deliverable 1): geometry from the slices' positions
+// An image series as a soiq::Image: geometry from the slices' positions
 // and orientation (dicom/slice_stack.h), voxel values as modality values.
 //
 // Inputs   series: a series from scan_dicom (its instances' files are read in full).

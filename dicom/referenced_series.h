@@ -1,6 +1,6 @@
 #pragma once
-// Which scanned image series an RT Structure Set was drawn on (issue 5: "a missing referenced
-// series an error that names it").
+// Which scanned image series an RT Structure Set was drawn on (a missing referenced
+// series is an error that names it, never a silent guess).
 //
 // Inputs   rs: from read_rt_struct; scan: the scan that holds the candidate image series.
 // Output   The uid of the series to convert on, found by, in order:

@@ -1,6 +1,6 @@
 #pragma once
 // Finds the DICOM data under some paths and indexes it by patient, study and series (DESIGN.md
-// "DICOM and PACS"; issue 5 deliverable 1). Reads headers only (stops before Pixel Data).
+// "DICOM and PACS"). Reads headers only (stops before Pixel Data).
 //
 // Inputs   paths: files, folders (walked recursively, symlinks followed, in sorted order) and
 //          DICOMDIRs. A DICOMDIR (a file with a Directory Record Sequence, any transfer syntax,

@@ -1,6 +1,6 @@
 #pragma once
-// A folder of received DICOM files -> stored series and structures (ImportDicom, issue 5
-// deliverable 2). Reads everything with dicom::import_dicom, converts and encodes it all first,
+// A folder of received DICOM files -> stored series and structures (the ImportDicom
+// RPC). Reads everything with dicom::import_dicom, converts and encodes it all first,
 // then writes it with Store::import_batch in one transaction: an import that fails stores nothing.
 //
 // Inputs   dir: the folder the files were received into (server/received_dicom_files.h); sent:

@@ -1,6 +1,6 @@
 #pragma once
 // Imported structures as one binary DICOM SEG on the image series they were converted on
-// (ExportSeg and PacsPush; issue 5 deliverable 3). Each structure's stored surface is converted
+// (ExportSeg and PacsPush). Each structure's stored surface is converted
 // back on that series' grid by the 1D method (lossless for imported structures: their surface is
 // the marching-cubes surface of exactly that volume), then dicom::write_seg writes the object.
 //
