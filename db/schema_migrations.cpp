@@ -129,8 +129,8 @@ CREATE INDEX stage1_rows_description ON stage1_rows(description);
 CREATE INDEX stage1_rows_name_lower ON stage1_rows(name_lower);
 )sql";
 
-// Version 2: DICOM references, for objects derived from a series. A series keeps its Frame of Reference UID, its slices' SOP
-// Class UID and SOP Instance UIDs (by slice, joined with '\\', the DICOM multi-value separator, which
+// Version 2: DICOM references, for objects derived from a series. A series keeps its Frame of
+// Reference UID, its slices' SOP Class UID and SOP Instance UIDs (by slice, joined with '\\', the DICOM multi-value separator, which
 // a UID cannot contain), so soiq can write a DICOM SEG that references them. A structure keeps
 // the series it was converted on and, when imported, "<RT Structure Set SOP Instance UID>/<ROI
 // number>": unique, so a re-import updates the structure in place (same id) instead of copying it.
