@@ -1,7 +1,6 @@
 #include "dicom/read_seg.h"
 
 #include <dcmtk/config/osconfig.h>  // must come first for DCMTK
-#include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmfg/fgderimg.h>
 #include <dcmtk/dcmfg/fgpixmsr.h>
 #include <dcmtk/dcmfg/fgplanor.h>
@@ -56,7 +55,7 @@ struct BinaryPixels {
   std::span<const uint8_t> bytes;       // the whole Pixel Data value
 };
 
-// `path` ("" for bytes) only names the object in messages, as `seg` does ("SEG '<path>'").
+// `path` only names the object in messages, as `seg` does ("SEG '<path>'").
 Result<BinaryPixels> binary_pixels(DcmDataset& ds, const std::string& path, const std::string& seg) {
   const std::string type = get_string(ds, DCM_SegmentationType);
   if (type == "FRACTIONAL") return invalid_argument(seg + " is a FRACTIONAL segmentation; only BINARY ones are read");
@@ -85,7 +84,7 @@ Result<BinaryPixels> binary_pixels(DcmDataset& ds, const std::string& path, cons
                             " x Columns " + std::to_string(columns) + ", more pixels than a Pixel Data can hold");
   out.frames = frames;
 
-  SOIQ_RETURN_IF_ERROR(decompress_pixels(ds, path.empty() ? "SEG bytes" : path));
+  SOIQ_RETURN_IF_ERROR(decompress_pixels(ds, path));
   DcmElement* element = nullptr;
   if (ds.findAndGetElement(DCM_PixelData, element).bad() || element == nullptr)
     return invalid_argument(seg + " has no Pixel Data");
@@ -228,10 +227,9 @@ void read_references(DcmDataset& ds, SegObject& out) {
     out.referenced_sop_instance_uids.push_back(get_string(*instances->getItem(n), DCM_ReferencedSOPInstanceUID));
 }
 
-// `path` is "" for bytes.
 Result<SegObject> read_dataset(DcmDataset& ds, const std::string& path, const ImageGeometry& grid) {
-  const std::string name = path.empty() ? "SEG bytes" : "'" + path + "'";
-  const std::string seg_name = path.empty() ? "SEG in memory" : "SEG '" + path + "'";
+  const std::string name = "'" + path + "'";
+  const std::string seg_name = "SEG '" + path + "'";
   SOIQ_RETURN_IF_ERROR(validate_geometry(grid));
   const std::string sop_class = get_string(ds, DCM_SOPClassUID);
   if (sop_class != UID_SegmentationStorage)
@@ -250,9 +248,7 @@ Result<SegObject> read_dataset(DcmDataset& ds, const std::string& path, const Im
                             std::to_string(grid.dims[1]) + " x " + std::to_string(grid.dims[0]));
   auto seg = std::make_unique<SegWithoutPixelData>();
   const OFCondition c = seg->read_without_pixel_data(ds);
-  if (c.bad())
-    return condition_status(StatusCode::kDataLoss, path.empty() ? "SEG bytes" : path,
-                            "not a readable DICOM Segmentation", c);
+  if (c.bad()) return condition_status(StatusCode::kDataLoss, path, "not a readable DICOM Segmentation", c);
 
   SegObject out;
   out.sop_instance_uid = get_string(ds, DCM_SOPInstanceUID);
@@ -307,18 +303,6 @@ Result<SegObject> read_dataset(DcmDataset& ds, const std::string& path, const Im
 }
 
 }  // namespace
-
-Result<SegObject> read_seg(const std::string& bytes, const ImageGeometry& grid) {
-  DcmInputBufferStream in;
-  in.setBuffer(bytes.data(), static_cast<offile_off_t>(bytes.size()));
-  in.setEos();
-  DcmFileFormat file;
-  file.transferInit();
-  const OFCondition c = file.read(in, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
-  file.transferEnd();
-  if (c.bad()) return condition_status(StatusCode::kDataLoss, "SEG bytes", "not a readable DICOM file", c);
-  return read_dataset(*file.getDataset(), "", grid);
-}
 
 Result<SegObject> read_seg_file(const std::string& path, const ImageGeometry& grid) {
   SOIQ_ASSIGN_OR_RETURN(auto file, load_dicom_file(path, /*until_pixel_data=*/false));

@@ -3,7 +3,9 @@
 // grid, with what the object references. The inverse of write_seg (dicom/seg_export.h), and how
 // SEGs from other tools come into soiq.
 //
-// Inputs   bytes (read_seg) or path (read_seg_file): a Part 10 file or bare dataset.
+// Inputs   path: a Part 10 file or bare dataset. There is no in-memory form: DCMTK checks an
+//          element's length against a file's size but not against a memory buffer's, where it
+//          allocates whatever a hostile header claims, so bytes go to a private temp file first.
 //          grid: the image grid to map frames onto, normally the referenced series' geometry.
 // Output   SegObject: identity and references (Referenced Series Sequence, or the per-frame Source
 //          Images when it is absent) and one ReadSegment per Segment Sequence item in file order.
@@ -16,17 +18,17 @@
 //          slice k is set; two frames of one segment on one slice are united. Frame f's pixels are
 //          bits f x rows x columns onwards of the whole Pixel Data, LSB first (PS3.5 8.1.1 / 8.2,
 //          seg_bit_packing.h): frames need not start on a byte. DCMTK reads everything else.
-// Errors   NOT_FOUND: no such file (read_seg_file). DATA_LOSS: bytes DCMTK cannot parse.
+// Errors   NOT_FOUND: no such file. DATA_LOSS: a file DCMTK cannot parse.
 //          INVALID_ARGUMENT: not a Segmentation (names the file and its SOP class); checked before
-//          any pixel is read, naming the SEG ("SEG '<path>'" or "SEG in memory"): a FRACTIONAL
-//          segmentation or Bits Allocated other than 1; Rows or Columns absent or 0;
-//          NumberOfFrames absent, below 1, or more pixels than a Pixel Data holds (8 x (2^32 - 2));
-//          no Pixel Data; Pixel Data shorter than ceil(frames x rows x columns / 8) ("SEG 'x' is
-//          truncated: N bytes of pixel data, NumberOfFrames F x Rows R x Columns C needs M"); a
-//          Per-Frame Functional Groups item count other than NumberOfFrames; an invalid grid; a
-//          frame without position, orientation or segment number, or one that does not fit grid
-//          (message names the frame, from 1, and what differs). UNIMPLEMENTED or DATA_LOSS:
-//          compressed Pixel Data that soiq cannot decode (decompress_pixels.h).
+//          any pixel is read, naming the SEG ("SEG '<path>'"): a FRACTIONAL segmentation or Bits
+//          Allocated other than 1; Rows or Columns absent or 0; NumberOfFrames absent, below 1, or
+//          more pixels than a Pixel Data holds (8 x (2^32 - 2)); no Pixel Data; Pixel Data shorter
+//          than ceil(frames x rows x columns / 8) ("SEG 'x' is truncated: N bytes of pixel data,
+//          NumberOfFrames F x Rows R x Columns C needs M"); a Per-Frame Functional Groups item count
+//          other than NumberOfFrames; an invalid grid; a frame without position, orientation or
+//          segment number, or one that does not fit grid (message names the frame, from 1, and what
+//          differs). UNIMPLEMENTED or DATA_LOSS: compressed Pixel Data that soiq cannot decode
+//          (decompress_pixels.h).
 // Cost     O(frames x rows x columns + lines of grid) per segment; memory: the file, one slice
 //          and the segments' runs. Thread-safe.
 // Caveats  grid carries no Frame of Reference: the caller checks SegObject.frame_of_reference_uid
@@ -65,7 +67,6 @@ struct SegObject {
   std::vector<ReadSegment> segments;
 };
 
-Result<SegObject> read_seg(const std::string& bytes, const ImageGeometry& grid);
 Result<SegObject> read_seg_file(const std::string& path, const ImageGeometry& grid);
 
 }  // namespace soiq::dicom

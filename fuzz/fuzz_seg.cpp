@@ -1,9 +1,9 @@
 // Feeds each input, written to a private temp file, to read_seg_file (dicom/read_seg.h), as an import
 // does with a DICOM Segmentation a client sends (dicom/import_seg.cpp), on the grid of
 // tests/data/dicom/standard_seg.dcm (11 x 7 x 6 voxels of 0.9 x 1.2 x 3 mm from (10, -5.5, 20) mm),
-// so mutations of that seed map frames onto slices and unpack their bits. The file, not read_seg's
-// in-memory form: DCMTK checks an element's length against a file's size, not against a memory
-// buffer's, so read_seg(bytes) allocates whatever length a header announces (FUZZING.md, findings).
+// so mutations of that seed map frames onto slices and unpack their bits. Through a file because
+// read_seg has no in-memory form: DCMTK checks an element's length against a file's size but not
+// against a memory buffer's, where it allocates whatever length a header announces.
 // DCMTK is not instrumented, so only its crashes show. A bug is any crash or sanitizer report, a run
 // over -timeout or -rss_limit_mb (frames x rows x columns must be checked against the Pixel Data
 // before anything is allocated for them), or an OK result whose segment volumes are not well-formed

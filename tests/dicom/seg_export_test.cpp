@@ -101,6 +101,14 @@ SegWriteOptions max_frames(int64_t n) {
   return o;
 }
 
+// read_seg_file on `bytes` saved to a temp file: read_seg reads only files (dicom/read_seg.h).
+Result<SegObject> read_back(const std::string& bytes, const ImageGeometry& g) {
+  TempDir tmp;
+  const std::string path = tmp.file("seg.dcm");
+  std::ofstream(path, std::ios::binary) << bytes;
+  return read_seg_file(path, g);
+}
+
 void expect_same_voxels(const RunLengthVolume& got, const RunLengthVolume& want) {
   auto cmp = compare(got, want);
   ASSERT_TRUE(cmp.ok()) << cmp.status().to_string();
@@ -127,7 +135,7 @@ void round_trip(const ImageGeometry& g) {
   EXPECT_EQ(written->frame_count, static_cast<int64_t>(ka.size() + kb.size()));
   EXPECT_NE(written->series_uid, source.series_uid);
 
-  auto back = read_seg(written->bytes, g);
+  auto back = read_back(written->bytes, g);
   ASSERT_TRUE(back.ok()) << back.status().to_string();
   EXPECT_EQ(back->study_uid, source.study_uid);
   EXPECT_EQ(back->patient_id, source.patient_id);
@@ -348,7 +356,7 @@ TEST(SegRead, GarbageBytesAreRefused) {
   std::string garbage(4096, '\0');
   uint32_t x = 7;
   for (char& c : garbage) c = static_cast<char>((x = x * 1103515245u + 12345u) >> 24);
-  auto r = read_seg(garbage, axis_aligned_grid());
+  auto r = read_back(garbage, axis_aligned_grid());
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(r.status().code() == StatusCode::kDataLoss || r.status().code() == StatusCode::kInvalidArgument)
       << r.status().to_string();
@@ -360,7 +368,7 @@ TEST(SegRead, FrameOffTheGridSlicesIsInvalidArgumentNamingTheFrame) {
   ASSERT_TRUE(written.ok()) << written.status().to_string();
   ImageGeometry shifted = axis_aligned_grid();
   shifted.origin_mm[2] += 0.5 * shifted.spacing_mm[2];  // frames now fall between slices
-  auto r = read_seg(written->bytes, shifted);
+  auto r = read_back(written->bytes, shifted);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
   EXPECT_NE(r.status().message().find("SEG frame 1:"), std::string::npos) << r.status().to_string();
@@ -372,7 +380,7 @@ TEST(SegRead, OtherOrientationIsInvalidArgument) {
   auto written = write_seg(in.source, {in.segment});
   ASSERT_TRUE(written.ok()) << written.status().to_string();
   ImageGeometry rotated = oblique_grid();
-  auto r = read_seg(written->bytes, rotated);
+  auto r = read_back(written->bytes, rotated);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
   EXPECT_NE(r.status().message().find("row direction"), std::string::npos) << r.status().to_string();
