@@ -1,10 +1,11 @@
 // Feeds each input to parse_mesh (core/io/parse_mesh.h) as soiqd does with a surface upload in
-// VTK's formats: as .vtp (VTK's XML reader, behind soiq's cell-index check) when its first non-blank
-// byte is '<', otherwise as legacy .vtk (soiq's legacy_vtk_geometry check, then VTK's reader), so one
-// corpus covers both. VTK itself is not instrumented (Debian's build): it is reached, but only its
-// crashes, not its silent overreads, show. A bug is any crash or sanitizer report, a run over
-// -timeout or -rss_limit_mb, or an OK result that breaks parse_mesh's contract
-// (fuzz/mesh_contract.h); a crash inside VTK counts too, since soiqd would die of it.
+// VTK's formats: as .vtp (VTK's XML parser for the elements, soiq's own decoding of the arrays,
+// core/io/vtk_xml_polydata.h) when its first non-blank byte is '<', otherwise as legacy .vtk (soiq's
+// legacy_vtk_geometry check, then VTK's reader), so one corpus covers both. VTK itself is not
+// instrumented (Debian's build): it is reached, but only its crashes, not its silent overreads, show.
+// A bug is any crash or sanitizer report, a run over -timeout or -rss_limit_mb, or an OK result that
+// breaks parse_mesh's contract (fuzz/mesh_contract.h); a crash inside VTK counts too, since soiqd
+// would die of it.
 
 #include <cstddef>
 #include <cstdint>

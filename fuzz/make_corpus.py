@@ -106,6 +106,31 @@ def meshes():
         "binary", b64("f", flat), "binary", b64("q", [i for q in CUBE_Q for i in q]),
         "binary", b64("q", [4 * (n + 1) for n in range(6)])))
 
+    # zlib-compressed blocks (VTK's default writer output) and raw appended data, so mutations reach
+    # the compression header and the appended offsets.
+    def zlib_b64(fmt, values):
+        data = struct.pack("<%d%s" % (len(values), fmt), *values)
+        block = zlib.compress(data)
+        header = struct.pack("<4I", 1, len(data), len(data), len(block))
+        return base64.b64encode(header).decode() + base64.b64encode(block).decode()
+    put("fuzz_vtk_polydata", "cube_zlib.vtp", xml.replace('header_type="UInt64"', 'compressor="vtkZLibDataCompressor"') % (
+        "binary", zlib_b64("f", flat), "binary", zlib_b64("q", [i for q in CUBE_Q for i in q]),
+        "binary", zlib_b64("q", [4 * (n + 1) for n in range(6)])))
+    arrays = [struct.pack("<%df" % len(flat), *flat), struct.pack("<24i", *[i for q in CUBE_Q for i in q]),
+              struct.pack("<6i", *[4 * (n + 1) for n in range(6)])]
+    appended, offsets = b"", []
+    for a in arrays:
+        offsets.append(len(appended))
+        appended += struct.pack("<I", len(a)) + a
+    appended_xml = (
+        '<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian">\n<PolyData>\n'
+        '<Piece NumberOfPoints="8" NumberOfPolys="6">\n<Points><DataArray type="Float32" NumberOfComponents="3" '
+        'format="appended" offset="%d"/></Points>\n<Polys><DataArray type="Int32" Name="connectivity" '
+        'format="appended" offset="%d"/>\n<DataArray type="Int32" Name="offsets" format="appended" offset="%d"/>'
+        '</Polys>\n</Piece>\n</PolyData>\n<AppendedData encoding="raw">\n_' % tuple(offsets))
+    put("fuzz_vtk_polydata", "cube_appended_raw.vtp",
+        appended_xml.encode() + appended + b"\n</AppendedData>\n</VTKFile>\n")
+
 
 def nifti2(dims, datatype, bitpix, values):
     """A single-file NIfTI-2 (n+2) with an sform, as nibabel writes one."""

@@ -3,17 +3,19 @@
 #include <vtkCellArray.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkTriangleFilter.h>
-#include <vtkXMLPolyDataReader.h>
+#include <vtkTypeInt64Array.h>
 
 #include <cstdint>
 #include <limits>
 
 #include "core/io/legacy_vtk_geometry.h"
 #include "core/io/vtk_messages.h"
+#include "core/io/vtk_xml_polydata.h"
 
 namespace soiq {
 namespace {
@@ -35,30 +37,51 @@ Status check_cell_ids(vtkPolyData* poly, const std::string& name) {
   return ok_status();
 }
 
+vtkSmartPointer<vtkCellArray> cell_array(const VtkXmlCells& cells) {
+  vtkNew<vtkTypeInt64Array> offsets, connectivity;
+  offsets->SetNumberOfValues(vtkIdType(cells.offsets.size()));
+  for (size_t i = 0; i < cells.offsets.size(); ++i) offsets->SetValue(vtkIdType(i), cells.offsets[i]);
+  connectivity->SetNumberOfValues(vtkIdType(cells.connectivity.size()));
+  for (size_t i = 0; i < cells.connectivity.size(); ++i) connectivity->SetValue(vtkIdType(i), cells.connectivity[i]);
+  auto array = vtkSmartPointer<vtkCellArray>::New();
+  array->SetData(offsets, connectivity);
+  return array;
+}
+
+// The arrays soiq decoded itself (vtk_xml_polydata.h) as the polydata VTK's reader would give.
+vtkSmartPointer<vtkPolyData> polydata_of(const VtkXmlPolyData& xml) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(vtkIdType(xml.points.size() / 3));
+  for (size_t i = 0; i < xml.points.size() / 3; ++i) points->SetPoint(vtkIdType(i), &xml.points[3 * i]);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(cell_array(xml.polys));
+  poly->SetStrips(cell_array(xml.strips));
+  return poly;
+}
+
 }  // namespace
 
 Result<TriangleMesh> parse_vtk_polydata(std::string_view bytes, bool xml, const std::string& name) {
   VtkMessages messages;
-  vtkSmartPointer<vtkAlgorithm> reader;
-  std::string geometry;  // the legacy reader keeps a pointer to it until Update() returns
+  vtkSmartPointer<vtkPolyData> poly;
   if (xml) {
-    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    r->ReadFromInputStringOn();
-    r->SetInputString(std::string(bytes));
-    reader = r;
+    // VTK 9.1's XML reader allocates what the arrays' headers claim: soiq decodes them itself.
+    SOIQ_ASSIGN_OR_RETURN(const VtkXmlPolyData arrays, read_vtk_xml_polydata(bytes, name));
+    poly = polydata_of(arrays);
   } else {
     // VTK 9.1's legacy reader trusts every count: it only sees the checked geometry.
-    SOIQ_ASSIGN_OR_RETURN(geometry, legacy_vtk_geometry(std::string(bytes), name));
-    auto r = vtkSmartPointer<vtkPolyDataReader>::New();
-    r->ReadFromInputStringOn();
-    r->SetInputString(geometry.data(), int(geometry.size()));
-    reader = r;
-  }
-  reader->Update();
-  vtkPolyData* poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (messages.has_error() || poly == nullptr) {
-    const std::string why = messages.last_error();
-    return invalid_argument("cannot read mesh '" + name + "': " + (why.empty() ? "malformed file" : why));
+    SOIQ_ASSIGN_OR_RETURN(const std::string geometry, legacy_vtk_geometry(std::string(bytes), name));
+    vtkNew<vtkPolyDataReader> reader;
+    reader->ReadFromInputStringOn();
+    reader->SetInputString(geometry.data(), int(geometry.size()));
+    reader->Update();
+    poly = reader->GetOutput();
+    if (messages.has_error() || poly == nullptr) {
+      const std::string why = messages.last_error();
+      return invalid_argument("cannot read mesh '" + name + "': " + (why.empty() ? "malformed file" : why));
+    }
   }
   SOIQ_RETURN_IF_ERROR(check_cell_ids(poly, name));
   if (poly->GetNumberOfPoints() > std::numeric_limits<int32_t>::max()) {

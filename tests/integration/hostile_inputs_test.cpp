@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -120,6 +121,36 @@ TEST_F(HostileInputs, MalformedMeshesAreRefusedAndSoiqdKeepsServing) {
     EXPECT_EQ(r.status().message().find("0x"), std::string::npos) << r.status().message();
   }
   expect_serving_with(0, 1);
+}
+
+// VTK 9.1's XML reader allocated what a .vtp's arrays claim: 768 GB for a 1 KB file the fuzzer
+// found, and a compressed block may declare any size. soiq decodes the arrays itself and compares
+// every claim with the bytes there are.
+TEST_F(HostileInputs, VtpArraysClaimingGigabytesAreRefused) {
+  std::ifstream in(std::string(SOIQ_TEST_DATA_DIR) +
+                   "/../../fuzz/regressions/fuzz_vtk_polydata/xml_array_header_768gb.vtp");
+  const std::string fuzzed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(fuzzed.empty());
+  // A zlib-compressed connectivity whose one block claims 4 GB from 12 bytes ("AQAAAP////8AAAAADAAAAA==" is the
+  // header 1, 0xFFFFFFFF, 0, 12 in little-endian UInt32 words).
+  const std::string bomb =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" compressor=\"vtkZLibDataCompressor\"><PolyData><Piece "
+      "NumberOfPoints=\"3\" NumberOfPolys=\"1\"><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray></Points><Polys><DataArray type=\"Int32\" Name=\"offsets\" "
+      "format=\"ascii\">3</DataArray><DataArray type=\"Int32\" Name=\"connectivity\" format=\"binary\">"
+      "AQAAAP////8AAAAADAAAAA==eHh4eHh4eHh4eHh4</DataArray></Polys></Piece></PolyData></VTKFile>\n";
+  for (const auto& [bytes, code, says] :
+       {std::tuple{fuzzed, StatusCode::kInvalidArgument, "hostile"},
+        std::tuple{bomb, StatusCode::kResourceExhausted, "declares 4294967295 bytes once decompressed"}}) {
+    v1::UploadSurfaceHeader h = surface_header("P", "S", "hostile", "");
+    h.set_format("vtp");
+    Result<v1::UploadSurfaceResponse> r = client_->upload_surface_bytes(h, bytes);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().code(), code) << r.status().to_string();
+    EXPECT_NE(r.status().message().find(says), std::string::npos) << r.status().message();
+    EXPECT_TRUE(one_line(r.status())) << r.status().message();
+  }
+  expect_serving_with(0, 0);
 }
 
 // An upload naming another patient's series used to move the series (and its images) over.
