@@ -10,6 +10,7 @@
 #include <vtkTriangleFilter.h>
 #include <vtkTypeInt64Array.h>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -84,6 +85,13 @@ Result<TriangleMesh> parse_vtk_polydata(std::string_view bytes, bool xml, const 
     }
   }
   SOIQ_RETURN_IF_ERROR(check_cell_ids(poly, name));
+  // The legacy reader takes binary NaN and infinities as they are; no surface has them.
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+    double p[3];
+    poly->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      return invalid_argument("mesh '" + name + "' has vertex " + std::to_string(i) + " that is not a finite number");
+  }
   if (poly->GetNumberOfPoints() > std::numeric_limits<int32_t>::max()) {
     return resource_exhausted("mesh '" + name + "' has more than 2^31 vertices");
   }

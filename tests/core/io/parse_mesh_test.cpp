@@ -32,6 +32,20 @@ TEST_P(ParseMeshFormats, WrittenBoxIsParsedFromMemoryClosed) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, ParseMeshFormats, ::testing::Values("stl", "obj", "ply", "vtk", "vtp"));
 
+// The fuzzer's find: VTK's legacy reader takes a binary NaN as it is.
+TEST(ParseMesh, LegacyBinaryVtkWithANanVertexIsRefused) {
+  auto big_endian = [](uint32_t v) {
+    return std::string{char(v >> 24), char((v >> 16) & 0xFF), char((v >> 8) & 0xFF), char(v & 0xFF)};
+  };
+  const uint32_t one = 0x3F800000u, zero = 0, nan = 0x7FC00000u;
+  std::string bytes = "# vtk DataFile Version 3.0\nnan\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n";
+  for (uint32_t v : {zero, zero, zero, one, zero, nan, zero, one, zero}) bytes += big_endian(v);
+  bytes += "\nPOLYGONS 1 4\n";
+  for (uint32_t v : {3u, 0u, 1u, 2u}) bytes += big_endian(v);
+  bytes += "\n";
+  testing_io::expect_invalid(parse_mesh(bytes, "vtk", false, "nan.vtk"), "vertex 1 that is not a finite number");
+}
+
 TEST(ParseMesh, FormatIsCaseInsensitiveAndMayHaveADot) {
   const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_TRUE(parse_mesh(off, ".OFF", false, "a").ok());
