@@ -1,8 +1,9 @@
 #pragma once
 // Parses a surface model held in memory (an upload, or a file's bytes), the format named by the
 // caller: stl, obj, ply and off by soiq's own strict parsers (parse_stl.h, parse_obj.h,
-// parse_ply.h, parse_off.h; no third-party code sees the bytes), vtk (legacy polydata) and vtp
-// through VTK's readers (parse_vtk_polydata.h).
+// parse_ply.h, parse_off.h; no third-party code sees the bytes), vtk (legacy polydata, VTK's reader
+// behind a check of its counts) and vtp (VTK's XML parser, the arrays decoded by soiq)
+// (parse_vtk_polydata.h).
 //
 // Inputs   bytes; `format` "stl", "obj", "ply", "off", "vtk" or "vtp" (any case, a leading dot
 //          allowed: a file extension works); `ras` = true when the coordinates are RAS (3D

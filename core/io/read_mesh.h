@@ -1,7 +1,8 @@
 #pragma once
 // Reads a surface model file, the format chosen by its extension: .stl (ASCII or binary), .obj,
-// .ply, .off (soiq's own strict parsers), .vtk (legacy polydata), .vtp (VTK's readers). The file's
-// bytes go to parse_mesh (parse_mesh.h), which uploads use too.
+// .ply, .off (soiq's own strict parsers), .vtk (legacy polydata, VTK's reader behind a check),
+// .vtp (VTK's XML parser, arrays decoded by soiq). The file's bytes go to parse_mesh (parse_mesh.h),
+// which uploads use too.
 //
 // Inputs   path; `ras` = true when the file's coordinates are RAS (3D Slicer's older STL files,
 //          FreeSurfer): x and y are negated once so the mesh is LPS mm.
