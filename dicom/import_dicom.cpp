@@ -53,9 +53,10 @@ const SeriesImage* DicomImport::find_image(const std::string& uid) const {
 }
 
 Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t max_voxels,
-                                 const FindKnownSeries& known) {
+                                 const FindKnownSeries& known, const BeforeDecoding& before_decoding) {
   DicomImport out;
   SOIQ_ASSIGN_OR_RETURN(out.scan, scan_dicom(paths));
+  if (before_decoding) SOIQ_RETURN_IF_ERROR(before_decoding(out.scan));
   out.problems = out.scan.unreadable;
   for (const DicomSeries& series : out.scan.series) {
     if (!is_volume_modality(series.modality)) continue;

@@ -8,12 +8,14 @@
 //
 // Inputs   paths: files, folders and DICOMDIRs as scan_dicom takes them.
 //          max_voxels: per image and per structure grid (RESOURCE_EXHAUSTED beyond).
+//          before_decoding: called once with the scan (headers only, no pixel read yet), before
+//          any series is decoded; soiqd reserves the decoding's memory there.
 // Output   DicomImport. A series or structure set that cannot be used does not stop the import:
 //          it goes to `problems` with its Status (the message names the file, series or uid),
 //          e.g. a missing slice (INVALID_ARGUMENT), a structure set whose referenced series is
 //          not among the files (NOT_FOUND naming it). Series of other modalities (CR, DX, SR,
 //          ...) stay in the scan's records only.
-// Errors   NOT_FOUND when a path does not exist.
+// Errors   NOT_FOUND when a path does not exist. Whatever before_decoding returns, unchanged.
 // Cost     O(files + voxels + contour points); single-threaded.
 
 #include <functional>
@@ -66,11 +68,14 @@ struct DicomImport {
 // True for the modalities imported as volumes: CT, MR, PT.
 bool is_volume_modality(const std::string& modality);
 
+// Admits an import on its scan before any pixel is decoded; a non-OK status stops the import.
+using BeforeDecoding = std::function<Status(const DicomScan& scan)>;
+
 // `known`: consulted for a structure set or SEG whose referenced series (named by uid) is not among
 // the files. Such a set is refused (INVALID_ARGUMENT problem) when its frame of reference or its
 // patient id differs from the known series': a structure drawn on one patient's images must never
 // land on another's.
 Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t max_voxels = kDefaultMaxVoxels,
-                                 const FindKnownSeries& known = {});
+                                 const FindKnownSeries& known = {}, const BeforeDecoding& before_decoding = {});
 
 }  // namespace soiq::dicom

@@ -38,6 +38,9 @@ struct DicomInstance {
   std::string sop_class_uid;     // (0008,0016)
   std::string series_uid;
   int64_t instance_number = 0;  // (0020,0013), 0 when absent
+  // (0028,0010) and (0028,0011) from the header, 0 when absent: what decoding the pixels will take
+  // is known before a pixel is read.
+  int64_t rows = 0, columns = 0;
 };
 
 struct DicomSeries {

@@ -120,6 +120,11 @@ class Index {
     inst.sop_class_uid = get_string(ds, DCM_SOPClassUID);
     inst.series_uid = get_string(ds, DCM_SeriesInstanceUID);
     inst.instance_number = get_integer(ds, DCM_InstanceNumber);
+    Uint16 rows = 0, columns = 0;
+    (void)ds.findAndGetUint16(DCM_Rows, rows);  // absent stays 0
+    (void)ds.findAndGetUint16(DCM_Columns, columns);
+    inst.rows = rows;
+    inst.columns = columns;
     const std::string study_uid = get_string(ds, DCM_StudyInstanceUID);
     for (const auto& [value, tag] :
          {std::pair<const std::string*, const char*>{&inst.sop_instance_uid, "SOPInstanceUID (0008,0018)"},

@@ -9,6 +9,7 @@
 #include "db/surface_blob.h"
 #include "db/validate_records.h"
 #include "dicom/import_dicom.h"
+#include "server/dicom_import_bytes.h"
 #include "server/proto_records.h"
 
 namespace soiq::server {
@@ -182,10 +183,22 @@ void list_records(const db::ImportBatch& batch, v1::ImportDicomResponse& r) {
 }  // namespace
 
 Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
-                                                    const std::vector<std::string>& sent, int64_t max_voxels) {
+                                                    const std::vector<std::string>& sent, int64_t max_voxels,
+                                                    MemoryBudget& budget, const std::function<Status()>& stop) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
-  SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in, dicom::import_dicom({dir}, max_voxels, stored_series(store)));
+  // Held to the end: the decoded images and their blobs live until the write is done.
+  MemoryBudget::Reservation held;
+  auto admit = [&](const dicom::DicomScan& scan) -> Status {
+    const DicomImportBytes need = dicom_import_bytes(scan, max_voxels);
+    if (need.series == 0) return ok_status();
+    SOIQ_ASSIGN_OR_RETURN(held, budget.reserve(need.bytes, need.what, stop,
+                                               need.series > 1 ? "import fewer series at once, or raise the budget"
+                                                               : "raise the budget"));
+    return ok_status();
+  };
+  SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in,
+                        dicom::import_dicom({dir}, max_voxels, stored_series(store), admit));
   v1::ImportDicomResponse r;
   r.set_files_received(int64_t(sent.size()));
   r.set_dicom_files_read(in.scan.files_read);

@@ -4,7 +4,11 @@
 // then writes it with Store::import_batch in one transaction: an import that fails stores nothing.
 //
 // Inputs   dir: the folder the files were received into (server/received_dicom_files.h); sent:
-//          their relative paths; max_voxels: per image and per structure grid.
+//          their relative paths; max_voxels: per image and per structure grid. budget: the
+//          images' peak bytes (server/dicom_import_bytes.h, from the headers) are reserved there
+//          after the header scan and before any pixel is decoded, and held until the write is
+//          done; while others hold the budget the import waits, first come first served, until
+//          `stop` returns non-OK. Call on a worker (as FeatureEngine::admit).
 // Output   The response of ImportDicom:
 //          - series: each CT, MR and PET series as an image, in its DICOM study and patient
 //            (sex, birth and study dates kept when valid, age at study from dicom/; no names);
@@ -29,20 +33,26 @@
 //          - problems: unreadable files, unusable series, skipped or empty ROIs, non-DICOM files,
 //            with paths relative to `dir`.
 // Errors   INVALID_ARGUMENT when nothing at all can be imported (the message names the first
-//          problem or file). Any Store error unchanged (nothing stored then).
+//          problem or file). RESOURCE_EXHAUSTED when the images can never fit the budget (the
+//          message names the series, the estimate and the limit), before anything is decoded or
+//          stored. `stop`'s status when it ends a wait. Any Store error unchanged (nothing stored
+//          then).
 // Cost     O(files + voxels + contour points) reads, then one write transaction.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "core/status.h"
 #include "db/store.h"
+#include "server/memory_budget.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
 
 Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
-                                                    const std::vector<std::string>& sent, int64_t max_voxels);
+                                                    const std::vector<std::string>& sent, int64_t max_voxels,
+                                                    MemoryBudget& budget, const std::function<Status()>& stop);
 
 }  // namespace soiq::server

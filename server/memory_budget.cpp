@@ -23,13 +23,13 @@ void MemoryBudget::Reservation::release() {
 }
 
 Result<MemoryBudget::Reservation> MemoryBudget::reserve(int64_t bytes, const std::string& what,
-                                                        const std::function<Status()>& stop) {
+                                                        const std::function<Status()>& stop,
+                                                        const std::string& advice) {
   bytes = std::max<int64_t>(bytes, 0);
   if (bytes > limit_) {
     return resource_exhausted(what + " needs an estimated " + human_bytes(bytes) +
                               ", more than soiqd's memory budget of " + human_bytes(limit_) +
-                              " (soiqd --memory-budget): use a coarser spacing, a smaller margin or region, or raise "
-                              "the budget");
+                              " (soiqd --memory-budget): " + advice);
   }
   std::unique_lock<std::mutex> lock(mutex_);
   const uint64_t ticket = next_ticket_++;

@@ -1,15 +1,16 @@
 #pragma once
-// One server-wide budget of bytes. Every conversion and feature computation estimates its peak
-// bytes first (core/memory_estimate.h) and reserves them here before it allocates: work is
-// admitted by what it will hold, not by how many run, so twelve conversions of a 4e8-voxel grid
-// queue instead of taking the machine down together.
+// One server-wide budget of bytes. Every conversion, feature computation, image upload and DICOM
+// import estimates its peak bytes first (core/memory_estimate.h, server/dicom_import_bytes.h) and
+// reserves them here before it allocates: work is admitted by what it will hold, not by how many
+// run, so twelve conversions of a 4e8-voxel grid queue instead of taking the machine down together.
 //
-// reserve(bytes, what, stop)
+// reserve(bytes, what, stop, advice)
 //   Returns a Reservation that gives the bytes back when it goes. Waits, first come first served,
 //   while others hold too much for `bytes` to fit; `stop` (may be empty) is polled every 50 ms
 //   while waiting and its non-OK status ends the wait (cancel, deadline).
 // Errors  RESOURCE_EXHAUSTED at once, without waiting, when `bytes` alone exceed the budget: the
-//         message gives `what`, the estimate and the limit ("soiqd --memory-budget").
+//         message gives `what`, the estimate and the limit ("soiqd --memory-budget"), then `advice`
+//         (what the client can change; by default a conversion's: spacing, margin, region).
 // Thread-safety: all members may be called from any thread.
 
 #include <condition_variable>
@@ -49,7 +50,10 @@ class MemoryBudget {
   MemoryBudget(const MemoryBudget&) = delete;
   MemoryBudget& operator=(const MemoryBudget&) = delete;
 
-  Result<Reservation> reserve(int64_t bytes, const std::string& what, const std::function<Status()>& stop = {});
+  Result<Reservation> reserve(int64_t bytes, const std::string& what, const std::function<Status()>& stop = {},
+                              const std::string& advice =
+                                  "use a coarser spacing, a smaller margin or region, or "
+                                  "raise the budget");
 
   int64_t limit() const { return limit_; }
   int64_t in_use() const;

@@ -32,6 +32,15 @@ inline void log_rpc(const char* method, const Status& status, double ms) {
   log_event(status.ok() ? "info" : "warn", fields);
 }
 
+// Why a call should stop, for work that polls (MemoryBudget::reserve while it waits, queries):
+// OK while the client still waits for the answer.
+inline Status stop_status(const grpc::ServerContext& ctx) {
+  if (!ctx.IsCancelled()) return ok_status();
+  if (ctx.deadline() <= std::chrono::system_clock::now())
+    return Status(StatusCode::kDeadlineExceeded, "the request ran past its deadline and was stopped");
+  return Status(StatusCode::kCancelled, "the request was cancelled by the client");
+}
+
 template <typename Body>
 grpc::Status SoiqService::handle(const char* method, grpc::ServerContext& ctx, Body&& body) {
   const Clock::time_point start = Clock::now();

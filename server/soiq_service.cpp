@@ -56,13 +56,6 @@ Result<std::vector<db::SeriesRecord>> series_of(db::Store& store, const std::str
   return store.list_series(study_uid);
 }
 
-Status stop_status(const grpc::ServerContext& ctx) {
-  if (!ctx.IsCancelled()) return ok_status();
-  if (ctx.deadline() <= std::chrono::system_clock::now())
-    return Status(StatusCode::kDeadlineExceeded, "the query ran past its deadline and was stopped");
-  return Status(StatusCode::kCancelled, "the query was cancelled by the client");
-}
-
 FillRule fill_rule_of(v1::FillRule f) { return f == v1::EVEN_ODD ? FillRule::kEvenOdd : FillRule::kNonZero; }
 
 }  // namespace
@@ -165,7 +158,8 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
     SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
     SOIQ_ASSIGN_OR_RETURN(ReceivedFiles files, receive_dicom_files(*reader, dir.path(), config_.max_upload_bytes));
     SOIQ_ASSIGN_OR_RETURN(*response, on_pool<v1::ImportDicomResponse>([&] {
-      return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels);
+      return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels, budget_,
+                                 [&] { return stop_status(*ctx); });
     }));
     response->set_bytes_received(files.bytes);
     return ok_status();

@@ -98,7 +98,8 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     if (client_gone) return Status(StatusCode::kCancelled, "the client cancelled the pull; nothing was imported");
     SOIQ_RETURN_IF_ERROR(pulled.status());
     SOIQ_ASSIGN_OR_RETURN(v1::ImportDicomResponse imported, on_pool<v1::ImportDicomResponse>([&] {
-                            return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels);
+                            return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels,
+                                                       budget_, [&] { return stop_status(*ctx); });
                           }));
     imported.set_bytes_received(pulled->bytes);
     v1::PacsPullEvent last;

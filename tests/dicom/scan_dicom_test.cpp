@@ -46,6 +46,8 @@ TEST(ScanDicom, CtSmallGivesItsPatientStudyAndSeries) {
   ASSERT_EQ(s.series[0].instances.size(), 1u);
   EXPECT_EQ(s.series[0].instances[0].sop_instance_uid, "1.3.6.1.4.1.5962.1.1.1.1.1.20040119072730.12322");
   EXPECT_EQ(s.series[0].instances[0].sop_class_uid, "1.2.840.10008.5.1.4.1.1.2");
+  EXPECT_EQ(s.series[0].instances[0].rows, 128);  // from the header: no pixel read
+  EXPECT_EQ(s.series[0].instances[0].columns, 128);
 }
 
 TEST(ScanDicom, MrSmallGivesItsPatientStudyAndSeries) {

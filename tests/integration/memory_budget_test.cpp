@@ -1,10 +1,12 @@
-// soiqd admits conversions and feature computations by their estimated peak bytes against one
-// budget (--memory-budget): a request that can never fit is refused before it allocates, and
-// parallel requests queue instead of exhausting the machine together.
+// soiqd admits conversions, feature computations, image uploads and DICOM imports by their
+// estimated peak bytes against one budget (--memory-budget): a request that can never fit is
+// refused before it allocates, and parallel requests queue instead of exhausting the machine
+// together.
 
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <string>
 #include <thread>
 #include <vector>
@@ -90,6 +92,50 @@ TEST_F(MemoryBudgetTest, AnImageThatCanNeverFitIsRefusedOnItsHeader) {
             std::string::npos)
       << r.status().message();
   EXPECT_EQ(client_->server_info()->series(), 0);
+}
+
+std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
+
+// The STS_002 CT: 48 slices of 161 columns x 143 rows, 4.42 MB as floats. Its import is estimated
+// at 12 bytes per voxel (slices, volume, blob) plus one slice at 4 bytes per pixel: 13,353,340 bytes.
+constexpr const char* kStsCt = "sts/STS_002/dicom/CT/image";
+constexpr const char* kStsCtUid = "1.3.6.1.4.1.14519.5.2.1.5168.1900.672471348177659964935135533244";
+constexpr int64_t kStsCtEstimate = int64_t(161) * 143 * 48 * 12 + 161 * 143 * 4;
+
+TEST_F(MemoryBudgetTest, ADicomSeriesThatCanNeverFitIsRefusedBeforeAnythingIsStored) {
+  start_with({"--memory-budget", "4M"});  // under the CT's 4.42 MB of floats alone
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data(kStsCt)});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
+  const std::string& message = r.status().message();
+  EXPECT_NE(message.find("importing series " + std::string(kStsCtUid) + " (161x143x48) needs an estimated 13.4 MB"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("memory budget of 4.19 MB (soiqd --memory-budget): raise the budget"), std::string::npos)
+      << message;
+  std::printf("refused: %s\n", message.c_str());
+
+  Result<v1::ServerInfo> info = client_->server_info();  // still serving
+  ASSERT_TRUE(info.ok()) << info.status().to_string();
+  EXPECT_EQ(info->patients(), 0);
+  EXPECT_EQ(info->studies(), 0);
+  EXPECT_EQ(info->series(), 0);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);
+  EXPECT_EQ(info->memory_peak_bytes(), 0);  // refused before reserving, so before decoding
+}
+
+TEST_F(MemoryBudgetTest, ADicomImportReservesItsEstimateBeforeDecoding) {
+  start_with({"--memory-budget", "1G"});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({data(kStsCt)});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  ASSERT_EQ(r->series_size(), 1);
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok()) << info.status().to_string();
+  EXPECT_EQ(info->series(), 1);
+  EXPECT_GE(info->memory_peak_bytes(), kStsCtEstimate);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);  // given back once stored
+  std::printf("memory_peak_bytes %lld, estimate %lld\n", static_cast<long long>(info->memory_peak_bytes()),
+              static_cast<long long>(kStsCtEstimate));
 }
 
 // Four NIfTI conversions of a 3e8-voxel grid (each ~0.65 GB at its peak, ~1 GB estimated) sent at

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <thread>
 
@@ -39,12 +40,17 @@ class PacsServiceTest : public ServiceTest {
     if (error.rfind("not installed", 0) == 0) GTEST_SKIP() << error;
     ASSERT_EQ(error, "");
     ASSERT_EQ(pacs_.load({data("sts/STS_002/dicom"), data("dicom/CT_small.dcm")}), "");
-    start_with_pacs(std::string(DcmqrscpProcess::kAeTitle) + "@127.0.0.1:" + std::to_string(pacs_.port()));
+    start_with_pacs(pacs_address());
   }
 
-  void start_with_pacs(const std::string& address) {
+  std::string pacs_address() const {
+    return std::string(DcmqrscpProcess::kAeTitle) + "@127.0.0.1:" + std::to_string(pacs_.port());
+  }
+
+  void start_with_pacs(const std::string& address, const std::vector<std::string>& more = {}) {
     std::vector<std::string> args = {"--pacs-timeout", "5"};
     if (!address.empty()) args.insert(args.end(), {"--pacs", address});
+    args.insert(args.end(), more.begin(), more.end());
     start(args);
     client_ = std::make_unique<client::Client>(connect());
   }
@@ -206,6 +212,25 @@ TEST_F(PacsServiceTest, PullOfUnknownStudyIsNotFoundAndStoresNothing) {
   EXPECT_EQ(pulled.status().code(), StatusCode::kNotFound);
   EXPECT_TRUE(contains(pulled.status().message(), "1.2.3.4.5.6.7.8.9")) << pulled.status().message();
   EXPECT_EQ(stored_structures(), 0);
+}
+
+// The pulled CT (161x143x48) and PET (30x27x48) are admitted together, before either is decoded:
+// 12 bytes per voxel plus one slice at 4 bytes per pixel each, 13,823,140 bytes.
+TEST_F(PacsServiceTest, PullThatCanNeverFitTheMemoryBudgetIsRefusedAndStoresNothing) {
+  start_with_pacs(pacs_address(), {"--memory-budget", "4M"});
+  Result<v1::ImportDicomResponse> pulled = pull_sts();
+  ASSERT_FALSE(pulled.ok());
+  EXPECT_EQ(pulled.status().code(), StatusCode::kResourceExhausted) << pulled.status().to_string();
+  const std::string& message = pulled.status().message();
+  for (const char* part : {"importing 2 series (", " 161x143x48", " 30x27x48", "needs an estimated 13.8 MB",
+                           "memory budget of 4.19 MB", "import fewer series at once, or raise the budget"})
+    EXPECT_TRUE(contains(message, part)) << part << " not in: " << message;
+  std::printf("refused: %s\n", message.c_str());
+  EXPECT_EQ(stored_structures(), 0);
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok()) << info.status().to_string();
+  EXPECT_EQ(info->patients(), 0);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);
 }
 
 TEST_F(PacsServiceTest, PacsDyingMidwayFailsThePullAndStoresNothing) {
