@@ -92,4 +92,9 @@ int64_t MemoryBudget::peak() const {
   return peak_;
 }
 
+int64_t MemoryBudget::waiting() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return int64_t(next_ticket_ - serving_) - int64_t(abandoned_.size());
+}
+
 }  // namespace soiq::server

@@ -59,6 +59,8 @@ class MemoryBudget {
   int64_t in_use() const;
   // The largest number of bytes held at once since start (for tests and `soiq info`).
   int64_t peak() const;
+  // How many reservations are waiting their turn now.
+  int64_t waiting() const;
 
  private:
   void give_back(int64_t bytes);

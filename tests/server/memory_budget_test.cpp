@@ -39,36 +39,45 @@ TEST(MemoryBudget, ReservationsAddUpAndGoBackWhenReleased) {
 
 // A large request waiting for room is not overtaken by small ones that would fit: otherwise a
 // stream of small conversions could starve a large one forever.
+// Blocks until `n` reservations wait in `budget` (the threads have taken their tickets).
+void wait_for_waiters(const MemoryBudget& budget, int64_t n) {
+  while (budget.waiting() < n) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
 TEST(MemoryBudget, WaitersAreServedFirstComeFirstServed) {
   MemoryBudget budget(100);
   auto held = budget.reserve(80, "held");
   ASSERT_TRUE(held.ok());
   std::mutex m;
   std::vector<char> order;
+  // "big" and "small" never fit together, so the one served first records first.
   std::thread big([&] {
-    auto r = budget.reserve(50, "big");
+    auto r = budget.reserve(95, "big");
     ASSERT_TRUE(r.ok());
     std::lock_guard<std::mutex> lock(m);
     order.push_back('B');
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // "big" takes its ticket first
+  wait_for_waiters(budget, 1);  // "big" has its ticket
   std::thread small([&] {
     auto r = budget.reserve(10, "small");  // fits beside "held", but "big" came first
     ASSERT_TRUE(r.ok());
     std::lock_guard<std::mutex> lock(m);
     order.push_back('s');
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  wait_for_waiters(budget, 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // room for a wrong admission to show
   {
     std::lock_guard<std::mutex> lock(m);
     EXPECT_TRUE(order.empty());
   }
+  EXPECT_EQ(budget.waiting(), 2);
   *held = MemoryBudget::Reservation();  // release
   big.join();
   small.join();
   ASSERT_EQ(order.size(), 2u);
   EXPECT_EQ(order[0], 'B');
   EXPECT_EQ(budget.in_use(), 0);
+  EXPECT_EQ(budget.waiting(), 0);
 }
 
 TEST(MemoryBudget, AStoppedWaiterLeavesTheQueueAndTheNextOneProceeds) {
