@@ -15,7 +15,6 @@
 #include "db/sqlite_store.h"
 #include "db/surface_blob.h"
 #include "server/grid_choice.h"
-#include "server/hull_free_surface_shape.h"
 
 namespace soiq::bench {
 namespace {
@@ -84,11 +83,10 @@ Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage
       ++sampled;
     }
     SOIQ_ASSIGN_OR_RETURN(const VolumeShape vs, parts.run("volume features", [&] { return volume_shape(v.volume); }));
-    SOIQ_ASSIGN_OR_RETURN(const auto hull_free, parts.run("surface features, hull-free (volume + area)",
-                                                          [&] { return server::hull_free_surface_shape(mesh); }));
-    double sphericity = 0;
-    for (const auto& [name, value] : hull_free)
-      if (name == "sphericity") sphericity = value;
+    SOIQ_ASSIGN_OR_RETURN(const SurfaceShape hull_free, parts.run("surface features, hull-free (volume + area)", [&] {
+      return surface_shape(mesh, grid.geometry.direction, HullPart::kSkip);
+    }));
+    const double sphericity = hull_free.sphericity;
     if (sample) {
       SOIQ_ASSIGN_OR_RETURN(const SurfaceShape ss,
                             parts.run("(before) surface features by surface_shape, with hull",

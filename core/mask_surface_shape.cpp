@@ -1,6 +1,7 @@
 #include "core/mask_surface_shape.h"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/point_set_diameter.h"
@@ -54,7 +55,7 @@ double area_mm2(const MaskSurfaceSweep& sweep, const CubeCaseTable& cases, const
 }  // namespace
 
 Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const ImageGeometry& grid,
-                                        const CubeCaseTable& cases) {
+                                        const CubeCaseTable& cases, HullPart hull_part) {
   SOIQ_RETURN_IF_ERROR(validate_geometry(grid));
   if (sweep.empty) return invalid_argument("surface shape of an empty mask is undefined");
   const Vec3& s = grid.spacing_mm;
@@ -64,6 +65,12 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
   const double volume = std::fabs(double(volume_times_48(sweep, cases))) / 48 * (s[0] * s[1] * s[2]);
   const double area = area_mm2(sweep, cases, s);
   if (!(volume > 0)) return internal_error("mask surface encloses no volume: the case table is broken");
+
+  const Vec3 extent{double(sweep.hi[0] - sweep.lo[0] + 1) * s[0], double(sweep.hi[1] - sweep.lo[1] + 1) * s[1],
+                    double(sweep.hi[2] - sweep.lo[2] + 1) * s[2]};
+  if (hull_part == HullPart::kSkip) {
+    return surface_shape_from_measures(volume, area, skipped_hull(), std::numeric_limits<double>::quiet_NaN(), extent);
+  }
 
   // The shortlist: vertices of all three of their planes' hulls.
   const PlaneFamily& fx = sweep.families[0];
@@ -82,8 +89,6 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
   std::vector<Vec3> hull_points;
   hull_points.reserve(hull.vertex_indices.size());
   for (const int64_t v : hull.vertex_indices) hull_points.push_back(candidates[size_t(v)]);
-  const Vec3 extent{double(sweep.hi[0] - sweep.lo[0] + 1) * s[0], double(sweep.hi[1] - sweep.lo[1] + 1) * s[1],
-                    double(sweep.hi[2] - sweep.lo[2] + 1) * s[2]};
   return surface_shape_from_measures(volume, area, hull, point_set_diameter(hull_points), extent);
 }
 

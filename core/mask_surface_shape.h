@@ -13,7 +13,8 @@
 //                    positions enter through their corner sums (exact in integers; one rounding
 //                    when scaled to mm3);
 //            area    sum over cases of cube count x the case's area on this grid's spacing;
-//            hull    the exact hull (convex_hull.h) of a shortlist of the vertices: a vertex of the 3D hull is a vertex of
+//            hull    the exact hull (convex_hull.h) of a shortlist of the vertices: a vertex of the 3D hull is a vertex
+//            of
 //                    the 2D hull of its plane of constant X, of constant Y and of constant Z, so
 //                    only vertices on all three of those exact lattice hulls are passed;
 //            diameter  point_set_diameter over the hull's vertices;
@@ -30,7 +31,8 @@
 
 namespace soiq {
 
+// `hull`: as surface_shape's (surface_shape.h): kSkip leaves the hull and diameter fields NaN.
 Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const ImageGeometry& grid,
-                                        const CubeCaseTable& cases);
+                                        const CubeCaseTable& cases, HullPart hull = HullPart::kCompute);
 
 }  // namespace soiq

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/centre_of_mass_shift.h"
+#include "core/feature_catalogue.h"
 #include "core/intensity_features.h"
 #include "core/io/marching_cubes_cases.h"
 #include "core/mask_maximum_2d_diameters.h"
@@ -18,35 +19,7 @@ namespace soiq {
 
 namespace {
 
-const std::vector<std::string> kVolumeNames = {
-    "voxel_count",          "voxel_volume_mm3",     "centroid_mm", "bbox_mm", "major_axis_length_mm",
-    "minor_axis_length_mm", "least_axis_length_mm", "elongation",  "flatness"};
-const std::vector<std::string> kSurfaceNames = {
-    "mesh_volume_mm3",         "surface_area_mm2",    "surface_volume_ratio",    "sphericity",
-    "compactness_1",           "compactness_2",       "spherical_disproportion", "asphericity",
-    "maximum_3d_diameter_mm",  "volume_density_aabb", "area_density_aabb",       "volume_density_convex_hull",
-    "area_density_convex_hull"};
-const std::vector<std::string> kDiameter2dNames = {"maximum_2d_diameter_slice_mm", "maximum_2d_diameter_column_mm",
-                                                   "maximum_2d_diameter_row_mm"};
-const std::vector<std::string> kIntensityNames = {"mean",
-                                                  "standard_deviation",
-                                                  "variance",
-                                                  "skewness",
-                                                  "excess_kurtosis",
-                                                  "minimum",
-                                                  "maximum",
-                                                  "median",
-                                                  "p10",
-                                                  "p90",
-                                                  "interquartile_range",
-                                                  "range",
-                                                  "mean_absolute_deviation",
-                                                  "energy",
-                                                  "root_mean_square",
-                                                  "voxel_count",
-                                                  "centre_of_mass_shift_mm"};
-
-bool contains(const std::vector<std::string>& list, const std::string& name) {
+bool contains(const std::vector<std::string>& list, std::string_view name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
@@ -71,44 +44,30 @@ class PartTimer {
 struct Ask {
   const StructureInput& input;
   const FeatureRequest& request;
-  bool wanted(const std::string& n) const { return request.names.empty() || contains(request.names, n); }
-  bool any_wanted(const std::vector<std::string>& list, const std::string& prefix = "") const {
-    return std::any_of(list.begin(), list.end(), [&](const std::string& n) { return wanted(prefix + n); });
+  bool wanted(std::string_view n) const { return request.names.empty() || contains(request.names, n); }
+  // Any feature of `family` wanted under `prefix` ("mask_" for the mask surface's beside a stored one).
+  bool any_wanted(FeatureFamily family, std::string_view prefix = "") const {
+    for (const FeatureDef& f : feature_catalogue())
+      if (f.family == family && wanted(std::string(prefix) + std::string(f.name))) return true;
+    return false;
+  }
+  // The hull is computed only for a wanted feature that reads it.
+  HullPart hull_part(std::string_view prefix) const {
+    for (const FeatureDef& f : feature_catalogue())
+      if (f.family == FeatureFamily::kSurface && f.needs_hull && wanted(std::string(prefix) + std::string(f.name)))
+        return HullPart::kCompute;
+    return HullPart::kSkip;
   }
 };
 
-void add_surface(FeatureReport& report, const SurfaceShape& s, const std::string& prefix, const Ask& ask) {
-  const double values[] = {
-      s.mesh_volume_mm3,         s.surface_area_mm2,    s.surface_volume_ratio,    s.sphericity,
-      s.compactness_1,           s.compactness_2,       s.spherical_disproportion, s.asphericity,
-      s.maximum_3d_diameter_mm,  s.volume_density_aabb, s.area_density_aabb,       s.volume_density_convex_hull,
-      s.area_density_convex_hull};
-  for (size_t i = 0; i < kSurfaceNames.size(); ++i) {
-    if (ask.wanted(prefix + kSurfaceNames[i]))
-      report.features.push_back({prefix + kSurfaceNames[i], {values[i]}, "", ""});
-  }
-}
-
-void add_intensity(FeatureReport& report, const IntensityFeatures& f, const std::string& region,
-                   const std::string& image, const Ask& ask) {
-  const double values[] = {f.mean,
-                           f.standard_deviation,
-                           f.variance,
-                           f.skewness,
-                           f.excess_kurtosis,
-                           f.minimum,
-                           f.maximum,
-                           f.median,
-                           f.p10,
-                           f.p90,
-                           f.interquartile_range,
-                           f.range,
-                           f.mean_absolute_deviation,
-                           f.energy,
-                           f.root_mean_square,
-                           double(f.voxel_count)};
-  for (size_t i = 0; i < std::size(values); ++i) {
-    if (ask.wanted(kIntensityNames[i])) report.features.push_back({kIntensityNames[i], {values[i]}, region, image});
+// The wanted features of `family`, read from `sources`, in catalogue order.
+void add_family(FeatureReport& report, FeatureFamily family, const FeatureSources& sources, const Ask& ask,
+                std::string_view prefix = "", const std::string& region = "", const std::string& image = "") {
+  for (const FeatureDef& f : feature_catalogue()) {
+    if (f.family != family) continue;
+    if (f.name == "centre_of_mass_shift_mm" && sources.centre_of_mass_shift_mm == nullptr) continue;
+    const std::string name = std::string(prefix) + std::string(f.name);
+    if (ask.wanted(name)) report.features.push_back({name, f.value(sources), region, image});
   }
 }
 
@@ -116,29 +75,20 @@ Status volume_section(const Ask& ask, FeatureReport& report) {
   PartTimer timer(report);
   SOIQ_ASSIGN_OR_RETURN(
       VolumeShape v, timer.run("volume shape", [&] { return volume_shape(ask.input.volume, ask.request.covariance); }));
-  const std::pair<const char*, std::vector<double>> values[] = {
-      {"voxel_count", {double(v.voxel_count)}},
-      {"voxel_volume_mm3", {v.voxel_volume_mm3}},
-      {"centroid_mm", {v.centroid_mm[0], v.centroid_mm[1], v.centroid_mm[2]}},
-      {"bbox_mm",
-       {v.bbox_min_mm[0], v.bbox_min_mm[1], v.bbox_min_mm[2], v.bbox_max_mm[0], v.bbox_max_mm[1], v.bbox_max_mm[2]}},
-      {"major_axis_length_mm", {v.major_axis_length_mm}},
-      {"minor_axis_length_mm", {v.minor_axis_length_mm}},
-      {"least_axis_length_mm", {v.least_axis_length_mm}},
-      {"elongation", {v.elongation}},
-      {"flatness", {v.flatness}}};
-  for (const auto& [name, value] : values) {
-    if (ask.wanted(name)) report.features.push_back({name, value, "", ""});
-  }
+  FeatureSources sources;
+  sources.volume = &v;
+  add_family(report, FeatureFamily::kVolume, sources, ask);
   return ok_status();
 }
 
 Status stored_surface_section(const Ask& ask, FeatureReport& report) {
   PartTimer timer(report);
   SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("surface shape", [&] {
-    return surface_shape(*ask.input.surface, ask.input.volume.geometry.direction);
+    return surface_shape(*ask.input.surface, ask.input.volume.geometry.direction, ask.hull_part(""));
   }));
-  add_surface(report, s, "", ask);
+  FeatureSources sources;
+  sources.surface = &s;
+  add_family(report, FeatureFamily::kSurface, sources, ask);
   return ok_status();
 }
 
@@ -153,17 +103,18 @@ Status mask_surface_section(const Ask& ask, const std::optional<std::string>& pr
                         timer.run("mask surface sweep", [&] { return mask_surface_sweep(ask.input.volume); }));
   if (prefix) {
     SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("mask surface shape", [&] {
-      return mask_surface_shape(sweep, grid, marching_cubes_cases());
+      return mask_surface_shape(sweep, grid, marching_cubes_cases(), ask.hull_part(*prefix));
     }));
-    add_surface(report, s, *prefix, ask);
+    FeatureSources sources;
+    sources.surface = &s;
+    add_family(report, FeatureFamily::kSurface, sources, ask, *prefix);
   }
-  if (ask.any_wanted(kDiameter2dNames)) {
+  if (ask.any_wanted(FeatureFamily::kDiameter2d)) {
     SOIQ_ASSIGN_OR_RETURN(Maximum2DDiameters d,
                           timer.run("2d diameters", [&] { return mask_maximum_2d_diameters(sweep, grid.spacing_mm); }));
-    const double values[] = {d.slice_mm, d.column_mm, d.row_mm};
-    for (size_t i = 0; i < 3; ++i) {
-      if (ask.wanted(kDiameter2dNames[i])) report.features.push_back({kDiameter2dNames[i], {values[i]}, "", ""});
-    }
+    FeatureSources sources;
+    sources.diameters_2d = &d;
+    add_family(report, FeatureFamily::kDiameter2d, sources, ask);
   }
   return ok_status();
 }
@@ -197,48 +148,36 @@ Status region_section(const Ask& ask, const RegionSpec& spec, FeatureReport& rep
     SOIQ_ASSIGN_OR_RETURN(IntensityFeatures f, timer.run("intensity " + img.name + " " + rname, [&] {
       return intensity_features(std::move(samples.values));
     }));
-    add_intensity(report, f, rname, img.name, ask);
+    FeatureSources sources;
+    sources.intensity = &f;
+    double shift = 0;
     if (spec.kind == RegionKind::kInside && ask.wanted("centre_of_mass_shift_mm") &&
         check_same_grid(img.image->geometry, ask.input.volume.geometry).ok()) {
-      SOIQ_ASSIGN_OR_RETURN(double shift, timer.run("centre of mass shift " + img.name, [&] {
-        return centre_of_mass_shift_mm(ask.input.volume, *img.image);
-      }));
-      report.features.push_back({"centre_of_mass_shift_mm", {shift}, rname, img.name});
+      SOIQ_ASSIGN_OR_RETURN(shift, timer.run("centre of mass shift " + img.name,
+                                             [&] { return centre_of_mass_shift_mm(ask.input.volume, *img.image); }));
+      sources.centre_of_mass_shift_mm = &shift;
     }
+    add_family(report, FeatureFamily::kIntensity, sources, ask, "", rname, img.name);
   }
   return ok_status();
 }
 
 }  // namespace
 
-const std::vector<std::string>& shape_feature_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> all = kVolumeNames;
-    all.insert(all.end(), kSurfaceNames.begin(), kSurfaceNames.end());
-    all.insert(all.end(), kDiameter2dNames.begin(), kDiameter2dNames.end());
-    return all;
-  }();
-  return names;
-}
-
-const std::vector<std::string>& intensity_feature_names() { return kIntensityNames; }
-
 Result<FeatureReport> structure_features(const StructureInput& input, const FeatureRequest& request) {
   const bool has_surface = input.surface.has_value();
   for (const std::string& n : request.names) {
-    const bool mask_variant = has_surface && n.rfind("mask_", 0) == 0 && contains(kSurfaceNames, n.substr(5));
-    if (contains(shape_feature_names(), n) || contains(kIntensityNames, n) || mask_variant) continue;
-    std::string known;
-    for (const auto& k : shape_feature_names()) known += (known.empty() ? "" : ", ") + k;
-    for (const auto& k : kIntensityNames) known += ", " + k;
-    return invalid_argument("unknown feature '" + n + "'; known features: " + known +
-                            (has_surface ? " (and mask_<surface feature>)" : ""));
+    SOIQ_RETURN_IF_ERROR(check_feature_name(n));
+    if (!has_surface && mask_feature(n)) {
+      return invalid_argument(
+          "'" + n + "' is the mask surface's value beside a stored surface, and this structure has none: ask for '" +
+          n.substr(kMaskPrefix.size()) + "'");
+    }
   }
 
   // voxel_count is both a shape and an intensity name: only the intensity-only names need an image.
-  const bool intensity_asked = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
-    return contains(kIntensityNames, n) && !contains(shape_feature_names(), n);
-  });
+  const bool intensity_asked = std::any_of(request.names.begin(), request.names.end(),
+                                           [](const std::string& n) { return is_intensity_only(n); });
   if (intensity_asked && request.images.empty()) {
     return invalid_argument("intensity features need an image in the structure's frame of reference (--image)");
   }
@@ -271,17 +210,17 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
     cost_rank.push_back(rank);
     sections.push_back(std::move(section));
   };
-  if (ask.any_wanted(kVolumeNames)) add(0, [&](FeatureReport& r) { return volume_section(ask, r); });
-  if (has_surface && ask.any_wanted(kSurfaceNames)) {
+  if (ask.any_wanted(FeatureFamily::kVolume)) add(0, [&](FeatureReport& r) { return volume_section(ask, r); });
+  if (has_surface && ask.any_wanted(FeatureFamily::kSurface)) {
     add(1, [&](FeatureReport& r) { return stored_surface_section(ask, r); });
   }
   std::optional<std::string> mask_prefix;
-  if (!has_surface && ask.any_wanted(kSurfaceNames)) mask_prefix = "";
-  if (has_surface && ask.any_wanted(kSurfaceNames, "mask_")) mask_prefix = "mask_";
-  if (mask_prefix || ask.any_wanted(kDiameter2dNames)) {
+  if (!has_surface && ask.any_wanted(FeatureFamily::kSurface)) mask_prefix = "";
+  if (has_surface && ask.any_wanted(FeatureFamily::kSurface, kMaskPrefix)) mask_prefix = std::string(kMaskPrefix);
+  if (mask_prefix || ask.any_wanted(FeatureFamily::kDiameter2d)) {
     add(1, [&](FeatureReport& r) { return mask_surface_section(ask, mask_prefix, r); });
   }
-  if (!request.images.empty() && ask.any_wanted(kIntensityNames)) {
+  if (!request.images.empty() && ask.any_wanted(FeatureFamily::kIntensity)) {
     for (const RegionSpec& spec : request.regions) {
       add(2, [&ask, &spec](FeatureReport& r) { return region_section(ask, spec, r); });
     }

@@ -11,7 +11,7 @@
 //   request.regions / images / interpolation: where and on which images intensity features are
 //                  taken (regions.h, resample.h); images must share the structure's frame of
 //                  reference (any grid).
-// Output (names are part of the API; units in the name):
+// Output (names are part of the API, listed with units and definitions in feature_catalogue.h):
 //   volume:  voxel_count, voxel_volume_mm3, centroid_mm[3], bbox_mm[6] (min xyz, max xyz),
 //            major/minor/least_axis_length_mm, elongation, flatness (volume_shape.h)
 //   surface: mesh_volume_mm3, surface_area_mm2, surface_volume_ratio, sphericity, compactness_1,
@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "core/feature_catalogue.h"
 #include "core/image.h"
 #include "core/regions.h"
 #include "core/resample.h"
@@ -87,9 +88,5 @@ struct FeatureReport {
 };
 
 Result<FeatureReport> structure_features(const StructureInput& input, const FeatureRequest& request);
-
-// Every shape feature name and every intensity feature name, in report order.
-const std::vector<std::string>& shape_feature_names();
-const std::vector<std::string>& intensity_feature_names();
 
 }  // namespace soiq

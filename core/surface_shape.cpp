@@ -14,7 +14,14 @@
 
 namespace soiq {
 
-Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes) {
+ConvexHull skipped_hull() {
+  ConvexHull hull;
+  hull.volume_mm3 = std::numeric_limits<double>::quiet_NaN();
+  hull.area_mm2 = std::numeric_limits<double>::quiet_NaN();
+  return hull;
+}
+
+Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes, HullPart hull_part) {
   for (const auto& row : box_axes) {
     for (const double x : row) {
       if (!std::isfinite(x)) return invalid_argument("bounding-box axes are not finite");
@@ -40,6 +47,10 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
     }
   }
 
+  if (hull_part == HullPart::kSkip) {
+    return surface_shape_from_measures(measures.volume_mm3, measures.area_mm2, skipped_hull(),
+                                       std::numeric_limits<double>::quiet_NaN(), hi - lo);
+  }
   // The hull of the shortlist only: it is the vertices' hull (hull_vertex_candidates.h).
   std::vector<Vec3> candidates;
   for (const int64_t v : hull_vertex_candidates(points)) candidates.push_back(points[size_t(v)]);

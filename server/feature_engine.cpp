@@ -4,25 +4,13 @@
 #include <chrono>
 #include <cstdint>
 
+#include "core/feature_catalogue.h"
 #include "core/memory_estimate.h"
 #include "core/structure_features.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
-#include "server/hull_free_surface_shape.h"
 
 namespace soiq::server {
-namespace {
-
-bool contains(const std::vector<std::string>& list, const std::string& s) {
-  return std::find(list.begin(), list.end(), s) != list.end();
-}
-
-bool is_intensity_only(const std::string& name) {
-  return contains(intensity_feature_names(), name) && !contains(shape_feature_names(), name);
-}
-
-}  // namespace
-
 std::string feature_entry(const std::string& name, const std::string& region, const std::string& image_sha,
                           Interpolation interpolation) {
   if (region.empty()) return name;
@@ -31,24 +19,17 @@ std::string feature_entry(const std::string& name, const std::string& region, co
 
 Status complete_feature_ask(FeatureAsk& ask) {
   if (ask.names.empty()) ask.names = shape_feature_names();
-  bool intensity = false;
+  bool needs_image = false, takes_image = false;  // voxel_count takes one without needing it
   for (const std::string& n : ask.names) {
-    const bool surface_variant = n.rfind("mask_", 0) == 0 && contains(shape_feature_names(), n.substr(5));
-    if (!contains(shape_feature_names(), n) && !contains(intensity_feature_names(), n) && !surface_variant) {
-      std::string known;
-      for (const auto& k : shape_feature_names()) known += (known.empty() ? "" : ", ") + k;
-      for (const auto& k : intensity_feature_names())
-        if (!contains(shape_feature_names(), k)) known += ", " + k;
-      return invalid_argument("unknown feature '" + n + "'; known features: " + known +
-                              " (and mask_<surface feature> for a stored surface's mask)");
-    }
-    intensity = intensity || is_intensity_only(n);
+    SOIQ_RETURN_IF_ERROR(check_feature_name(n));
+    needs_image = needs_image || is_intensity_only(n);
+    takes_image = takes_image || find_intensity_feature(n) != nullptr;
   }
-  if (intensity && ask.images.empty())
+  if (needs_image && ask.images.empty())
     return invalid_argument(
         "intensity features need an image of the structure's study (a modality such as PT, "
         "or a series uid)");
-  if (!intensity && !ask.images.empty())
+  if (!takes_image && !ask.images.empty())
     return invalid_argument("images were given but no intensity feature was asked (e.g. mean, median, p90)");
   if (ask.regions.empty()) ask.regions.push_back(RegionSpec{});
   // A region asked twice is computed once (its values would share their cache entries anyway).
@@ -94,17 +75,17 @@ Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
   }
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a long chain of "literal" + string.
   p.cache_key = "v";
-  for (const std::string& part : {std::to_string(kFeatureDefinitionVersion), structure.surface.sha256, p.grid.key,
+  for (const std::string& part : {std::to_string(feature_definitions_version()), structure.surface.sha256, p.grid.key,
                                   std::string(ask.fill_rule == FillRule::kEvenOdd ? "evenodd" : "nonzero")}) {
     p.cache_key += part;
     p.cache_key += '|';
   }
   if (structure.robust) p.cache_key += "robust";
   for (const std::string& n : ask.names) {
-    if (!is_intensity_only(n)) {
-      p.wants.push_back({feature_entry(n, "", "", ask.interpolation), n, "", ""});
-      continue;
-    }
+    // voxel_count is both: the structure's voxels, and with images each region's samples too, as
+    // the library reports them.
+    if (!is_intensity_only(n)) p.wants.push_back({feature_entry(n, "", "", ask.interpolation), n, "", ""});
+    if (find_intensity_feature(n) == nullptr) continue;
     for (const RegionSpec& r : ask.regions) {
       for (size_t i = 0; i < refs.size(); ++i) {
         const std::string region = region_name(r);
@@ -196,25 +177,15 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   SOIQ_RETURN_IF_ERROR(check_cancel());
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
 
-  // Hull-free surface features (sphericity, ...) are computed here from volume and area when no
-  // asked feature needs the hull: structure_features would compute the convex hull for any surface
-  // feature (hull_free_surface_shape.h). The rest goes to structure_features, without the mesh
-  // when it needs none (no copy of it either).
-  const bool hull_asked = std::any_of(ask.names.begin(), ask.names.end(), needs_hull);
+  // structure_features computes the convex hull only for the features that read it. Every stored
+  // structure has a surface: the mesh is passed (no copy otherwise) whenever a surface value of it,
+  // or of its mask beside it, is asked.
   FeatureRequest request;
-  std::vector<std::string> hull_free;
-  for (const std::string& n : ask.names) {
-    if (!hull_asked && is_hull_free_surface_name(n)) {
-      hull_free.push_back(n);
-    } else {
-      request.names.push_back(n);
-    }
-  }
+  request.names = ask.names;
   // Empty names ask structure_features for everything: ask for a cheap one instead.
   if (request.names.empty()) request.names.push_back("voxel_count");
   const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
-    // mask_* names are the mask surface's values beside a stored surface's: they need the mesh too.
-    return is_hull_free_surface_name(n) || needs_hull(n) || n.rfind("mask_", 0) == 0;
+    return find_feature(FeatureFamily::kSurface, n) != nullptr || mask_feature(n) != nullptr;
   });
 
   std::vector<std::shared_ptr<const Image>> images;
@@ -234,18 +205,6 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   }
   FeatureValues values;
   std::vector<db::CachedFeature> entries;
-  if (!hull_free.empty()) {
-    Result<std::vector<std::pair<std::string, double>>> shape = hull_free_surface_shape(*mesh);
-    if (!shape.ok()) {
-      return Status(shape.status().code(),
-                    "structure " + std::to_string(plan.structure.id) + ": " + shape.status().message());
-    }
-    for (const auto& [name, value] : *shape) {
-      if (!contains(hull_free, name)) continue;
-      values[name] = {value};
-      entries.push_back({plan.cache_key, name, {value}});
-    }
-  }
   for (const Feature& f : report->features) {
     const std::string entry = feature_entry(f.name, f.region, f.image, ask.interpolation);
     values[entry] = f.value;

@@ -38,9 +38,8 @@
 
 namespace soiq::server {
 
-// Bump when a feature's definition or its computation changes results: old cache entries are then
-// never read again.
-inline constexpr int kFeatureDefinitionVersion = 2;  // 2: own exact hull, one-pass area and volume
+// The feature cache's entries carry feature_definitions_version() (core/feature_catalogue.h):
+// bumping any definition there means old entries are never read again.
 
 struct FeatureAsk {
   std::vector<std::string> names;   // validated names (validate_feature_names)

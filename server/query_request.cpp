@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/structure_features.h"
+#include "core/feature_catalogue.h"
+#include "core/regions.h"
 #include "server/grid_choice.h"
 #include "server/proto_records.h"
 
@@ -46,17 +47,10 @@ Result<ParsedRef> parse_ref(const v1::FeatureRef& r, const char* field) {
   ParsedRef p;
   p.name = r.name();
   if (p.name.empty()) return invalid_argument(std::string(field) + ": feature name is empty");
-  const auto& shape = shape_feature_names();
-  const auto& intensity = intensity_feature_names();
-  const bool mask_variant = p.name.rfind("mask_", 0) == 0 && contains(shape, p.name.substr(5));
-  p.intensity = contains(intensity, p.name) && !contains(shape, p.name);
-  if (!p.intensity && !contains(shape, p.name) && !mask_variant) {
-    std::string known;
-    for (const auto& k : shape) known += (known.empty() ? "" : ", ") + k;
-    for (const auto& k : intensity)
-      if (!contains(shape, k)) known += ", " + k;
-    return invalid_argument(std::string(field) + ": unknown feature '" + p.name + "'; known features: " + known);
-  }
+  if (Status known = check_feature_name(p.name); !known.ok())
+    return invalid_argument(std::string(field) + ": " + known.message());
+  // voxel_count with an image is the region's samples on it, without one the structure's voxels.
+  p.intensity = is_intensity_only(p.name) || (find_intensity_feature(p.name) != nullptr && !r.image().empty());
   if (p.intensity) {
     if (r.image().empty())
       return invalid_argument(std::string(field) + ": intensity feature '" + p.name +

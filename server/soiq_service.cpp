@@ -5,6 +5,7 @@
 #include <chrono>
 #include <optional>
 
+#include "core/feature_catalogue.h"
 #include "core/io/write_image.h"
 #include "core/run_length_volume.h"
 #include "core/structure_features.h"
@@ -396,7 +397,17 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
   return handle(__func__, *ctx, [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(db::Counts c, store_.counts());
     response->set_version(SOIQ_VERSION);
-    response->set_feature_definition_version(kFeatureDefinitionVersion);
+    response->set_feature_definition_version(feature_definitions_version());
+    for (const FeatureDef& f : feature_catalogue()) {
+      v1::FeatureInfo* info = response->add_features();
+      info->set_name(std::string(f.name));
+      info->set_family(std::string(family_name(f.family)));
+      info->set_unit(std::string(f.unit));
+      info->set_needs(std::string(feature_needs(f)));
+      info->set_summary(std::string(f.summary));
+      info->set_version(f.version);
+      info->set_components(f.components);
+    }
     response->set_max_upload_bytes(config_.max_upload_bytes);
     response->set_max_grid_voxels(config_.max_grid_voxels);
     response->set_max_concurrent_conversions(config_.workers);

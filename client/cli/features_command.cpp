@@ -7,6 +7,7 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
+#include "client/cli/feature_list_output.h"
 #include "client/cli/feature_report_output.h"
 #include "client/cli/mesh_on_grid.h"
 #include "core/io/read_image.h"
@@ -26,6 +27,7 @@ struct FeaturesArgs {
   std::string format = "table";
   Interpolation interpolation = Interpolation::kNearest;
   bool ibsi = false;
+  bool list = false;  // --list: print the feature catalogue instead
 };
 
 // "PET=pet.nii.gz" or "pet.nii.gz" (named after the file, without directories and extensions).
@@ -66,9 +68,11 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
       if (from < text.size()) a.names.push_back(text.substr(from));
     } else if (arg == "--format") {
       SOIQ_ASSIGN_OR_RETURN(a.format, value("--format"));
-      if (a.format != "table" && a.format != "json" && a.format != "csv") {
-        return invalid_argument("--format must be table, json or csv");
+      if (a.format != "table" && a.format != "json" && a.format != "csv" && a.format != "markdown") {
+        return invalid_argument("--format must be table, json or csv (or markdown with --list)");
       }
+    } else if (arg == "--list") {
+      a.list = true;
     } else if (arg == "--interpolation") {
       SOIQ_ASSIGN_OR_RETURN(std::string text, value("--interpolation"));
       if (text != "nearest" && text != "linear") return invalid_argument("--interpolation must be nearest or linear");
@@ -83,6 +87,12 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
       return invalid_argument("unexpected argument '" + arg + "'");
     }
   }
+  if (a.list) {
+    if (!a.input.empty()) return invalid_argument("--list takes no INPUT");
+    if (a.format == "json") return invalid_argument("--list prints table, csv or markdown");
+    return a;
+  }
+  if (a.format == "markdown") return invalid_argument("--format markdown is for --list");
   if (a.input.empty()) return invalid_argument("missing INPUT (a surface model or a mask)");
   SOIQ_RETURN_IF_ERROR(check_mesh_grid_options(a.grid));
   if (a.regions.empty()) a.regions.push_back(RegionSpec{});
@@ -104,6 +114,10 @@ Result<StructureInput> load_structure(const FeaturesArgs& a) {
 }
 
 Status features(const FeaturesArgs& a) {
+  if (a.list) {
+    print_feature_list(catalogue_rows(), a.format);
+    return ok_status();
+  }
   SOIQ_ASSIGN_OR_RETURN(StructureInput structure, load_structure(a));
   std::vector<std::unique_ptr<Image>> images;
   FeatureRequest request;

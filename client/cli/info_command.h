@@ -1,5 +1,6 @@
 #pragma once
-// `soiq info [--format text|json]`: soiqd's version, limits and record counts (GetServerInfo).
+// `soiq info [--format text|json] [--features]`: soiqd's version, limits and record counts
+// (GetServerInfo); --features: the features it computes, as `soiq features --list` prints them.
 
 #include "client/soiq_client.h"
 

@@ -76,6 +76,7 @@ void print_structure(const soiq::v1::Structure& s) {
 void print_server_info(const soiq::v1::ServerInfo& i) {
   line("version", i.version());
   line("feature_definitions", std::to_string(i.feature_definition_version()));
+  line("features", std::to_string(i.features_size()) + " (soiq info --features lists them)");
   line("patients", std::to_string(i.patients()));
   line("studies", std::to_string(i.studies()));
   line("series", std::to_string(i.series()));

@@ -51,4 +51,17 @@ expect 2 "image name 'phantom' is given twice" -- "$soiq" features "$phantom/mas
 [ "$(awk -F, '$1 == "shell:1e+09" && $3 == "voxel_count" { print $4 }' "$tmp/huge.csv")" = 6 ] ||
   fail "shell:1e9 should hold the grid's 6 outside voxels: $(cat "$tmp/huge.csv")"
 
+# The catalogue: docs/FEATURES.md's table is `soiq features --list --format markdown`, so the docs
+# cannot drift from the code; --list names every feature in every format.
+"$soiq" features --list --format markdown >"$tmp/list.md" || fail "features --list --format markdown"
+sed -n '/^| name | family/,/^$/p' "$data/../../docs/FEATURES.md" | sed '/^$/d' >"$tmp/doc.md"
+diff -u "$tmp/doc.md" "$tmp/list.md" >"$tmp/doc.diff" ||
+  fail "docs/FEATURES.md's table differs from 'soiq features --list --format markdown': $(head -20 "$tmp/doc.diff")"
+"$soiq" features --list --format csv >"$tmp/list.csv" || fail "features --list --format csv"
+grep -q '^sphericity,surface,,surface,' "$tmp/list.csv" || fail "features --list csv lacks sphericity: $(cat "$tmp/list.csv")"
+"$soiq" features --list >"$tmp/list.txt" || fail "features --list"
+grep -q '^centre_of_mass_shift_mm ' "$tmp/list.txt" || fail "features --list lacks centre_of_mass_shift_mm"
+expect 2 "--list takes no INPUT" -- "$soiq" features --list "$phantom/mask.nii.gz"
+expect 2 "unknown feature 'mask_voxel_count'" -- "$soiq" features "$phantom/mask.nii.gz" --features mask_voxel_count
+
 finish features_test

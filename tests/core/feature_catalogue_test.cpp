@@ -1,0 +1,151 @@
+// The feature catalogue: one entry per name and family, each readable from its family's record
+// with the number of values it declares; names checked in one place (mask_ only for surface
+// features); and the convex hull computed only for the features that read it, the others
+// unchanged bit for bit when it is skipped.
+#include "core/feature_catalogue.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "core/grid_around.h"
+#include "core/io/marching_cubes_cases.h"
+#include "core/mask_surface_shape.h"
+#include "core/mask_surface_sweep.h"
+#include "core/primitives.h"
+#include "core/structure_features.h"
+#include "core/voxelize_1d.h"
+
+namespace soiq {
+namespace {
+
+TEST(FeatureCatalogue, NamesAreUniqueWithinAFamilyAndOnlyVoxelCountIsInTwo) {
+  std::set<std::pair<int, std::string>> seen;
+  std::map<std::string, int> families;
+  for (const FeatureDef& f : feature_catalogue()) {
+    EXPECT_TRUE(seen.insert({int(f.family), std::string(f.name)}).second) << f.name;
+    ++families[std::string(f.name)];
+  }
+  for (const auto& [name, count] : families) EXPECT_EQ(count, name == "voxel_count" ? 2 : 1) << name;
+}
+
+TEST(FeatureCatalogue, EveryFeatureReadsItsRecordWithTheDeclaredNumberOfValues) {
+  const VolumeShape volume;
+  const SurfaceShape surface;
+  const Maximum2DDiameters d2;
+  const IntensityFeatures intensity;
+  const double shift = 0.5;
+  const FeatureSources sources{&volume, &surface, &d2, &intensity, &shift};
+  for (const FeatureDef& f : feature_catalogue()) {
+    ASSERT_NE(f.value, nullptr) << f.name;
+    EXPECT_EQ(f.value(sources).size(), size_t(f.components)) << f.name;
+    EXPECT_FALSE(f.summary.empty()) << f.name;
+    EXPECT_GE(f.version, 1) << f.name;
+    EXPECT_FALSE(feature_needs(f).empty()) << f.name;
+    EXPECT_TRUE(f.family == FeatureFamily::kSurface || !f.needs_hull) << f.name << ": only surfaces have a hull";
+  }
+  EXPECT_GE(feature_definitions_version(), 2);
+}
+
+TEST(FeatureCatalogue, NamesAreCheckedInOnePlace) {
+  EXPECT_TRUE(check_feature_name("sphericity").ok());
+  EXPECT_TRUE(check_feature_name("mean").ok());
+  EXPECT_TRUE(check_feature_name("voxel_count").ok());
+  EXPECT_TRUE(check_feature_name("mask_sphericity").ok());
+  EXPECT_TRUE(check_feature_name("mask_maximum_3d_diameter_mm").ok());
+  for (const char* bad : {"mask_voxel_count", "mask_mean", "mask_mask_sphericity", "sphericty", "", "where[0]"}) {
+    const Status s = check_feature_name(bad);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << bad;
+    EXPECT_NE(s.message().find("unknown feature '" + std::string(bad) + "'"), std::string::npos) << s.message();
+    EXPECT_NE(s.message().find("sphericity"), std::string::npos) << s.message();
+  }
+  EXPECT_TRUE(is_intensity_only("mean"));
+  EXPECT_FALSE(is_intensity_only("voxel_count"));
+  EXPECT_FALSE(is_intensity_only("sphericity"));
+  EXPECT_EQ(mask_feature("mask_sphericity"), find_feature(FeatureFamily::kSurface, "sphericity"));
+  EXPECT_EQ(mask_feature("mask_voxel_count"), nullptr);
+  EXPECT_EQ(known_feature_names().find("where"), std::string::npos);
+}
+
+// Bitwise equal doubles, NaN-aware.
+void expect_same_hull_free(const SurfaceShape& a, const SurfaceShape& b) {
+  EXPECT_EQ(a.mesh_volume_mm3, b.mesh_volume_mm3);
+  EXPECT_EQ(a.surface_area_mm2, b.surface_area_mm2);
+  EXPECT_EQ(a.surface_volume_ratio, b.surface_volume_ratio);
+  EXPECT_EQ(a.sphericity, b.sphericity);
+  EXPECT_EQ(a.compactness_1, b.compactness_1);
+  EXPECT_EQ(a.compactness_2, b.compactness_2);
+  EXPECT_EQ(a.spherical_disproportion, b.spherical_disproportion);
+  EXPECT_EQ(a.asphericity, b.asphericity);
+  EXPECT_EQ(a.volume_density_aabb, b.volume_density_aabb);
+  EXPECT_EQ(a.area_density_aabb, b.area_density_aabb);
+}
+
+void expect_hull_skipped(const SurfaceShape& s) {
+  EXPECT_TRUE(std::isnan(s.maximum_3d_diameter_mm));
+  EXPECT_TRUE(std::isnan(s.volume_density_convex_hull));
+  EXPECT_TRUE(std::isnan(s.area_density_convex_hull));
+  EXPECT_TRUE(std::isnan(s.convex_hull_volume_mm3));
+}
+
+TEST(FeatureCatalogue, SkippingTheHullChangesNoOtherValue) {
+  const TriangleMesh mesh = uv_sphere({1.5, -2, 3}, 9.7, 14, 27);
+  const auto full = surface_shape(mesh, identity3(), HullPart::kCompute);
+  const auto lean = surface_shape(mesh, identity3(), HullPart::kSkip);
+  ASSERT_TRUE(full.ok() && lean.ok());
+  expect_same_hull_free(*full, *lean);
+  expect_hull_skipped(*lean);
+  EXPECT_FALSE(std::isnan(full->maximum_3d_diameter_mm));
+
+  const auto grid = grid_around(mesh, {0.7, 0.7, 0.7}, 2);
+  ASSERT_TRUE(grid.ok());
+  const auto v = voxelize_1d(mesh, *grid);
+  ASSERT_TRUE(v.ok());
+  const auto sweep = mask_surface_sweep(v->volume);
+  ASSERT_TRUE(sweep.ok());
+  const auto mask_full = mask_surface_shape(*sweep, *grid, marching_cubes_cases(), HullPart::kCompute);
+  const auto mask_lean = mask_surface_shape(*sweep, *grid, marching_cubes_cases(), HullPart::kSkip);
+  ASSERT_TRUE(mask_full.ok() && mask_lean.ok());
+  expect_same_hull_free(*mask_full, *mask_lean);
+  expect_hull_skipped(*mask_lean);
+}
+
+TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsked) {
+  const TriangleMesh mesh = uv_sphere({0, 0, 0}, 8, 12, 24);
+  const auto grid = grid_around(mesh, {1, 1, 1}, 2);
+  ASSERT_TRUE(grid.ok());
+  const auto v = voxelize_1d(mesh, *grid);
+  ASSERT_TRUE(v.ok());
+  const auto all = structure_features({v->volume, mesh}, FeatureRequest{});
+  ASSERT_TRUE(all.ok()) << all.status().to_string();
+  // Shape features come in catalogue order, the stored surface's before the mask's.
+  std::vector<std::string> expected;
+  for (const FeatureDef& f : feature_catalogue())
+    if (f.family != FeatureFamily::kIntensity && f.family != FeatureFamily::kDiameter2d) expected.emplace_back(f.name);
+  for (const FeatureDef& f : feature_catalogue())
+    if (f.family == FeatureFamily::kSurface) expected.push_back(std::string(kMaskPrefix) + std::string(f.name));
+  for (const FeatureDef& f : feature_catalogue())
+    if (f.family == FeatureFamily::kDiameter2d) expected.emplace_back(f.name);
+  std::vector<std::string> got;
+  for (const Feature& f : all->features) got.push_back(f.name);
+  EXPECT_EQ(got, expected);
+
+  FeatureRequest lean;
+  lean.names = {"sphericity", "mask_surface_area_mm2"};
+  const auto some = structure_features({v->volume, mesh}, lean);
+  ASSERT_TRUE(some.ok());
+  ASSERT_EQ(some->features.size(), 2u);
+  for (const Feature& f : some->features) {
+    const auto same =
+        std::find_if(all->features.begin(), all->features.end(), [&](const Feature& g) { return g.name == f.name; });
+    ASSERT_NE(same, all->features.end());
+    EXPECT_EQ(f.value, same->value) << f.name;  // bitwise, with or without the hull
+  }
+}
+
+}  // namespace
+}  // namespace soiq
