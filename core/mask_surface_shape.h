@@ -5,7 +5,7 @@
 //
 // Inputs   sweep  mask_surface_sweep(volume) of the structure, not empty.
 //          grid   the structure's grid (volume.geometry).
-//          cases  the marching-cubes implementation's case table (marching_cubes_cases() for
+//          cases  the marching-cubes implementation's case table (marching_cubes_table() for
 //                 soiq's marching_cubes).
 // Output   the SurfaceShape surface_shape(marching_cubes(mask), grid.direction) gives, to rounding:
 //            volume  sum over cubes of the signed tetrahedra of their case's triangles: per case

@@ -8,7 +8,7 @@
 #include "core/centre_of_mass_shift.h"
 #include "core/feature_catalogue.h"
 #include "core/intensity_features.h"
-#include "core/io/marching_cubes_cases.h"
+#include "core/marching_cubes_table.h"
 #include "core/mask_maximum_2d_diameters.h"
 #include "core/mask_surface_shape.h"
 #include "core/mask_surface_sweep.h"
@@ -103,7 +103,7 @@ Status mask_surface_section(const Ask& ask, const std::optional<std::string>& pr
                         timer.run("mask surface sweep", [&] { return mask_surface_sweep(ask.input.volume); }));
   if (prefix) {
     SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("mask surface shape", [&] {
-      return mask_surface_shape(sweep, grid, marching_cubes_cases(), ask.hull_part(*prefix));
+      return mask_surface_shape(sweep, grid, marching_cubes_table(), ask.hull_part(*prefix));
     }));
     FeatureSources sources;
     sources.surface = &s;

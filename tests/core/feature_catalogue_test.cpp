@@ -13,7 +13,7 @@
 #include <string>
 
 #include "core/grid_around.h"
-#include "core/io/marching_cubes_cases.h"
+#include "core/marching_cubes_table.h"
 #include "core/mask_surface_shape.h"
 #include "core/mask_surface_sweep.h"
 #include "core/primitives.h"
@@ -107,8 +107,8 @@ TEST(FeatureCatalogue, SkippingTheHullChangesNoOtherValue) {
   ASSERT_TRUE(v.ok());
   const auto sweep = mask_surface_sweep(v->volume);
   ASSERT_TRUE(sweep.ok());
-  const auto mask_full = mask_surface_shape(*sweep, *grid, marching_cubes_cases(), HullPart::kCompute);
-  const auto mask_lean = mask_surface_shape(*sweep, *grid, marching_cubes_cases(), HullPart::kSkip);
+  const auto mask_full = mask_surface_shape(*sweep, *grid, marching_cubes_table(), HullPart::kCompute);
+  const auto mask_lean = mask_surface_shape(*sweep, *grid, marching_cubes_table(), HullPart::kSkip);
   ASSERT_TRUE(mask_full.ok() && mask_lean.ok());
   expect_same_hull_free(*mask_full, *mask_lean);
   expect_hull_skipped(*mask_lean);

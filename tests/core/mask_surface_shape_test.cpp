@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/io/marching_cubes.h"
-#include "core/io/marching_cubes_cases.h"
 #include "core/io/read_image.h"
+#include "core/marching_cubes_table.h"
 #include "core/mask_maximum_2d_diameters.h"
 #include "core/maximum_2d_diameters.h"
 
@@ -36,7 +36,7 @@ void expect_matches_marching_cubes(const Mask& mask, int trial) {
   ASSERT_TRUE(want_2d.ok());
   const auto sweep = mask_surface_sweep(from_mask(mask));
   ASSERT_TRUE(sweep.ok()) << sweep.status().to_string();
-  const auto got = mask_surface_shape(*sweep, mask.geometry, marching_cubes_cases());
+  const auto got = mask_surface_shape(*sweep, mask.geometry, marching_cubes_table());
   ASSERT_TRUE(got.ok()) << got.status().to_string();
   const auto got_2d = mask_maximum_2d_diameters(*sweep, mask.geometry.spacing_mm);
   ASSERT_TRUE(got_2d.ok());
@@ -100,7 +100,7 @@ TEST(MaskSurfaceShape, PyRadiomicsBrain1FromRuns) {
   expect_matches_marching_cubes(mask, -2);
   const auto sweep = mask_surface_sweep(from_mask(mask));
   ASSERT_TRUE(sweep.ok());
-  const auto s = mask_surface_shape(*sweep, mask.geometry, marching_cubes_cases());
+  const auto s = mask_surface_shape(*sweep, mask.geometry, marching_cubes_table());
   const auto d = mask_maximum_2d_diameters(*sweep, mask.geometry.spacing_mm);
   ASSERT_TRUE(s.ok() && d.ok());
   // REFERENCE_VALUES.md: vertex-position features to 1e-9 relative.
@@ -119,7 +119,7 @@ TEST(MaskSurfaceShape, EmptyMaskIsInvalidArgument) {
   const auto sweep = mask_surface_sweep(empty_volume(g));
   ASSERT_TRUE(sweep.ok());
   EXPECT_TRUE(sweep->empty);
-  const auto s = mask_surface_shape(*sweep, g, marching_cubes_cases());
+  const auto s = mask_surface_shape(*sweep, g, marching_cubes_table());
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(s.status().message().find("empty mask"), std::string::npos);

@@ -1,10 +1,13 @@
 // The case table read off VTK in one run over all 256 patterns equals VTK's answer for each
-// pattern run alone, triangle for triangle and winding included.
+// pattern run alone, triangle for triangle and winding included; and the table committed as data
+// (core/marching_cubes_table.cpp, which the features use) is the installed VTK's.
 #include "core/io/marching_cubes_cases.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+
+#include "core/marching_cubes_table.h"
 
 namespace soiq {
 namespace {
@@ -25,6 +28,15 @@ TEST(MarchingCubesCases, OneRunOverAllPatternsEqualsEachPatternAlone) {
   EXPECT_TRUE(oracle.triangles[255].empty());
   EXPECT_EQ(oracle.triangles[1].size(), 1u);  // one corner inside: one triangle
   EXPECT_GT(triangles, 256u);
+}
+
+TEST(MarchingCubesCases, TheCommittedTableIsTheInstalledVtksTriangleForTriangle) {
+  const CubeCaseTable& vtk = marching_cubes_cases();
+  const CubeCaseTable& committed = marching_cubes_table();
+  for (size_t p = 0; p < 256; ++p) {
+    EXPECT_EQ(committed.triangles[p], vtk.triangles[p])
+        << "pattern " << p << ": regenerate core/marching_cubes_table.cpp (tools/make_marching_cubes_table.cpp)";
+  }
 }
 
 }  // namespace
