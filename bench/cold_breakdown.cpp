@@ -4,13 +4,13 @@
 #include <map>
 #include <memory>
 
-#include "core/intensity_features.h"
-#include "core/mesh_defects.h"
-#include "core/regions.h"
-#include "core/resample.h"
-#include "core/structure_features.h"
-#include "core/surface_shape.h"
-#include "core/voxelize_1d.h"
+#include "core/features/intensity_features.h"
+#include "core/features/structure_features.h"
+#include "core/features/surface_shape.h"
+#include "core/geometry/mesh_defects.h"
+#include "core/regions/regions.h"
+#include "core/regions/resample.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "db/image_blob.h"
 #include "db/sqlite_store.h"
 #include "db/surface_blob.h"

@@ -4,10 +4,10 @@
 
 #include "bench/peer_itk.h"
 #include "bench/peers_vtk.h"
+#include "core/base/run_length_volume.h"
 #include "core/reference/voxelize_2d_contours.h"
 #include "core/reference/voxelize_3d_raycast.h"
-#include "core/run_length_volume.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq::bench {
 

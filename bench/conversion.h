@@ -7,10 +7,10 @@
 #include <functional>
 #include <string>
 
-#include "core/image.h"
-#include "core/image_geometry.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq::bench {
 

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "bench/simulated_models.h"
+#include "core/features/structure_features.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/structure_features.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq::bench {
 

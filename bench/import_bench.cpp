@@ -14,8 +14,8 @@
 
 #include "bench/soiqd_child.h"
 #include "client/soiq_client.h"
-#include "core/fill_contours.h"
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
+#include "core/voxelize/fill_contours.h"
 #include "dicom/convert_rt_struct.h"
 #include "dicom/import_dicom.h"
 #include "dicom/read_rt_struct.h"

@@ -10,7 +10,7 @@
 //                reads and streams the files, soiqd imports and stores them in one transaction
 //                (runs after the first re-import the same files, updating in place)
 // Then one row per RT Structure Set ROI: its contours, grid, voxels, the even-odd contour fill
-// (core/fill_contours, the 1D line filler) alone and with the marching-cubes surface
+// (core/voxelize/fill_contours, the 1D line filler) alone and with the marching-cubes surface
 // (dicom::convert_rt_struct), best of N. Prints two markdown tables.
 
 #include "bench/cli_args.h"

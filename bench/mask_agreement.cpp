@@ -1,6 +1,6 @@
 #include "bench/mask_agreement.h"
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 
 namespace soiq::bench {
 

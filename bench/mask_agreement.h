@@ -4,8 +4,8 @@
 
 #include <cstdint>
 
-#include "core/image.h"
-#include "core/status.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 
 namespace soiq::bench {
 

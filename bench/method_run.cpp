@@ -42,7 +42,7 @@ std::vector<Result<MethodRun>> run_methods_interleaved(const std::vector<MethodS
       if (!conversions[m].ok() || !failure[m].ok() || spent[m] >= budget_ms) continue;
       last[m] = Mask{};  // release the previous result outside the timed region
       // A multi-threaded run first makes one untimed call, unpinned: it wakes core's pool worker
-      // (created by the first such call, bound to another CPU than pin_cpu; core/run_tasks.h), as
+      // (created by the first such call, bound to another CPU than pin_cpu; core/base/run_tasks.h), as
       // in a server converting structure after structure. Then its calling thread is pinned too,
       // so caller and worker never share a core (unpinned, the scheduler sometimes left the caller
       // on the worker's CPU for a whole row: 1.2-1.5x instead of 1.9x).

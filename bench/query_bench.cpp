@@ -16,7 +16,7 @@
 #include "bench/query_load.h"
 #include "bench/soiqd_child.h"
 #include "client/soiq_client.h"
-#include "core/mesh_defects.h"
+#include "core/geometry/mesh_defects.h"
 #include "db/sqlite_store.h"
 
 namespace soiq::bench {
@@ -350,7 +350,7 @@ Status run(const Options& o) {
       "Cohort: %d patients (sex F/M ~50/50, born 1930-2005, one study 2010-2025, MR 50 %% / CT 35 %% / PT 15 %%);\n"
       "stage 1 (F, MR, study 2020-2023, age at study 60-75) keeps exactly %lld of them: %zu structures\n"
       "(hippocampus, amygdala, caudate, putamen, thalamus, L and R; deformed ellipsoids of %lld-%lld triangles,\n"
-      "checked closed with core/mesh_defects), each study with a %lldx%lldx%lld MR image of 2 mm. The other\n"
+      "checked closed with core/geometry/mesh_defects), each study with a %lldx%lldx%lld MR image of 2 mm. The other\n"
       "patients have one structure each on %d shared surface blobs. Database: %.0f MiB. soiqd: --workers %d.\n\n",
       o.size.patients, (long long)matched_patients, candidates, (long long)min_t, (long long)max_t,
       (long long)o.size.image_dims[0], (long long)o.size.image_dims[1], (long long)o.size.image_dims[2],

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "db/age_years.h"
 
 namespace soiq::bench {

@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image.h"
+#include "core/base/triangle_mesh.h"
 #include "db/store.h"
 
 namespace soiq::bench {

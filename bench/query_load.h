@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "bench/query_cohort.h"
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::bench {
 

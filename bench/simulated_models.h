@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
+#include "core/base/image.h"
 
 namespace soiq::bench {
 

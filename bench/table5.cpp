@@ -9,9 +9,9 @@
 
 #include "bench/method_run.h"
 #include "bench/simulated_models.h"
+#include "core/geometry/mesh_defects.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/mesh_defects.h"
 
 namespace soiq::bench {
 

@@ -3,10 +3,10 @@
 #include <cstdio>
 
 #include "bench/method_run.h"
-#include "core/grid_around.h"
-#include "core/primitives.h"
-#include "core/run_length_volume.h"
-#include "core/voxelize_1d.h"
+#include "core/base/run_length_volume.h"
+#include "core/geometry/primitives.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq::bench {
 

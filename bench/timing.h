@@ -4,8 +4,8 @@
 // `budget_ms` in total (slow peers on big grids); `runs` in the result says how many were made.
 
 #include "bench/conversion.h"
-#include "core/image.h"
-#include "core/status.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 
 namespace soiq::bench {
 

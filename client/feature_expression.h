@@ -16,7 +16,7 @@
 
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::client {

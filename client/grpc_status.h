@@ -15,7 +15,7 @@
 #include <chrono>
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace grpc {
 class Status;

@@ -13,7 +13,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::client {
 

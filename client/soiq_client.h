@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "client/retry.h"
-#include "core/status.h"
+#include "core/base/status.h"
 #include "soiq/v1/soiq.grpc.pb.h"
 
 namespace soiq::client {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::db {
 

@@ -2,7 +2,7 @@
 // The versioned schema of the SQLite store: PRAGMA user_version is the number of migration steps
 // applied; steps only go forward, each in its own transaction (schema_migrations.cpp lists them).
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "db/sqlite_connection.h"
 
 namespace soiq::db {

@@ -13,8 +13,8 @@
 
 #include <string>
 
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 #include "db/store.h"
 
 namespace soiq::db {

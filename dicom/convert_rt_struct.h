@@ -4,9 +4,9 @@
 //
 // Inputs   rs: from read_rt_struct; grid: the geometry of the referenced image series
 //          (read_image_series), any orientation (oblique series included: contours are mapped
-//          into its continuous index space by core/fill_contours).
+//          into its continuous index space by core/voxelize/fill_contours).
 // Output   One ImportedStructure per ROI with at least one CLOSED_PLANAR contour, in file order:
-//          volume = core/fill_contours with the even-odd rule (a voxel is inside iff its centre
+//          volume = core/voxelize/fill_contours with the even-odd rule (a voxel is inside iff its centre
 //          is inside an odd number of the ROI's contours on its slice: holes and inner contours
 //          subtract whatever their orientation, keyhole contours keep their hole);
 //          surface = core/io marching_cubes of that volume (cropped to its bounding box, which
@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/run_length_volume.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image_geometry.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 #include "dicom/read_rt_struct.h"
 
 namespace soiq::dicom {

@@ -11,7 +11,7 @@
 //          fails (corrupt stream), with DCMTK's reason.
 // Cost     O(pixels). Thread-safe: the decoders are registered once, process-wide.
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/dcmtk_file.h"
 
 namespace soiq::dicom {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/convert_rt_struct.h"
 #include "dicom/read_image_series.h"
 #include "dicom/records.h"

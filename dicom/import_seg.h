@@ -26,7 +26,7 @@
 
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/import_dicom.h"
 
 namespace soiq::dicom {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/import_dicom.h"
 
 namespace soiq::dicom {

@@ -10,7 +10,7 @@
 // Cost     one association; at most about 3 x timeout_seconds when the PACS stalls. Thread-safe
 //          (one DcmSCU per call).
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_peer.h"
 
 namespace soiq::dicom {

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_peer.h"
 
 namespace soiq::dicom {

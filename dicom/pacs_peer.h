@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::dicom {
 

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "core/fill_contours.h"
-#include "core/status.h"
+#include "core/base/status.h"
+#include "core/voxelize/fill_contours.h"
 
 namespace soiq::dicom {
 

@@ -38,9 +38,9 @@
 #include <string>
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/run_length_volume.h"
-#include "core/status.h"
+#include "core/base/image_geometry.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/status.h"
 
 namespace soiq::dicom {
 

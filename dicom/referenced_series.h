@@ -17,7 +17,7 @@
 
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/read_rt_struct.h"
 #include "dicom/records.h"
 

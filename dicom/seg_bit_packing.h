@@ -26,7 +26,7 @@
 #include <span>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::dicom {
 

@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/status.h"
-#include "core/vec3.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
+#include "core/base/vec3.h"
 
 namespace soiq::dicom {
 

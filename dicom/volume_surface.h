@@ -9,9 +9,9 @@
 // Errors   marching_cubes' (INTERNAL when VTK fails).
 // Cost     O(lines of v's grid + voxels of its bounding box). Thread-safe.
 
-#include "core/run_length_volume.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq::dicom {
 

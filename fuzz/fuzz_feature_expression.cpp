@@ -1,6 +1,6 @@
 // Feeds each input, as text, to the query expression parsers: parse_feature and parse_predicate
 // (client/feature_expression.h; `soiq query --where/--select/--order-by`) and parse_region
-// (core/regions.h; the region of every feature a query names, which soiqd parses from the request).
+// (core/regions/regions.h; the region of every feature a query names, which soiqd parses from the request).
 // A bug is any crash or sanitizer report, a run over -timeout, or a broken round trip: a feature
 // parse_feature accepts must come back from feature_text as text parse_feature reads to the same
 // feature, and a region parse_region accepts likewise through region_name.
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "client/feature_expression.h"
-#include "core/regions.h"
+#include "core/regions/regions.h"
 #include "fuzz/require.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

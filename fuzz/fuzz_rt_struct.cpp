@@ -15,7 +15,7 @@
 #include <set>
 #include <string_view>
 
-#include "core/image_geometry.h"
+#include "core/base/image_geometry.h"
 #include "dicom/convert_rt_struct.h"
 #include "dicom/read_rt_struct.h"
 #include "fuzz/dicom_quiet.h"

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/image_geometry.h"
+#include "core/base/image_geometry.h"
 #include "dicom/read_seg.h"
 #include "fuzz/dicom_quiet.h"
 #include "fuzz/require.h"

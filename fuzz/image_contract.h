@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "core/image.h"
+#include "core/base/image.h"
 #include "core/io/image_decode_limits.h"
 #include "fuzz/require.h"
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/triangle_mesh.h"
+#include "core/base/triangle_mesh.h"
 #include "fuzz/require.h"
 
 namespace soiq::fuzz {

@@ -4,7 +4,7 @@
 #include <map>
 #include <optional>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 #include "db/validate_records.h"

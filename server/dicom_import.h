@@ -44,7 +44,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "db/store.h"
 #include "server/memory_budget.h"
 #include "soiq/v1/soiq.pb.h"

@@ -4,9 +4,9 @@
 #include <chrono>
 #include <cstdint>
 
-#include "core/feature_catalogue.h"
-#include "core/memory_estimate.h"
-#include "core/structure_features.h"
+#include "core/features/feature_catalogue.h"
+#include "core/features/structure_features.h"
+#include "core/voxelize/memory_estimate.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 

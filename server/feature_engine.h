@@ -23,14 +23,14 @@
 #include <string>
 #include <vector>
 
-#include "core/fill_rule.h"
-#include "core/image.h"
-#include "core/memory_estimate.h"
-#include "core/regions.h"
-#include "core/resample.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
-#include "core/voxelize_1d.h"
+#include "core/base/fill_rule.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
+#include "core/regions/regions.h"
+#include "core/regions/resample.h"
+#include "core/voxelize/memory_estimate.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "db/store.h"
 #include "server/grid_choice.h"
 #include "server/lru_cache.h"
@@ -38,7 +38,7 @@
 
 namespace soiq::server {
 
-// The feature cache's entries carry feature_definitions_version() (core/feature_catalogue.h):
+// The feature cache's entries carry feature_definitions_version() (core/features/feature_catalogue.h):
 // bumping any definition there means old entries are never read again.
 
 struct FeatureAsk {

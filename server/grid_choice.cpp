@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/grid_around.h"
+#include "core/voxelize/grid_around.h"
 
 namespace soiq::server {
 namespace {

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/status.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
 #include "db/store.h"
 #include "soiq/v1/soiq.pb.h"
 

@@ -16,7 +16,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::server {
 

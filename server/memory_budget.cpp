@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/memory_estimate.h"
+#include "core/voxelize/memory_estimate.h"
 
 namespace soiq::server {
 

@@ -1,6 +1,6 @@
 #pragma once
 // One server-wide budget of bytes. Every conversion, feature computation, image upload and DICOM
-// import estimates its peak bytes first (core/memory_estimate.h, server/dicom_import_bytes.h) and
+// import estimates its peak bytes first (core/voxelize/memory_estimate.h, server/dicom_import_bytes.h) and
 // reserves them here before it allocates: work is admitted by what it will hold, not by how many
 // run, so twelve conversions of a 4e8-voxel grid queue instead of taking the machine down together.
 //
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::server {
 

@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_peer.h"
 
 namespace soiq::server {

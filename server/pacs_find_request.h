@@ -8,7 +8,7 @@
 // level the Patient Root model.
 // to_proto: number_of_instances -1 when the PACS did not return it.
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_find.h"
 #include "soiq/v1/soiq.pb.h"
 

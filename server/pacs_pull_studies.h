@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_peer.h"
 #include "soiq/v1/soiq.pb.h"
 

@@ -2,8 +2,8 @@
 // Conversions between the store's records (db/store.h) and the API's messages (soiq.proto), in
 // one place so every handler speaks the same dialect.
 
-#include "core/image_geometry.h"
-#include "core/status.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
 #include "db/store.h"
 #include "soiq/v1/soiq.pb.h"
 

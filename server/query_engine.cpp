@@ -11,7 +11,7 @@
 #include <optional>
 #include <set>
 
-#include "core/asymmetry_index.h"
+#include "core/features/asymmetry_index.h"
 #include "server/proto_records.h"
 #include "server/query_request.h"
 

@@ -21,7 +21,7 @@
 
 #include <functional>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "db/store.h"
 #include "server/feature_engine.h"
 #include "server/worker_pool.h"

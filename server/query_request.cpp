@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/feature_catalogue.h"
-#include "core/regions.h"
+#include "core/features/feature_catalogue.h"
+#include "core/regions/regions.h"
 #include "server/grid_choice.h"
 #include "server/proto_records.h"
 

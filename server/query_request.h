@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/regions.h"
-#include "core/status.h"
+#include "core/base/status.h"
+#include "core/regions/regions.h"
 #include "db/store.h"
 #include "server/feature_engine.h"
 #include "soiq/v1/soiq.pb.h"

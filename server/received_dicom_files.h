@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {

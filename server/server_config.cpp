@@ -4,7 +4,7 @@
 #include <charconv>
 #include <thread>
 
-#include "core/memory_estimate.h"
+#include "core/voxelize/memory_estimate.h"
 #include "server/pacs_address.h"
 
 namespace soiq::server {

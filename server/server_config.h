@@ -27,7 +27,7 @@
 #include <optional>
 #include <string>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "dicom/pacs_peer.h"
 
 namespace soiq::server {

@@ -5,10 +5,10 @@
 #include <chrono>
 #include <optional>
 
-#include "core/feature_catalogue.h"
+#include "core/base/run_length_volume.h"
+#include "core/features/feature_catalogue.h"
+#include "core/features/structure_features.h"
 #include "core/io/write_image.h"
-#include "core/run_length_volume.h"
-#include "core/structure_features.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 #include "db/validate_records.h"

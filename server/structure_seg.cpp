@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "core/image_geometry.h"
+#include "core/base/image_geometry.h"
 
 namespace soiq::server {
 namespace {

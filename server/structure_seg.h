@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "db/store.h"
 #include "dicom/seg_export.h"
 #include "server/feature_engine.h"

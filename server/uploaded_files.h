@@ -15,11 +15,11 @@
 
 #include <string>
 
-#include "core/image.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
+#include "core/geometry/mesh_defects.h"
 #include "core/io/image_decode_limits.h"
-#include "core/mesh_defects.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
 
 namespace soiq::server {
 

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "client/cli/exit_code.h"
-#include "core/status.h"
-#include "core/vec3.h"
+#include "core/base/status.h"
+#include "core/base/vec3.h"
 
 namespace soiq::cli {
 

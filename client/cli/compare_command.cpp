@@ -5,8 +5,8 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
+#include "core/base/run_length_volume.h"
 #include "core/io/read_image.h"
-#include "core/run_length_volume.h"
 
 namespace soiq::cli {
 

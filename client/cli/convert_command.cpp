@@ -7,7 +7,7 @@
 #include "client/cli/exit_code.h"
 #include "client/cli/mesh_on_grid.h"
 #include "core/io/write_image.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq::cli {
 

@@ -5,7 +5,7 @@
 //   FAILED_PRECONDITION; 5 RESOURCE_EXHAUSTED; 6 UNAVAILABLE, DEADLINE_EXCEEDED or CANCELLED;
 //   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code.
 
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::cli {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/feature_catalogue.h"
+#include "core/features/feature_catalogue.h"
 
 namespace soiq::cli {
 

@@ -15,7 +15,7 @@ struct FeatureListRow {
   int version = 1;
 };
 
-// core/feature_catalogue.h, in report order.
+// core/features/feature_catalogue.h, in report order.
 std::vector<FeatureListRow> catalogue_rows();
 // What a soiqd reports in ServerInfo.features.
 std::vector<FeatureListRow> server_rows(const soiq::v1::ServerInfo& info);

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "core/structure_features.h"
+#include "core/features/structure_features.h"
 
 namespace soiq::cli {
 

@@ -10,8 +10,8 @@
 #include "client/cli/feature_list_output.h"
 #include "client/cli/feature_report_output.h"
 #include "client/cli/mesh_on_grid.h"
+#include "core/features/structure_features.h"
 #include "core/io/read_image.h"
-#include "core/structure_features.h"
 
 namespace soiq::cli {
 

@@ -5,7 +5,7 @@
 // the features of one structure, offline. INPUT is a surface model (.stl .obj .ply .vtk .vtp,
 // converted by the 1D method on --reference's grid or at --spacing, default 1 mm) or a mask.
 // `soiq features --list [--format table|csv|markdown]`: every feature soiq computes, with unit,
-// needs and definition (core/feature_catalogue.h; docs/FEATURES.md is its markdown).
+// needs and definition (core/features/feature_catalogue.h; docs/FEATURES.md is its markdown).
 
 namespace soiq::cli {
 

@@ -5,7 +5,7 @@
 //   --series-modality M                  the series of the structure's study with modality M
 // None given: the server's default (1 mm, margin 2).
 
-#include "core/status.h"
+#include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::cli {

@@ -7,10 +7,10 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
+#include "core/geometry/mesh_defects.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
 #include "core/io/write_mesh.h"
-#include "core/mesh_defects.h"
 
 namespace soiq::cli {
 namespace {

@@ -5,10 +5,10 @@
 #include <cstdlib>
 
 #include "client/cli/cli_args.h"
-#include "core/grid_around.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/memory_estimate.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/memory_estimate.h"
 
 namespace soiq::cli {
 

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "core/image_geometry.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
-#include "core/voxelize_1d.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq::cli {
 

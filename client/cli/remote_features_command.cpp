@@ -10,7 +10,7 @@
 #include "client/cli/grid_args.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
-#include "core/regions.h"
+#include "core/regions/regions.h"
 
 namespace soiq::cli {
 

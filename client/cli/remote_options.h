@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "client/soiq_client.h"
-#include "core/status.h"
+#include "core/base/status.h"
 
 namespace soiq::cli {
 

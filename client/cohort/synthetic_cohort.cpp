@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 
 namespace soiq {
 

@@ -15,15 +15,15 @@
 //   and R, as ellipsoids of plausible size (hippocampus ~3.5 cm3, amygdala ~1.5 cm3, caudate
 //   ~4 cm3), slightly deformed, placed mirror-symmetric with a few % of random asymmetry; the
 //   hippocampus shrinks with age (about 0.4 % a year after 60), so queries find a trend.
-// Meshes are closed and outward (core/primitives.h), about 1,000 triangles each.
+// Meshes are closed and outward (core/geometry/primitives.h), about 1,000 triangles each.
 // Cost: O(patients x (image voxels + triangles)); about 200k voxels per patient. Thread-safe.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq {
 

@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/image_geometry.h"
-#include "core/status.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
 
 namespace soiq {
 

@@ -11,8 +11,8 @@
 #include <cstring>
 #include <limits>
 
+#include "core/geometry/mesh_defects.h"
 #include "core/io/vtk_messages.h"
-#include "core/mesh_defects.h"
 
 namespace soiq {
 

@@ -7,9 +7,9 @@
 // Errors: INVALID_ARGUMENT on an invalid geometry or a voxel buffer of the wrong size.
 // An empty mask gives an empty mesh.
 
-#include "core/image.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq {
 

@@ -9,7 +9,7 @@
 // Cost     one small VTK run on the first call (a pipeline per pattern took ~10 ms, paid by every
 //          `soiq features` call); then free. Thread-safe (static init).
 
-#include "core/cube_case_table.h"
+#include "core/features/cube_case_table.h"
 
 namespace soiq {
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <string_view>
 
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq {
 

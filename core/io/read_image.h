@@ -10,9 +10,9 @@
 
 #include <string>
 
-#include "core/image.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 #include "core/io/image_decode_limits.h"
-#include "core/status.h"
 
 namespace soiq {
 

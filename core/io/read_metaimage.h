@@ -17,9 +17,9 @@
 #include <optional>
 #include <string>
 
-#include "core/image.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 #include "core/io/image_decode_limits.h"
-#include "core/status.h"
 
 namespace soiq {
 

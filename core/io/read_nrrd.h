@@ -14,9 +14,9 @@
 #include <optional>
 #include <string>
 
-#include "core/image.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 #include "core/io/image_decode_limits.h"
-#include "core/status.h"
 
 namespace soiq {
 

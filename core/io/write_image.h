@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "core/image.h"
-#include "core/status.h"
+#include "core/base/image.h"
+#include "core/base/status.h"
 
 namespace soiq {
 

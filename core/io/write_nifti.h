@@ -11,9 +11,9 @@
 
 #include <string>
 
-#include "core/image_geometry.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
 #include "core/io/voxel_type.h"
-#include "core/status.h"
 
 namespace soiq {
 

@@ -13,10 +13,10 @@
 
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
-#include "core/vec3.h"
+#include "core/base/image_geometry.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
+#include "core/base/vec3.h"
 
 namespace soiq {
 

@@ -11,7 +11,7 @@
 //          INTERNAL          any other Qhull failure. Qhull never prints and never exits.
 // Cost     O(n log n) expected. Thread-safe (one Qhull context per call).
 
-#include "core/convex_hull.h"
+#include "core/geometry/convex_hull.h"
 
 namespace soiq {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 
 namespace soiq {
 

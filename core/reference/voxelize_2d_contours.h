@@ -20,11 +20,11 @@
 // Cost     O(T + segments) per slice for the cut (triangles bucketed by slice) plus
 //          O(voxels x segments per row) for the rays. Single-threaded; thread-safe.
 
-#include "core/fill_rule.h"
-#include "core/image_geometry.h"
-#include "core/run_length_volume.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/fill_rule.h"
+#include "core/base/image_geometry.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq {
 

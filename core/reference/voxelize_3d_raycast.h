@@ -34,11 +34,11 @@
 //   Closedness is not checked: on an open mesh the result is the ray-ahead sum, which need not
 //   match any other method.
 
-#include "core/fill_rule.h"
-#include "core/image_geometry.h"
-#include "core/run_length_volume.h"
-#include "core/status.h"
-#include "core/triangle_mesh.h"
+#include "core/base/fill_rule.h"
+#include "core/base/image_geometry.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/status.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/mesh_defects.h"
+#include "core/geometry/mesh_defects.h"
 
 namespace soiq {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/asymmetry_index.h"
+#include "core/features/asymmetry_index.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Centre of mass shift against hand-computed weighted centroids.
-#include "core/centre_of_mass_shift.h"
+#include "core/features/centre_of_mass_shift.h"
 
 #include <gtest/gtest.h>
 

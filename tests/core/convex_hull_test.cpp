@@ -1,6 +1,6 @@
 // Convex hulls against hand-known polytopes, exact containment and exact corners on random and
 // lattice clouds, Qhull as an independent oracle, and the error paths.
-#include "core/convex_hull.h"
+#include "core/geometry/convex_hull.h"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

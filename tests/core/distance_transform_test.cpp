@@ -1,5 +1,5 @@
 // The separable distance transform against brute force (every pair of centres), exactly.
-#include "core/distance_transform.h"
+#include "core/regions/distance_transform.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // dyadic_lattice_exponent against hand-made sets: the exponent is the least that makes every
 // coordinate an integer, and sets beyond 2^15 after scaling, or off every dyadic lattice, are not
 // lattices.
-#include "core/dyadic_lattice.h"
+#include "core/geometry/dyadic_lattice.h"
 
 #include <gtest/gtest.h>
 

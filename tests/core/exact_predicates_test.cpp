@@ -1,6 +1,6 @@
 // The exact predicates against integer arithmetic: inputs are integers (exact in double), chosen so
 // the double evaluation alone would often get the sign wrong; __int128 gives the true sign.
-#include "core/exact_predicates.h"
+#include "core/geometry/exact_predicates.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // with the number of values it declares; names checked in one place (mask_ only for surface
 // features); and the convex hull computed only for the features that read it, the others
 // unchanged bit for bit when it is skipped.
-#include "core/feature_catalogue.h"
+#include "core/features/feature_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -12,13 +12,13 @@
 #include <set>
 #include <string>
 
-#include "core/grid_around.h"
-#include "core/marching_cubes_table.h"
-#include "core/mask_surface_shape.h"
-#include "core/mask_surface_sweep.h"
-#include "core/primitives.h"
-#include "core/structure_features.h"
-#include "core/voxelize_1d.h"
+#include "core/features/marching_cubes_table.h"
+#include "core/features/mask_surface_shape.h"
+#include "core/features/mask_surface_sweep.h"
+#include "core/features/structure_features.h"
+#include "core/geometry/primitives.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

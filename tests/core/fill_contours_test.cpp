@@ -1,5 +1,5 @@
 // Planar contours (RT Structure Set style) through the shared line filler, against hand counts.
-#include "core/fill_contours.h"
+#include "core/voxelize/fill_contours.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The hull shortlist against brute force: on random clouds (general position, lattices with many
 // coplanar and collinear points, exact duplicates, flat slabs) the shortlist's hull is the whole
 // set's hull, and the farthest pair over it is the all-pairs one.
-#include "core/hull_vertex_candidates.h"
+#include "core/geometry/hull_vertex_candidates.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <random>
 #include <set>
 
-#include "core/convex_hull.h"
+#include "core/geometry/convex_hull.h"
 
 namespace soiq {
 namespace {

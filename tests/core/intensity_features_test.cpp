@@ -1,5 +1,5 @@
 // Intensity statistics against the IBSI-1 digital phantom (REFERENCE_VALUES.md) and hand counts.
-#include "core/intensity_features.h"
+#include "core/features/intensity_features.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/io/read_image.h"
-#include "core/resample.h"
+#include "core/regions/resample.h"
 
 namespace soiq {
 namespace {

@@ -1,5 +1,5 @@
 // The exact lattice hull and the calipers diameter against brute force on random point sets.
-#include "core/lattice_polygon.h"
+#include "core/geometry/lattice_polygon.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // mask_maximum_2d_diameters) against the same features of the marching-cubes mesh they stand for,
 // on random masks (anisotropic, oblique, touching the grid border, many ambiguous cubes), and
 // against PyRadiomics' published brain1 values (REFERENCE_VALUES.md).
-#include "core/mask_surface_shape.h"
+#include "core/features/mask_surface_shape.h"
 
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include <random>
 #include <string>
 
+#include "core/features/marching_cubes_table.h"
+#include "core/features/mask_maximum_2d_diameters.h"
+#include "core/features/maximum_2d_diameters.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
-#include "core/marching_cubes_table.h"
-#include "core/mask_maximum_2d_diameters.h"
-#include "core/maximum_2d_diameters.h"
 
 namespace soiq {
 namespace {

@@ -1,12 +1,12 @@
 // Maximum 2D diameters against hand-measured shapes on axis-aligned and oblique grids.
-#include "core/maximum_2d_diameters.h"
+#include "core/features/maximum_2d_diameters.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/geometry/primitives.h"
 #include "core/io/marching_cubes.h"
-#include "core/primitives.h"
 
 namespace soiq {
 namespace {

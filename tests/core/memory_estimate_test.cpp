@@ -1,13 +1,13 @@
-#include "core/memory_estimate.h"
+#include "core/voxelize/memory_estimate.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "core/grid_around.h"
-#include "core/primitives.h"
-#include "core/voxelize_1d.h"
+#include "core/geometry/primitives.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

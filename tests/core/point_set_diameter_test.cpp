@@ -1,5 +1,5 @@
 // The branch-and-bound diameter against the all-pairs loop it replaces.
-#include "core/point_set_diameter.h"
+#include "core/geometry/point_set_diameter.h"
 
 #include <gtest/gtest.h>
 

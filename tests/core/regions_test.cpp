@@ -1,6 +1,6 @@
 // Regions around and within a structure: shell(r) and core(r) against a brute-force oracle voxel for
 // voxel, against analytic sphere volumes on isotropic and anisotropic grids, and the error paths.
-#include "core/regions.h"
+#include "core/regions/regions.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <random>
 
-#include "core/ball_morphology.h"
-#include "core/primitives.h"
-#include "core/voxelize_1d.h"
+#include "core/geometry/primitives.h"
+#include "core/regions/ball_morphology.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

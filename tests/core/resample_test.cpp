@@ -1,6 +1,6 @@
 // Sampling an image at the voxel centres of a region on another grid: exact on a linear ramp,
 // direct on the same grid, real PET uptake inside a CT-grid tumour, and the error paths.
-#include "core/resample.h"
+#include "core/regions/resample.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "core/intensity_features.h"
+#include "core/features/intensity_features.h"
 #include "core/io/read_image.h"
 
 namespace soiq {

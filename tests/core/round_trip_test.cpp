@@ -8,7 +8,7 @@
 #include "bench/simulated_models.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

@@ -25,13 +25,13 @@
 #include <random>
 #include <string>
 
-#include "core/centre_of_mass_shift.h"
+#include "core/features/centre_of_mass_shift.h"
+#include "core/features/maximum_2d_diameters.h"
+#include "core/features/surface_shape.h"
+#include "core/features/volume_shape.h"
+#include "core/geometry/primitives.h"
 #include "core/io/marching_cubes.h"
-#include "core/maximum_2d_diameters.h"
-#include "core/primitives.h"
-#include "core/surface_shape.h"
-#include "core/volume_shape.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

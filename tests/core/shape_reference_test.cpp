@@ -4,12 +4,12 @@
 
 #include <string>
 
-#include "core/centre_of_mass_shift.h"
+#include "core/features/centre_of_mass_shift.h"
+#include "core/features/maximum_2d_diameters.h"
+#include "core/features/surface_shape.h"
+#include "core/features/volume_shape.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
-#include "core/maximum_2d_diameters.h"
-#include "core/surface_shape.h"
-#include "core/volume_shape.h"
 
 namespace soiq {
 namespace {

@@ -1,16 +1,16 @@
 // The features entry point: what it computes, under which names, from which surface, and each
 // bad request answered clearly. The values themselves are proven part by part (volume_shape,
 // surface_shape, regions, intensity_features tests); here the IBSI phantom checks the wiring.
-#include "core/structure_features.h"
+#include "core/features/structure_features.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <map>
 
+#include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
-#include "core/primitives.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

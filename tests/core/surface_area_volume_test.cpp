@@ -1,15 +1,15 @@
 // Area and volume of hand-measurable solids, far from the origin too; bitwise agreement with
 // surface_shape (the service's hull-free path relies on it); and the error paths.
-#include "core/surface_area_volume.h"
+#include "core/geometry/surface_area_volume.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "core/mesh_defects.h"
-#include "core/primitives.h"
-#include "core/surface_shape.h"
+#include "core/features/surface_shape.h"
+#include "core/geometry/mesh_defects.h"
+#include "core/geometry/primitives.h"
 
 namespace soiq {
 namespace {

@@ -1,12 +1,12 @@
 // Surface shape features of hand-measurable solids and the error paths.
-#include "core/surface_shape.h"
+#include "core/features/surface_shape.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 
 namespace soiq {
 namespace {

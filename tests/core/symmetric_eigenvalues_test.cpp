@@ -1,5 +1,5 @@
 // Eigenvalues of symmetric 3x3 matrices against matrices built from known eigenvalues.
-#include "core/symmetric_eigenvalues.h"
+#include "core/geometry/symmetric_eigenvalues.h"
 
 #include <gtest/gtest.h>
 

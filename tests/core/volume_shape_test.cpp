@@ -1,6 +1,6 @@
 // Volume shape features against hand counts (boxes of voxels have exact moments) and a brute-force
 // evaluation over the dense mask with an oblique grid.
-#include "core/volume_shape.h"
+#include "core/features/volume_shape.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/symmetric_eigenvalues.h"
+#include "core/geometry/symmetric_eigenvalues.h"
 
 namespace soiq {
 namespace {

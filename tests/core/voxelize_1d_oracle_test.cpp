@@ -7,9 +7,9 @@
 #include <random>
 #include <string>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "core/reference/voxelize_3d_raycast.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 namespace soiq {
 namespace {

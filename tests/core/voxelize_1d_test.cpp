@@ -1,12 +1,12 @@
 // The 1D method against hand counts, analytic shapes and its own invariants. Exact comparison with
 // the independent 3D oracle lives in voxelize_1d_oracle_test.cpp.
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 
 namespace soiq {
 namespace {

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "dicom/seg_export.h"
 #include "dicom_test_support.h"
 #include "seg_source_of.h"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "dcmqrscp_process.h"
 #include "dicom/import_dicom.h"
 #include "dicom_test_support.h"

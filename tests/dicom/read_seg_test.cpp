@@ -11,7 +11,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "dicom/seg_export.h"
 #include "dicom_test_support.h"
 #include "seg_test_support.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/vec3.h"
+#include "core/base/vec3.h"
 
 namespace soiq::dicom::testing {
 

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "dicom/import_dicom.h"
 #include "dicom/seg_export.h"
 #include "dicom_test_support.h"

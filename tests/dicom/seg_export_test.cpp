@@ -17,7 +17,7 @@
 #include <memory>
 #include <set>
 
-#include "core/run_length_volume.h"
+#include "core/base/run_length_volume.h"
 #include "dicom/import_dicom.h"
 #include "dicom/read_seg.h"
 #include "dicom_test_support.h"

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image_geometry.h"
-#include "core/run_length_volume.h"
+#include "core/base/image_geometry.h"
+#include "core/base/run_length_volume.h"
 #include "dicom/seg_export.h"
 #include "dicom_test_support.h"
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/base/run_length_volume.h"
 #include "core/io/read_image.h"
-#include "core/run_length_volume.h"
 #include "dicom/import_dicom.h"
 #include "dicom_test_support.h"
 

@@ -1,8 +1,8 @@
 #include "tests/integration/cohort.h"
 
+#include "core/geometry/primitives.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
-#include "core/primitives.h"
 
 namespace soiq::testing {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "core/triangle_mesh.h"
+#include "core/base/image.h"
+#include "core/base/triangle_mesh.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {

@@ -1,8 +1,8 @@
-// Every feature of the catalogue (core/feature_catalogue.h), computed three ways on one structure
+// Every feature of the catalogue (core/features/feature_catalogue.h), computed three ways on one structure
 // and one grid: by soiqd over gRPC, by the library (structure_features), and by the offline CLI
 // (`soiq features --format csv`). The three must agree: the server and the library bit for bit,
 // the CLI to its 10 printed digits. A name the catalogue gains is covered without a change here.
-#include "core/feature_catalogue.h"
+#include "core/features/feature_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "core/features/structure_features.h"
+#include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/primitives.h"
-#include "core/structure_features.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "tests/integration/cohort.h"
 #include "tests/integration/service_fixture.h"
 

@@ -11,7 +11,7 @@
 #include <tuple>
 #include <utility>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <thread>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {

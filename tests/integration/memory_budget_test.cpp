@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/base/run_length_volume.h"
+#include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
-#include "core/primitives.h"
-#include "core/run_length_volume.h"
 #include "dicom/pacs_pull.h"
 #include "dicom/read_seg.h"
 #include "tests/dicom/dcmqrscp_process.h"

@@ -8,13 +8,13 @@
 #include <map>
 #include <thread>
 
-#include "core/asymmetry_index.h"
-#include "core/grid_around.h"
+#include "core/features/asymmetry_index.h"
+#include "core/features/structure_features.h"
+#include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/primitives.h"
-#include "core/structure_features.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "tests/integration/cohort.h"
 
 namespace soiq::testing {

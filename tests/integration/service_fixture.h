@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "client/soiq_client.h"
-#include "core/triangle_mesh.h"
+#include "core/base/triangle_mesh.h"
 #include "tests/integration/soiqd_process.h"
 
 namespace soiq::testing {

@@ -5,12 +5,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/grid_around.h"
+#include "core/base/run_length_volume.h"
+#include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
-#include "core/primitives.h"
-#include "core/run_length_volume.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {

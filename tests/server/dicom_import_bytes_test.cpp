@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "core/image_geometry.h"
+#include "core/base/image_geometry.h"
 
 namespace soiq::server {
 namespace {

@@ -1,13 +1,13 @@
 // The case table read off VTK in one run over all 256 patterns equals VTK's answer for each
 // pattern run alone, triangle for triangle and winding included; and the table committed as data
-// (core/marching_cubes_table.cpp, which the features use) is the installed VTK's.
+// (core/features/marching_cubes_table.cpp, which the features use) is the installed VTK's.
 #include "core/io/marching_cubes_cases.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "core/marching_cubes_table.h"
+#include "core/features/marching_cubes_table.h"
 
 namespace soiq {
 namespace {
@@ -35,7 +35,8 @@ TEST(MarchingCubesCases, TheCommittedTableIsTheInstalledVtksTriangleForTriangle)
   const CubeCaseTable& committed = marching_cubes_table();
   for (size_t p = 0; p < 256; ++p) {
     EXPECT_EQ(committed.triangles[p], vtk.triangles[p])
-        << "pattern " << p << ": regenerate core/marching_cubes_table.cpp (tools/make_marching_cubes_table.cpp)";
+        << "pattern " << p
+        << ": regenerate core/features/marching_cubes_table.cpp (tools/make_marching_cubes_table.cpp)";
   }
 }
 

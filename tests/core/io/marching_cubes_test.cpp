@@ -5,10 +5,10 @@
 #include <cmath>
 #include <string>
 
+#include "core/base/run_length_volume.h"
+#include "core/geometry/mesh_defects.h"
 #include "core/io/read_image.h"
-#include "core/mesh_defects.h"
-#include "core/run_length_volume.h"
-#include "core/voxelize_1d.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "tests/core/io/io_test_files.h"
 
 namespace soiq {

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "core/triangle_mesh.h"
+#include "core/base/triangle_mesh.h"
 
 namespace soiq::testing_io {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh_defects.h"
+#include "core/geometry/mesh_defects.h"
 #include "tests/core/io/io_test_files.h"
 
 namespace soiq {

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/mesh_defects.h"
+#include "core/geometry/primitives.h"
 #include "core/io/write_mesh.h"
-#include "core/mesh_defects.h"
-#include "core/primitives.h"
 #include "tests/core/io/io_test_files.h"
 #include "tests/core/io/mesh_test_shapes.h"
 #include "tests/core/io/vtk_mesh_oracle.h"

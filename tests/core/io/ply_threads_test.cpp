@@ -10,9 +10,9 @@
 #include <thread>
 #include <vector>
 
+#include "core/geometry/primitives.h"
 #include "core/io/read_mesh.h"
 #include "core/io/write_mesh.h"
-#include "core/primitives.h"
 
 namespace soiq {
 namespace {

@@ -18,9 +18,9 @@
 #include <mutex>
 #include <string>
 
+#include "core/base/triangle_mesh.h"
 #include "core/io/file_extension.h"
 #include "core/io/vtk_ply_lock.h"
-#include "core/triangle_mesh.h"
 
 namespace soiq::testing_io {
 

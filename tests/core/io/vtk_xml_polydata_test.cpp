@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/primitives.h"
 #include "core/io/parse_mesh.h"
-#include "core/primitives.h"
 #include "tests/core/io/io_test_files.h"
 #include "tests/core/io/vtk_mesh_oracle.h"
 

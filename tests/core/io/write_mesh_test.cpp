@@ -4,8 +4,8 @@
 
 #include <string>
 
+#include "core/geometry/mesh_defects.h"
 #include "core/io/read_mesh.h"
-#include "core/mesh_defects.h"
 #include "tests/core/io/io_test_files.h"
 #include "tests/core/io/mesh_test_shapes.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 // Small closed meshes built in code for the reference-method tests, and mask helpers. The meshes are independent of
-// core/primitives (so the oracle's tests do not depend on the code under test). Vertices are welded
+// core/geometry/primitives (so the oracle's tests do not depend on the code under test). Vertices are welded
 // by exact coordinate, so shared edges are shared index pairs; every triangle faces outward.
 
 #include <gtest/gtest.h>
@@ -12,10 +12,10 @@
 #include <map>
 #include <vector>
 
-#include "core/image.h"
-#include "core/run_length_volume.h"
-#include "core/triangle_mesh.h"
-#include "core/vec3.h"
+#include "core/base/image.h"
+#include "core/base/run_length_volume.h"
+#include "core/base/triangle_mesh.h"
+#include "core/base/vec3.h"
 
 namespace soiq::test {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/primitives.h"
+#include "core/geometry/primitives.h"
 #include "core/reference/index_space_vertices.h"
 #include "tests/core/reference/reference_test_support.h"
 
@@ -140,7 +140,7 @@ struct TieCase {
 
 void PrintTo(const TieCase& c, std::ostream* os) { *os << c.name; }
 
-// Coarse meshes centred on voxel centres (core/primitives, whose exact vertex bits make the ties):
+// Coarse meshes centred on voxel centres (core/geometry/primitives, whose exact vertex bits make the ties):
 // many lines run through vertices and edges, and several centres lie within 1e-15 of a face,
 // where a floating-point evaluation (even long double) can decide either way.
 std::vector<TieCase> tie_cases() {

@@ -1,0 +1,90 @@
+#include "core/base/image_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace soiq {
+
+Vec3 ImageGeometry::index_to_physical(const Vec3& ijk) const {
+  const Vec3 scaled{ijk[0] * spacing_mm[0], ijk[1] * spacing_mm[1], ijk[2] * spacing_mm[2]};
+  return origin_mm + mul(direction, scaled);
+}
+
+Vec3 ImageGeometry::physical_to_index(const Vec3& p_mm) const {
+  // D is orthonormal (validate_geometry), so its inverse is its transpose.
+  const Vec3 d = p_mm - origin_mm;
+  Vec3 out{};
+  for (int c = 0; c < 3; ++c) {
+    out[c] = (direction[0][c] * d[0] + direction[1][c] * d[1] + direction[2][c] * d[2]) / spacing_mm[c];
+  }
+  return out;
+}
+
+Status validate_geometry(const ImageGeometry& g) {
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(g.origin_mm[a])) return invalid_argument("grid origin is not finite");
+    if (!(g.spacing_mm[a] > 0) || !std::isfinite(g.spacing_mm[a])) {
+      return invalid_argument("grid spacing must be finite and > 0, got " + std::to_string(g.spacing_mm[a]) +
+                              " mm along axis " + std::to_string(a));
+    }
+    if (g.dims[a] < 0) return invalid_argument("grid dimensions must be >= 0");
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(g.direction[r][c])) return invalid_argument("grid direction matrix is not finite");
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    for (int b = a; b < 3; ++b) {
+      double d = 0;
+      for (int r = 0; r < 3; ++r) d += g.direction[r][a] * g.direction[r][b];
+      if (std::abs(d - (a == b ? 1.0 : 0.0)) > 1e-4) {
+        return invalid_argument("grid direction matrix is not orthonormal (columns " + std::to_string(a) + " and " +
+                                std::to_string(b) + " have dot product " + std::to_string(d) + ")");
+      }
+    }
+  }
+  return ok_status();
+}
+
+Status check_grid_size(const ImageGeometry& g, int64_t max_voxels) {
+  // Multiply in double first: three int64 dims can overflow int64.
+  const double n = double(g.dims[0]) * double(g.dims[1]) * double(g.dims[2]);
+  if (n > double(max_voxels)) {
+    char buf[256];
+    std::snprintf(
+        buf, sizeof buf,
+        "grid of %.3g voxels (%s) exceeds the limit of %.3g voxels; use a coarser spacing or a smaller region", n,
+        describe(g).c_str(), double(max_voxels));
+    return resource_exhausted(buf);
+  }
+  return ok_status();
+}
+
+Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b) {
+  if (a.dims != b.dims) return invalid_argument("grids differ in size: " + describe(a) + " vs " + describe(b));
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(a.spacing_mm[i] - b.spacing_mm[i]) > 1e-6 * std::max(a.spacing_mm[i], b.spacing_mm[i])) {
+      return invalid_argument("grids differ in spacing: " + describe(a) + " vs " + describe(b));
+    }
+    if (std::abs(a.origin_mm[i] - b.origin_mm[i]) > 1e-4) {
+      return invalid_argument("grids differ in origin by " + std::to_string(norm(a.origin_mm - b.origin_mm)) + " mm");
+    }
+    for (int j = 0; j < 3; ++j) {
+      if (std::abs(a.direction[i][j] - b.direction[i][j]) > 1e-5) {
+        return invalid_argument("grids differ in orientation (direction matrices)");
+      }
+    }
+  }
+  return ok_status();
+}
+
+std::string describe(const ImageGeometry& g) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%lldx%lldx%lld voxels of %gx%gx%g mm", (long long)g.dims[0], (long long)g.dims[1],
+                (long long)g.dims[2], g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2]);
+  return buf;
+}
+
+}  // namespace soiq

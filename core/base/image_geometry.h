@@ -1,0 +1,52 @@
+#pragma once
+// The sampling grid of an image, exactly as a DICOM series or an ITK image defines it
+// (DESIGN.md, "Coordinates and grids"): voxel (i,j,k) has its centre at
+//   p(i,j,k) = origin + D * diag(spacing) * (i,j,k)      (LPS, mm)
+// where the columns of the direction matrix D are the unit axis directions in LPS.
+// Voxel data is stored with i fastest: index = i + nx * (j + ny * k).
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "core/base/status.h"
+#include "core/base/vec3.h"
+
+namespace soiq {
+
+struct ImageGeometry {
+  Vec3 origin_mm{0, 0, 0};               // centre of voxel (0,0,0), LPS
+  Vec3 spacing_mm{1, 1, 1};              // along i, j, k; > 0
+  std::array<int64_t, 3> dims{0, 0, 0};  // nx, ny, nz; >= 0
+  Mat3 direction = identity3();          // columns: unit directions of i, j, k in LPS
+
+  int64_t voxel_count() const { return dims[0] * dims[1] * dims[2]; }
+  double voxel_volume_mm3() const { return spacing_mm[0] * spacing_mm[1] * spacing_mm[2]; }
+  // Continuous index (i,j,k) -> LPS point.
+  Vec3 index_to_physical(const Vec3& ijk) const;
+  // LPS point -> continuous index; voxel centres sit at integers. Needs a valid geometry.
+  Vec3 physical_to_index(const Vec3& p_mm) const;
+  bool operator==(const ImageGeometry&) const = default;
+};
+
+// OK when spacing is finite and > 0, dims >= 0, values finite and the direction is orthonormal
+// (to 1e-4, as DICOM orientation vectors are often stored with 6 decimals). INVALID_ARGUMENT
+// naming the offending field otherwise.
+Status validate_geometry(const ImageGeometry& g);
+
+// RESOURCE_EXHAUSTED when the grid has more voxels than `max_voxels`, with a message that says how
+// many it has and what to do; checked before anything of that size is allocated.
+Status check_grid_size(const ImageGeometry& g, int64_t max_voxels);
+
+// The default ceiling for grids soiq materialises (1e9 voxels = 1 GB as uint8).
+inline constexpr int64_t kDefaultMaxVoxels = 1'000'000'000;
+
+// OK when a and b sample the same voxel centres: equal dims, and origin, spacing and direction equal
+// to within what file formats keep (NIfTI stores its geometry in float32): 1e-4 mm for the origin,
+// 1e-6 relative for the spacing, 1e-5 for direction cosines. INVALID_ARGUMENT saying what differs.
+Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b);
+
+// "107x107x107 voxels of 1x1x1 mm"
+std::string describe(const ImageGeometry& g);
+
+}  // namespace soiq
