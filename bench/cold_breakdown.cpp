@@ -14,7 +14,7 @@
 #include "db/image_blob.h"
 #include "db/sqlite_store.h"
 #include "db/surface_blob.h"
-#include "server/grid_choice.h"
+#include "server/app/grid_choice.h"
 
 namespace soiq::bench {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // "Where the cold time goes" for `soiq-bench query`: the stage-2 work of the cold query, part by
 // part, in this process, on one thread, over the same stage-1 candidates the server computes —
-// the same steps FeatureEngine::compute takes (server/feature_engine.cpp), each timed alone:
+// the same steps FeatureEngine::compute takes (server/app/feature_engine.cpp), each timed alone:
 // surface blob read and decode, the 1D conversion, the copy of the mesh into StructureInput, volume
 // features, surface features (hull-free: mesh volume + area, all sphericity needs, as the server
 // computes them; and, marked "(before)" and left out of the sum, surface_shape with its convex hull

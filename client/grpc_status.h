@@ -1,6 +1,6 @@
 #pragma once
 // The client's one adapter from gRPC's status to soiq's (STYLE.md section 3: map once on each
-// side; the server's counterpart is server/grpc_status.cpp).
+// side; the server's counterpart is server/api/grpc_status.cpp).
 //
 // The code keeps its number (soiq::StatusCode uses gRPC's). The server's message is kept as it is,
 // except where gRPC itself wrote it and a person needs to know what to do:

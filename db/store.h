@@ -97,7 +97,7 @@ struct NewStructure {
   std::string source_series_uid;  // see StructureRecord
   std::string source_uid;         // non-empty: replaces the structure with this source_uid, if any
   // True for a structure that may be one soiq already holds coming back (a DICOM SEG soiq
-  // exported, server/structure_seg.h, imported again): when no structure has source_uid, a stored
+  // exported, server/app/structure_seg.h, imported again): when no structure has source_uid, a stored
   // structure of the same study with the same source_series_uid, name and surface sha256 (the
   // same voxels on the same grid) is this structure. Nothing is written for it (its source_uid
   // stays the one it was first imported with) and it is returned with `recognised`.
@@ -118,7 +118,7 @@ struct NewSeries {
   std::string image_blob;  // encoded (db/image_blob.h)
 };
 
-// Everything one DICOM import adds (server/dicom_import.h), written by import_batch in one
+// Everything one DICOM import adds (server/api/dicom_import.h), written by import_batch in one
 // transaction: either all of it is stored or, on any error, none of it.
 struct ImportBatch {
   std::vector<NewSeries> series;

@@ -18,9 +18,9 @@
 #include <sstream>
 
 #include "db/sqlite_store.h"
-#include "server/log.h"
-#include "server/server_config.h"
-#include "server/soiq_service.h"
+#include "server/api/soiq_service.h"
+#include "server/app/server_config.h"
+#include "server/util/log.h"
 
 namespace {
 

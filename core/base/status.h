@@ -1,7 +1,7 @@
 #pragma once
 // soiq's one error model: a Status (canonical code + message) and a Result<T> (a value or a non-OK
 // Status). Modelled on abseil's Status/StatusOr; codes carry gRPC's numbers so the server maps them
-// once (server/grpc_status.cpp) and the CLI once (exit_code). No exception crosses a module.
+// once (server/api/grpc_status.cpp) and the CLI once (exit_code). No exception crosses a module.
 
 #include <cassert>
 #include <optional>

@@ -1,7 +1,7 @@
-// The bytes an ImportDicom admits against the memory budget (server/dicom_import_bytes.h), from
+// The bytes an ImportDicom admits against the memory budget (server/app/dicom_import_bytes.h), from
 // header facts only: 12 bytes per voxel of each CT, MR or PT series plus one slice at 4 bytes per
 // pixel, counted by hand here.
-#include "server/dicom_import_bytes.h"
+#include "server/app/dicom_import_bytes.h"
 
 #include <gtest/gtest.h>
 

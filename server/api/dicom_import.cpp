@@ -1,0 +1,235 @@
+#include "server/api/dicom_import.h"
+
+#include <chrono>
+#include <map>
+#include <optional>
+
+#include "core/base/run_length_volume.h"
+#include "db/image_blob.h"
+#include "db/surface_blob.h"
+#include "db/validate_records.h"
+#include "dicom/import_dicom.h"
+#include "server/api/proto_records.h"
+#include "server/app/dicom_import_bytes.h"
+
+namespace soiq::server {
+namespace {
+
+// Paths inside the receiving folder, as the client named them.
+struct Relative {
+  std::string prefix;  // "<dir>/"
+  std::string operator()(std::string text) const {
+    for (size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
+      text.erase(at, prefix.size());
+    return text;
+  }
+};
+
+void add_problem(v1::ImportDicomResponse& r, const std::string& path, StatusCode code, const std::string& message) {
+  v1::ImportProblem* p = r.add_problems();
+  p->set_path(path);
+  p->set_code(status_code_name(code));
+  p->set_message(message);
+}
+
+// DICOM values the store would refuse are dropped rather than failing the import: the series and
+// structures are still useful without them.
+db::PatientRecord patient_of(const dicom::DicomPatient& p) {
+  db::PatientRecord r;
+  r.patient_id = p.patient_id;
+  if (check_sex(p.sex, "sex").ok()) r.sex = p.sex;
+  if (check_date(p.birth_date, "birth_date").ok()) r.birth_date = p.birth_date;
+  return r;
+}
+
+db::StudyRecord study_of(const dicom::DicomStudy& s) {
+  db::StudyRecord r;
+  r.study_uid = s.study_uid;
+  r.patient_id = s.patient_id;
+  if (check_date(s.study_date, "study_date").ok()) r.study_date = s.study_date;
+  // Kept for the SEGs soiq writes on the study (server/app/structure_seg.h), which checks each against
+  // its VR; here only what the store takes.
+  const auto storable = [](const std::string& v) { return db::validate_text(v, "", db::kMaxIdBytes).ok(); };
+  if (storable(s.study_time)) r.study_time = s.study_time;
+  if (storable(s.study_id)) r.study_id = s.study_id;
+  if (storable(s.accession_number)) r.accession_number = s.accession_number;
+  r.description = s.description;
+  r.age_years = s.age_years;
+  return r;
+}
+
+std::string laterality_of(const std::string& name) {
+  if (name.size() < 3) return "";
+  const std::string tail = name.substr(name.size() - 2);
+  if (tail == "_L" || tail == " L") return "L";
+  if (tail == "_R" || tail == " R") return "R";
+  return "";
+}
+
+// The patient and study records a series belongs to; NOT_FOUND when the scan lacks them (cannot
+// happen for scanned series, checked anyway since the two come from different lists).
+Status records_of(const dicom::DicomScan& scan, const std::string& series_uid, db::PatientRecord& patient,
+                  db::StudyRecord& study) {
+  const dicom::DicomSeries* series = scan.find_series(series_uid);
+  const dicom::DicomStudy* st = series ? scan.find_study(series->study_uid) : nullptr;
+  const dicom::DicomPatient* p = st ? scan.find_patient(st->patient_id) : nullptr;
+  if (p == nullptr) return not_found("series " + series_uid + " has no study or patient in the files sent");
+  patient = patient_of(*p);
+  study = study_of(*st);
+  return ok_status();
+}
+
+// The stored patient and study of a stored series (a structure set or SEG sent without its images).
+Status stored_records_of(db::Store& store, const std::string& series_uid, db::PatientRecord& patient,
+                         db::StudyRecord& study) {
+  SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord series, store.get_series(series_uid));
+  SOIQ_ASSIGN_OR_RETURN(study, store.get_study(series.study_uid));
+  SOIQ_ASSIGN_OR_RETURN(patient, store.get_patient(study.patient_id));
+  return ok_status();
+}
+
+// Series soiq already stores, for dicom::import_dicom's FindKnownSeries.
+dicom::FindKnownSeries stored_series(db::Store& store) {
+  return [&store](const std::string& uid) -> std::optional<dicom::KnownSeries> {
+    Result<db::SeriesRecord> s = store.get_series(uid);
+    if (!s.ok()) return std::nullopt;
+    Result<db::StudyRecord> study = store.get_study(s->study_uid);
+    if (!study.ok()) return std::nullopt;
+    return dicom::KnownSeries{s->series_uid, s->study_uid, study->patient_id, s->frame_of_reference_uid, s->geometry};
+  };
+}
+
+struct Planned {
+  db::ImportBatch batch;
+  std::vector<std::string> referenced_series;  // by structure
+  std::vector<int64_t> voxel_counts;           // by structure
+};
+
+Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, v1::ImportDicomResponse& r) {
+  Planned out;
+  for (const dicom::SeriesImage& image : in.images) {
+    db::NewSeries s;
+    SOIQ_RETURN_IF_ERROR(records_of(in.scan, image.series_uid, s.patient, s.study));
+    SOIQ_ASSIGN_OR_RETURN(db::EncodedImage encoded, db::encode_image(image.image));
+    s.series.series_uid = image.series_uid;
+    s.series.study_uid = s.study.study_uid;
+    s.series.modality = image.modality;
+    s.series.geometry = image.image.geometry;
+    s.series.sha256 = encoded.sha256;
+    // The DICOM references a SEG derived from this series needs (dicom/seg_export.h).
+    if (const dicom::DicomSeries* scanned = in.scan.find_series(image.series_uid)) {
+      s.series.frame_of_reference_uid = scanned->frame_of_reference_uid;
+      if (!scanned->instances.empty()) s.series.sop_class_uid = scanned->instances.front().sop_class_uid;
+    }
+    s.series.slice_instance_uids = image.slice_sop_instance_uids;
+    s.image_blob = std::move(encoded.blob);
+    out.batch.series.push_back(std::move(s));
+  }
+  for (const dicom::ImportedStructureSet& set : in.structure_sets) {
+    const std::string path = rel(set.path);
+    const std::string what = set.segmentation ? "segment" : "ROI";
+    for (const dicom::SkippedRoi& roi : set.converted.skipped) {
+      add_problem(r, path, StatusCode::kInvalidArgument,
+                  what + " '" + roi.name + "' (number " + std::to_string(roi.roi_number) + ") skipped: " + roi.reason);
+    }
+    for (const dicom::ImportedStructure& roi : set.converted.structures) {
+      const std::string name = roi.name.empty() ? what + " " + std::to_string(roi.roi_number) : roi.name;
+      if (roi.surface.triangles.empty()) {
+        add_problem(r, path, StatusCode::kInvalidArgument,
+                    what + " '" + name + "' skipped: it covers no voxel centre of series " + set.referenced_series_uid);
+        continue;
+      }
+      db::NewStructure s;
+      if (set.on_known_series) {
+        SOIQ_RETURN_IF_ERROR(stored_records_of(store, set.referenced_series_uid, s.patient, s.study));
+      } else {
+        SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, s.patient, s.study));
+      }
+      s.name = name;
+      s.laterality = laterality_of(name);
+      s.source_series_uid = set.referenced_series_uid;
+      s.source_uid = set.sop_instance_uid + "/" + std::to_string(roi.roi_number);
+      // A SEG segment with exactly the voxels and name of a structure already on its series is
+      // that structure, typically soiq's own export coming back from a PACS: a second copy would
+      // double every cohort count. RT Structure Sets keep replace-by-source-uid only: their ROIs
+      // are the originals that SEGs are exported from.
+      s.same_content_is_same_structure = set.segmentation;
+      SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(roi.surface));
+      s.surface = encoded.info;
+      s.surface_blob = std::move(encoded.blob);
+      out.batch.structures.push_back(std::move(s));
+      out.referenced_series.push_back(set.referenced_series_uid);
+      out.voxel_counts.push_back(voxel_count(roi.volume));
+    }
+  }
+  return out;
+}
+
+void list_records(const db::ImportBatch& batch, v1::ImportDicomResponse& r) {
+  std::map<std::string, db::PatientRecord> patients;
+  std::map<std::string, db::StudyRecord> studies;
+  for (const auto& s : batch.series) {
+    patients.emplace(s.patient.patient_id, s.patient);
+    studies.emplace(s.study.study_uid, s.study);
+  }
+  for (const auto& s : batch.structures) {
+    patients.emplace(s.patient.patient_id, s.patient);
+    studies.emplace(s.study.study_uid, s.study);
+  }
+  for (const auto& [id, p] : patients) *r.add_patients() = to_proto(p);
+  for (const auto& [uid, s] : studies) *r.add_studies() = to_proto(s);
+}
+
+}  // namespace
+
+Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
+                                                    const std::vector<std::string>& sent, int64_t max_voxels,
+                                                    MemoryBudget& budget, const std::function<Status()>& stop) {
+  const auto start = std::chrono::steady_clock::now();
+  const Relative rel{dir + "/"};
+  // Held to the end: the decoded images and their blobs live until the write is done.
+  MemoryBudget::Reservation held;
+  auto admit = [&](const dicom::DicomScan& scan) -> Status {
+    const DicomImportBytes need = dicom_import_bytes(scan, max_voxels);
+    if (need.series == 0) return ok_status();
+    SOIQ_ASSIGN_OR_RETURN(held, budget.reserve(need.bytes, need.what, stop,
+                                               need.series > 1 ? "import fewer series at once, or raise the budget"
+                                                               : "raise the budget"));
+    return ok_status();
+  };
+  SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in,
+                        dicom::import_dicom({dir}, max_voxels, stored_series(store), admit));
+  v1::ImportDicomResponse r;
+  r.set_files_received(int64_t(sent.size()));
+  r.set_dicom_files_read(in.scan.files_read);
+  for (const dicom::FileProblem& p : in.problems) add_problem(r, rel(p.path), p.status.code(), rel(p.status.message()));
+  if (in.scan.non_dicom_skipped > 0) {
+    add_problem(r, "", StatusCode::kInvalidArgument,
+                std::to_string(in.scan.non_dicom_skipped) + " of the files sent are not DICOM and were skipped");
+  }
+  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, r));
+  if (planned.batch.series.empty() && planned.batch.structures.empty()) {
+    const std::string why = r.problems_size() > 0 && !r.problems(0).path().empty()
+                                ? r.problems(0).path() + ": " + r.problems(0).message()
+                                : "no CT, MR or PET series and no RT Structure Set in '" +
+                                      (sent.empty() ? "" : sent[0]) + "'" +
+                                      (sent.size() > 1 ? " and the other files" : "");
+    return invalid_argument("nothing could be imported from the " + std::to_string(sent.size()) +
+                            " file(s) sent: " + why);
+  }
+  SOIQ_ASSIGN_OR_RETURN(const db::ImportedBatch stored, store.import_batch(planned.batch));
+  list_records(planned.batch, r);
+  for (const auto& s : planned.batch.series) *r.add_series() = to_proto(s.series);
+  for (size_t i = 0; i < stored.structures.size(); ++i) {
+    v1::ImportedStructure* s = r.add_structures();
+    *s->mutable_structure() = to_proto(stored.structures[i].structure);
+    s->set_referenced_series_uid(planned.referenced_series[i]);
+    s->set_voxel_count(planned.voxel_counts[i]);
+    // Recognised counts as imported before: the response names the stored structure, same id.
+    s->set_replaced(stored.structures[i].replaced || stored.structures[i].recognised);
+  }
+  r.set_milliseconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  return r;
+}
+
+}  // namespace soiq::server

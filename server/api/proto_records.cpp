@@ -1,0 +1,128 @@
+#include "server/api/proto_records.h"
+
+#include <cctype>
+
+namespace soiq::server {
+
+v1::Patient to_proto(const db::PatientRecord& r) {
+  v1::Patient p;
+  p.set_patient_id(r.patient_id);
+  p.set_sex(r.sex);
+  p.set_birth_date(r.birth_date);
+  p.set_study_count(r.study_count);
+  p.set_structure_count(r.structure_count);
+  return p;
+}
+
+v1::Study to_proto(const db::StudyRecord& r) {
+  v1::Study s;
+  s.set_study_uid(r.study_uid);
+  s.set_patient_id(r.patient_id);
+  s.set_study_date(r.study_date);
+  s.set_description(r.description);
+  s.set_modality(r.modality);
+  if (r.age_years) s.set_age_years(*r.age_years);
+  s.set_structure_count(r.structure_count);
+  return s;
+}
+
+v1::ImageGeometry to_proto(const ImageGeometry& g) {
+  v1::ImageGeometry p;
+  for (int a = 0; a < 3; ++a) {
+    p.add_origin(g.origin_mm[a]);
+    p.add_spacing(g.spacing_mm[a]);
+    p.add_dims(g.dims[a]);
+  }
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) p.add_direction(g.direction[r][c]);
+  return p;
+}
+
+v1::Series to_proto(const db::SeriesRecord& r) {
+  v1::Series s;
+  s.set_series_uid(r.series_uid);
+  s.set_study_uid(r.study_uid);
+  s.set_modality(r.modality);
+  *s.mutable_geometry() = to_proto(r.geometry);
+  s.set_sha256(r.sha256);
+  s.set_frame_of_reference_uid(r.frame_of_reference_uid);
+  s.set_sop_class_uid(r.sop_class_uid);
+  s.set_slice_instance_count(int64_t(r.slice_instance_uids.size()));
+  return s;
+}
+
+v1::Structure to_proto(const db::StructureRecord& r) {
+  v1::Structure s;
+  s.set_id(r.id);
+  s.set_patient_id(r.patient_id);
+  s.set_study_uid(r.study_uid);
+  s.set_name(r.name);
+  s.set_laterality(r.laterality);
+  s.set_surface_sha256(r.surface.sha256);
+  s.set_vertex_count(r.surface.vertex_count);
+  s.set_triangle_count(r.surface.triangle_count);
+  for (double b : r.surface.bounds_mm) s.add_bounds_mm(b);
+  s.set_robust(r.robust);
+  s.set_created_at(r.created_at);
+  s.set_source_series_uid(r.source_series_uid);
+  s.set_source_uid(r.source_uid);
+  return s;
+}
+
+Status check_date(const std::string& date, const char* field) {
+  if (date.empty()) return ok_status();
+  bool digits = date.size() == 8;
+  for (char ch : date) digits = digits && std::isdigit(static_cast<unsigned char>(ch));
+  if (digits) {
+    const int month = std::stoi(date.substr(4, 2)), day = std::stoi(date.substr(6, 2));
+    if (month >= 1 && month <= 12 && day >= 1 && day <= 31) return ok_status();
+  }
+  return invalid_argument(std::string(field) + " must be a date YYYYMMDD, got '" + date + "'");
+}
+
+Status check_sex(const std::string& sex, const char* field) {
+  if (sex.empty() || sex == "M" || sex == "F" || sex == "O") return ok_status();
+  return invalid_argument(std::string(field) + " must be M, F, O or empty, got '" + sex + "'");
+}
+
+Status check_laterality(const std::string& laterality) {
+  if (laterality.empty() || laterality == "L" || laterality == "R") return ok_status();
+  return invalid_argument("laterality must be L, R or empty, got '" + laterality + "'");
+}
+
+Result<db::PatientRecord> from_proto(const v1::Patient& p) {
+  if (p.patient_id().empty()) return invalid_argument("patient.patient_id is required");
+  SOIQ_RETURN_IF_ERROR(check_sex(p.sex(), "patient.sex"));
+  SOIQ_RETURN_IF_ERROR(check_date(p.birth_date(), "patient.birth_date"));
+  db::PatientRecord r;
+  r.patient_id = p.patient_id();
+  r.sex = p.sex();
+  r.birth_date = p.birth_date();
+  return r;
+}
+
+Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patient_id) {
+  if (s.study_uid().empty()) return invalid_argument("study.study_uid is required");
+  if (!s.patient_id().empty() && s.patient_id() != patient_id)
+    return invalid_argument("study.patient_id '" + s.patient_id() + "' differs from patient.patient_id '" + patient_id +
+                            "'");
+  SOIQ_RETURN_IF_ERROR(check_date(s.study_date(), "study.study_date"));
+  if (s.has_age_years() && !(s.age_years() >= 0 && s.age_years() < 200))
+    return invalid_argument("study.age_years must be in [0, 200)");
+  db::StudyRecord r;
+  r.study_uid = s.study_uid();
+  r.patient_id = patient_id;
+  r.study_date = s.study_date();
+  r.description = s.description();
+  r.modality = s.modality();
+  if (s.has_age_years()) r.age_years = s.age_years();
+  return r;
+}
+
+Status check_enum(int value, bool (*is_valid)(int), const char* field) {
+  if (is_valid(value)) return ok_status();
+  return invalid_argument(std::string(field) + " has the value " + std::to_string(value) +
+                          ", which this server does not know (see proto/soiq/v1/soiq.proto for the values)");
+}
+
+}  // namespace soiq::server

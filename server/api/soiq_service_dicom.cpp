@@ -1,0 +1,133 @@
+// SoiqService's DICOM-out and PACS handlers: ExportSeg, PacsEcho, PacsFind, PacsPull, PacsPush.
+// Thin, as the others: validate, call one function of server/ or dicom/, map once.
+#include <filesystem>
+
+#include "dicom/pacs_echo.h"
+#include "dicom/pacs_find.h"
+#include "dicom/pacs_store.h"
+#include "server/api/dicom_import.h"
+#include "server/api/pacs_find_request.h"
+#include "server/api/rpc_handling.h"
+#include "server/app/pacs_pull_studies.h"
+#include "server/app/structure_seg.h"
+#include "server/util/temp_dir.h"
+#include "server/util/temp_file.h"
+
+namespace soiq::server {
+namespace {
+
+constexpr size_t kSegChunkBytes = 1 << 20;
+
+v1::SegInfo info_of(const dicom::WrittenSeg& seg, const std::vector<int64_t>& ids, const db::StructureRecord& first) {
+  v1::SegInfo i;
+  i.set_sop_instance_uid(seg.sop_instance_uid);
+  i.set_series_uid(seg.series_uid);
+  i.set_referenced_series_uid(first.source_series_uid);
+  i.set_study_uid(first.study_uid);
+  i.set_segments(int32_t(ids.size()));
+  i.set_frames(seg.frame_count);
+  i.set_size_bytes(int64_t(seg.bytes.size()));
+  return i;
+}
+
+}  // namespace
+
+Result<dicom::PacsPeer> SoiqService::pacs() const {
+  if (!config_.pacs_peer)
+    return failed_precondition("soiqd has no PACS configured: start it with --pacs AE@HOST:PORT (or SOIQ_PACS)");
+  return *config_.pacs_peer;
+}
+
+grpc::Status SoiqService::ExportSeg(grpc::ServerContext* ctx, const v1::ExportSegRequest* request,
+                                    grpc::ServerWriter<v1::ExportSegResponse>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
+    SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, on_pool<dicom::WrittenSeg>([&] {
+                            return structure_seg(store_, features_, ids, request->series_description());
+                          }));
+    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));
+    v1::ExportSegResponse head;
+    *head.mutable_info() = info_of(seg, ids, first);
+    if (!writer->Write(head)) return Status(StatusCode::kCancelled, "the client closed the export");
+    for (size_t at = 0; at < seg.bytes.size(); at += kSegChunkBytes) {
+      v1::ExportSegResponse chunk;
+      chunk.set_chunk(seg.bytes.substr(at, kSegChunkBytes));
+      if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the export");
+    }
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::PacsEcho(grpc::ServerContext* ctx, const v1::PacsEchoRequest*,
+                                   v1::PacsEchoResponse* response) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
+    const Clock::time_point start = Clock::now();
+    SOIQ_RETURN_IF_ERROR(dicom::pacs_echo(peer));
+    response->set_pacs(dicom::describe_pacs_peer(peer));
+    response->set_milliseconds(ms_since(start));
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::PacsFind(grpc::ServerContext* ctx, const v1::PacsFindRequest* request,
+                                   v1::PacsFindResponse* response) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
+    SOIQ_ASSIGN_OR_RETURN(const dicom::PacsQuery query, pacs_query_of(*request));
+    SOIQ_ASSIGN_OR_RETURN(const std::vector<dicom::PacsMatch> matches, dicom::pacs_find(peer, query));
+    for (const dicom::PacsMatch& m : matches) *response->add_matches() = to_proto(m);
+    response->set_pacs(dicom::describe_pacs_peer(peer));
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullRequest* request,
+                                   grpc::ServerWriter<v1::PacsPullEvent>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
+    SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the pulled files on return
+    bool client_gone = false;
+    auto progress = [&](const v1::PacsPullProgress& p) {
+      v1::PacsPullEvent e;
+      *e.mutable_progress() = p;
+      client_gone = ctx->IsCancelled() || !writer->Write(e);
+      return !client_gone;
+    };
+    Result<PulledFiles> pulled = pacs_pull_studies(peer, *request, dir.path(), config_.max_upload_bytes, progress);
+    if (client_gone) return Status(StatusCode::kCancelled, "the client cancelled the pull; nothing was imported");
+    SOIQ_RETURN_IF_ERROR(pulled.status());
+    SOIQ_ASSIGN_OR_RETURN(v1::ImportDicomResponse imported, on_pool<v1::ImportDicomResponse>([&] {
+                            return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels,
+                                                       budget_, [&] { return stop_status(*ctx); });
+                          }));
+    imported.set_bytes_received(pulled->bytes);
+    v1::PacsPullEvent last;
+    *last.mutable_imported() = std::move(imported);
+    if (!writer->Write(last))
+      return Status(StatusCode::kCancelled, "the client left before the import result (the import was stored)");
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::PacsPush(grpc::ServerContext* ctx, const v1::PacsPushRequest* request,
+                                   v1::PacsPushResponse* response) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
+    const Clock::time_point start = Clock::now();
+    const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
+    SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, on_pool<dicom::WrittenSeg>([&] {
+                            return structure_seg(store_, features_, ids, request->series_description());
+                          }));
+    SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".dcm"));
+    SOIQ_RETURN_IF_ERROR(file.write(seg.bytes));
+    SOIQ_RETURN_IF_ERROR(dicom::pacs_store(peer, {file.path()}));
+    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));
+    *response->mutable_seg() = info_of(seg, ids, first);
+    response->set_pacs(dicom::describe_pacs_peer(peer));
+    response->set_milliseconds(ms_since(start));
+    return ok_status();
+  });
+}
+
+}  // namespace soiq::server

@@ -1,0 +1,224 @@
+#include "server/app/feature_engine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+
+#include "core/features/feature_catalogue.h"
+#include "core/features/structure_features.h"
+#include "core/voxelize/memory_estimate.h"
+#include "db/image_blob.h"
+#include "db/surface_blob.h"
+
+namespace soiq::server {
+std::string feature_entry(const std::string& name, const std::string& region, const std::string& image_sha,
+                          Interpolation interpolation) {
+  if (region.empty()) return name;
+  return name + "|" + region + "|" + image_sha + "|" + interpolation_name(interpolation);
+}
+
+Status complete_feature_ask(FeatureAsk& ask) {
+  if (ask.names.empty()) ask.names = shape_feature_names();
+  bool needs_image = false, takes_image = false;  // voxel_count takes one without needing it
+  for (const std::string& n : ask.names) {
+    SOIQ_RETURN_IF_ERROR(check_feature_name(n));
+    needs_image = needs_image || is_intensity_only(n);
+    takes_image = takes_image || find_intensity_feature(n) != nullptr;
+  }
+  if (needs_image && ask.images.empty())
+    return invalid_argument(
+        "intensity features need an image of the structure's study (a modality such as PT, "
+        "or a series uid)");
+  if (!takes_image && !ask.images.empty())
+    return invalid_argument("images were given but no intensity feature was asked (e.g. mean, median, p90)");
+  if (ask.regions.empty()) ask.regions.push_back(RegionSpec{});
+  // A region asked twice is computed once (its values would share their cache entries anyway).
+  std::vector<RegionSpec> unique;
+  for (const RegionSpec& r : ask.regions) {
+    const bool seen = std::any_of(unique.begin(), unique.end(),
+                                  [&](const RegionSpec& u) { return region_name(u) == region_name(r); });
+    if (!seen) unique.push_back(r);
+  }
+  ask.regions = std::move(unique);
+  return ok_status();
+}
+
+FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBudget& budget,
+                             int64_t cache_budget_bytes)
+    : store_(store),
+      max_grid_voxels_(max_grid_voxels),
+      budget_(budget),
+      surfaces_(cache_budget_bytes / 2),
+      measures_(int64_t(64) << 20),
+      images_(cache_budget_bytes / 2) {}
+
+Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
+                                        const std::vector<db::SeriesRecord>& study_series,
+                                        const FeatureAsk& ask) const {
+  FeaturePlan p;
+  p.structure = structure;
+  double widest_shell = 0;
+  for (const RegionSpec& r : ask.regions) {
+    if (r.kind == RegionKind::kShell) widest_shell = std::max(widest_shell, r.radius_mm);
+  }
+  SOIQ_ASSIGN_OR_RETURN(p.grid, resolve_grid(ask.grid, structure, study_series, widest_shell, max_grid_voxels_));
+  // Each series once, under the first name it was asked by (a modality and its series uid may name
+  // the same series).
+  std::vector<std::string> refs;
+  for (const std::string& ref : ask.images) {
+    SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(ref, study_series, structure.study_uid));
+    const bool seen = std::any_of(p.images.begin(), p.images.end(),
+                                  [&](const db::SeriesRecord& known) { return known.sha256 == s.sha256; });
+    if (seen) continue;
+    p.images.push_back(std::move(s));
+    refs.push_back(ref);
+  }
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a long chain of "literal" + string.
+  p.cache_key = "v";
+  for (const std::string& part : {std::to_string(feature_definitions_version()), structure.surface.sha256, p.grid.key,
+                                  std::string(ask.fill_rule == FillRule::kEvenOdd ? "evenodd" : "nonzero")}) {
+    p.cache_key += part;
+    p.cache_key += '|';
+  }
+  if (structure.robust) p.cache_key += "robust";
+  for (const std::string& n : ask.names) {
+    // voxel_count is both: the structure's voxels, and with images each region's samples too, as
+    // the library reports them.
+    if (!is_intensity_only(n)) p.wants.push_back({feature_entry(n, "", "", ask.interpolation), n, "", ""});
+    if (find_intensity_feature(n) == nullptr) continue;
+    for (const RegionSpec& r : ask.regions) {
+      for (size_t i = 0; i < refs.size(); ++i) {
+        const std::string region = region_name(r);
+        p.wants.push_back({feature_entry(n, region, p.images[i].sha256, ask.interpolation), n, region, refs[i]});
+      }
+    }
+  }
+  return p;
+}
+
+Result<std::shared_ptr<const TriangleMesh>> FeatureEngine::surface(const std::string& sha256) {
+  return surfaces_.get_or_load(
+      sha256,
+      [&]() -> Result<TriangleMesh> {
+        SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_surface_blob(sha256));
+        return db::decode_surface(blob);
+      },
+      [](const TriangleMesh& m) {
+        return int64_t(m.vertices_mm.size() * sizeof(Vec3) + m.triangles.size() * sizeof(m.triangles[0]));
+      });
+}
+
+Result<std::shared_ptr<const Image>> FeatureEngine::image(const db::SeriesRecord& series) {
+  return images_.get_or_load(
+      series.sha256,
+      [&]() -> Result<Image> {
+        SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_image_blob(series.series_uid));
+        return db::decode_image(blob, series.geometry);
+      },
+      [](const Image& img) { return int64_t(img.voxels.size() * sizeof(float)); });
+}
+
+Result<Voxelization> FeatureEngine::convert(const db::StructureRecord& structure, const ImageGeometry& geometry,
+                                            FillRule fill_rule) {
+  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
+  VoxelizeOptions options;
+  options.fill_rule = fill_rule;
+  options.robust = structure.robust;
+  options.max_voxels = max_grid_voxels_;
+  const std::string name = "structure " + std::to_string(structure.id);
+  options.name = name.c_str();
+  // A surface stored without robust mode was checked closed at upload: no need to count its
+  // defects again on every conversion (that costs as much as the conversion).
+  if (!structure.robust) options.known_defects = MeshDefects{};
+  return voxelize_1d(*mesh, geometry, options);
+}
+
+Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord& structure,
+                                                       const ImageGeometry& geometry, const WorkExtras& extras,
+                                                       const std::function<Status()>& stop) {
+  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const SurfaceMeasure> measure,
+                        measures_.get_or_load(
+                            structure.surface.sha256,
+                            [&]() -> Result<SurfaceMeasure> {
+                              SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh,
+                                                    surface(structure.surface.sha256));
+                              return surface_measure(*mesh);
+                            },
+                            [](const SurfaceMeasure&) { return int64_t(sizeof(SurfaceMeasure)); }));
+  const ConversionEstimate conversion = conversion_peak_bytes(*measure, geometry, structure.robust);
+  int64_t bytes = conversion.bytes;
+  auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
+  if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
+  if (extras.mask_export) add(mask_export_extra_bytes(geometry));
+  const auto& d = geometry.dims;
+  return budget_.reserve(bytes,
+                         "structure " + std::to_string(structure.id) + " on a grid of " + std::to_string(d[0]) + "x" +
+                             std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels (" +
+                             std::to_string(conversion.lines) + " row lines)",
+                         stop);
+}
+
+Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const FeatureAsk& ask,
+                                             const std::atomic<bool>* cancelled) {
+  auto check_cancel = [&]() -> Status {
+    if (cancelled && cancelled->load()) return Status(StatusCode::kCancelled, "cancelled");
+    return ok_status();
+  };
+  SOIQ_RETURN_IF_ERROR(check_cancel());
+  WorkExtras extras;
+  extras.features = true;
+  for (const db::SeriesRecord& s : plan.images) extras.image_voxels += s.geometry.voxel_count();
+  extras.regions = plan.images.empty() ? 0 : int(ask.regions.size());
+  SOIQ_ASSIGN_OR_RETURN(const MemoryBudget::Reservation held,
+                        admit(plan.structure, plan.grid.geometry, extras, check_cancel));
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(plan.structure, plan.grid.geometry, ask.fill_rule));
+  SOIQ_RETURN_IF_ERROR(check_cancel());
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
+
+  // structure_features computes the convex hull only for the features that read it. Every stored
+  // structure has a surface: the mesh is passed (no copy otherwise) whenever a surface value of it,
+  // or of its mask beside it, is asked.
+  FeatureRequest request;
+  request.names = ask.names;
+  // Empty names ask structure_features for everything: ask for a cheap one instead.
+  if (request.names.empty()) request.names.push_back("voxel_count");
+  const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
+    return find_feature(FeatureFamily::kSurface, n) != nullptr || mask_feature(n) != nullptr;
+  });
+
+  std::vector<std::shared_ptr<const Image>> images;
+  request.regions = ask.regions;
+  request.interpolation = ask.interpolation;
+  for (const db::SeriesRecord& s : plan.images) {
+    SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const Image> img, image(s));
+    images.push_back(img);
+    request.images.push_back(NamedImage{s.sha256, img.get()});
+  }
+  StructureInput input{std::move(v.volume), std::nullopt};
+  if (core_needs_mesh) input.surface = *mesh;
+  Result<FeatureReport> report = structure_features(input, request);
+  if (!report.ok()) {
+    return Status(report.status().code(),
+                  "structure " + std::to_string(plan.structure.id) + ": " + report.status().message());
+  }
+  FeatureValues values;
+  std::vector<db::CachedFeature> entries;
+  for (const Feature& f : report->features) {
+    const std::string entry = feature_entry(f.name, f.region, f.image, ask.interpolation);
+    values[entry] = f.value;
+    entries.push_back({plan.cache_key, entry, f.value});
+  }
+  for (const WantedValue& w : plan.wants) {
+    if (!values.count(w.entry))
+      return failed_precondition("structure " + std::to_string(plan.structure.id) + ": feature " + w.name +
+                                 (w.region.empty() ? "" : " on " + w.region + " of " + w.image) +
+                                 " is not available here (centre_of_mass_shift_mm needs an image on the "
+                                 "structure's own grid)");
+  }
+  SOIQ_RETURN_IF_ERROR(store_.put_cached_features(plan.structure.surface.sha256, entries));
+  return values;
+}
+
+}  // namespace soiq::server

@@ -1,0 +1,88 @@
+#include "server/app/grid_choice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/voxelize/grid_around.h"
+
+namespace soiq::server {
+namespace {
+
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+  return s;
+}
+
+}  // namespace
+
+Result<GridChoice> grid_choice(const v1::GridSpec& spec) {
+  GridChoice c;
+  if (spec.margin_voxels() < 0 || spec.margin_voxels() > 1000)
+    return invalid_argument("grid margin must be in [0, 1000] voxels");
+  if (spec.margin_voxels() > 0) c.margin_voxels = spec.margin_voxels();
+  switch (spec.target_case()) {
+    case v1::GridSpec::kSeriesUid:
+      c.kind = GridChoice::Kind::kSeriesUid;
+      c.series = spec.series_uid();
+      if (c.series.empty()) return invalid_argument("grid series_uid is empty");
+      return c;
+    case v1::GridSpec::kSpacingMm:
+      c.spacing_mm = {spec.spacing_mm(), spec.spacing_mm(), spec.spacing_mm()};
+      break;
+    case v1::GridSpec::kSpacingXyz:
+      c.spacing_mm = {spec.spacing_xyz().x(), spec.spacing_xyz().y(), spec.spacing_xyz().z()};
+      break;
+    case v1::GridSpec::TARGET_NOT_SET:
+      if (!spec.series_modality().empty()) {
+        c.kind = GridChoice::Kind::kSeriesModality;
+        c.series = spec.series_modality();
+      }
+      return c;
+  }
+  for (double s : c.spacing_mm) {
+    if (!(s >= 0.01 && s <= 100)) return invalid_argument("grid spacing must be in [0.01, 100] mm");
+  }
+  return c;
+}
+
+Result<db::SeriesRecord> find_series(const std::string& ref, const std::vector<db::SeriesRecord>& study_series,
+                                     const std::string& study_uid) {
+  for (const auto& s : study_series) {
+    if (s.series_uid == ref) return s;
+  }
+  std::vector<const db::SeriesRecord*> by_modality;
+  for (const auto& s : study_series) {
+    if (upper(s.modality) == upper(ref)) by_modality.push_back(&s);
+  }
+  if (by_modality.size() == 1) return *by_modality[0];
+  if (by_modality.size() > 1)
+    return failed_precondition("study " + study_uid + " has " + std::to_string(by_modality.size()) + " " + ref +
+                               " series; name one by its series uid");
+  return not_found("study " + study_uid + " has no image series '" + ref + "' (by uid or modality; upload one)");
+}
+
+Result<ResolvedGrid> resolve_grid(const GridChoice& choice, const db::StructureRecord& structure,
+                                  const std::vector<db::SeriesRecord>& study_series, double min_margin_mm,
+                                  int64_t max_voxels) {
+  ResolvedGrid out;
+  if (choice.kind == GridChoice::Kind::kAxisAligned) {
+    const auto& b = structure.surface.bounds_mm;
+    int margin = choice.margin_voxels;
+    for (double s : choice.spacing_mm) margin = std::max(margin, int(std::ceil(min_margin_mm / s)) + 1);
+    SOIQ_ASSIGN_OR_RETURN(out.geometry,
+                          grid_around_box({b[0], b[1], b[2]}, {b[3], b[4], b[5]}, choice.spacing_mm, margin));
+    char key[160];
+    std::snprintf(key, sizeof key, "axis:%.17g,%.17g,%.17g:m%d", choice.spacing_mm[0], choice.spacing_mm[1],
+                  choice.spacing_mm[2], margin);
+    out.key = key;
+  } else {
+    SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(choice.series, study_series, structure.study_uid));
+    out.geometry = s.geometry;
+    out.key = "series:" + s.sha256;
+  }
+  SOIQ_RETURN_IF_ERROR(check_grid_size(out.geometry, max_voxels));
+  return out;
+}
+
+}  // namespace soiq::server

@@ -1,0 +1,79 @@
+#pragma once
+// One server-wide budget of bytes. Every conversion, feature computation, image upload and DICOM
+// import estimates its peak bytes first (core/voxelize/memory_estimate.h, server/app/dicom_import_bytes.h) and
+// reserves them here before it allocates: work is admitted by what it will hold, not by how many
+// run, so twelve conversions of a 4e8-voxel grid queue instead of taking the machine down together.
+//
+// reserve(bytes, what, stop, advice)
+//   Returns a Reservation that gives the bytes back when it goes. Waits, first come first served,
+//   while others hold too much for `bytes` to fit; `stop` (may be empty) is polled every 50 ms
+//   while waiting and its non-OK status ends the wait (cancel, deadline).
+// Errors  RESOURCE_EXHAUSTED at once, without waiting, when `bytes` alone exceed the budget: the
+//         message gives `what`, the estimate and the limit ("soiqd --memory-budget"), then `advice`
+//         (what the client can change; by default a conversion's: spacing, margin, region).
+// Thread-safety: all members may be called from any thread.
+
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/base/status.h"
+
+namespace soiq::server {
+
+class MemoryBudget {
+ public:
+  class Reservation {
+   public:
+    Reservation() = default;
+    Reservation(Reservation&& other) noexcept : budget_(other.budget_), bytes_(other.bytes_) {
+      other.budget_ = nullptr;
+    }
+    Reservation& operator=(Reservation&& other) noexcept;
+    Reservation(const Reservation&) = delete;
+    Reservation& operator=(const Reservation&) = delete;
+    ~Reservation() { release(); }
+    int64_t bytes() const { return bytes_; }
+
+   private:
+    friend class MemoryBudget;
+    Reservation(MemoryBudget* budget, int64_t bytes) : budget_(budget), bytes_(bytes) {}
+    void release();
+    MemoryBudget* budget_ = nullptr;
+    int64_t bytes_ = 0;
+  };
+
+  explicit MemoryBudget(int64_t limit_bytes) : limit_(limit_bytes) {}
+  MemoryBudget(const MemoryBudget&) = delete;
+  MemoryBudget& operator=(const MemoryBudget&) = delete;
+
+  Result<Reservation> reserve(int64_t bytes, const std::string& what, const std::function<Status()>& stop = {},
+                              const std::string& advice =
+                                  "use a coarser spacing, a smaller margin or region, or "
+                                  "raise the budget");
+
+  int64_t limit() const { return limit_; }
+  int64_t in_use() const;
+  // The largest number of bytes held at once since start (for tests and `soiq info`).
+  int64_t peak() const;
+  // How many reservations are waiting their turn now.
+  int64_t waiting() const;
+
+ private:
+  void give_back(int64_t bytes);
+  void skip_abandoned();  // with mutex_ held
+
+  const int64_t limit_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  int64_t in_use_ = 0;
+  int64_t peak_ = 0;
+  uint64_t next_ticket_ = 0;  // first come, first served: a large request is not starved by small ones
+  uint64_t serving_ = 0;
+  std::vector<uint64_t> abandoned_;  // tickets whose waiter stopped before being served
+};
+
+}  // namespace soiq::server

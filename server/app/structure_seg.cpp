@@ -1,0 +1,96 @@
+#include "server/app/structure_seg.h"
+
+#include <set>
+
+#include "core/base/image_geometry.h"
+
+namespace soiq::server {
+namespace {
+
+std::string named(const db::StructureRecord& s) { return "structure " + std::to_string(s.id) + " ('" + s.name + "')"; }
+
+Result<std::vector<db::StructureRecord>> structures_of_one_series(db::Store& store, const std::vector<int64_t>& ids) {
+  if (ids.empty()) return invalid_argument("no structure ids given: name the structures to put in the SEG");
+  if (ids.size() > size_t(kMaxSegStructures))
+    return invalid_argument(std::to_string(ids.size()) + " structures asked; one SEG holds at most " +
+                            std::to_string(kMaxSegStructures));
+  std::set<int64_t> seen;
+  std::vector<db::StructureRecord> out;
+  for (int64_t id : ids) {
+    if (!seen.insert(id).second) return invalid_argument("structure " + std::to_string(id) + " is named twice");
+    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord s, store.get_structure(id));
+    if (s.source_series_uid.empty())
+      return failed_precondition(named(s) +
+                                 " was uploaded as a surface, not imported from DICOM, so there are no DICOM images "
+                                 "for a SEG to reference; import the images and the RT Structure Set with 'soiq "
+                                 "import' and export that structure");
+    if (!out.empty() && s.source_series_uid != out.front().source_series_uid)
+      return failed_precondition(named(out.front()) + " is on series " + out.front().source_series_uid + " but " +
+                                 named(s) + " is on series " + s.source_series_uid +
+                                 "; one SEG references one series: export them separately");
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// Series Description is a DICOM LO: at most 64 characters, no backslash or control characters.
+Status check_series_description(const std::string& d) {
+  bool ok = d.size() <= 64;
+  for (char c : d) ok = ok && c != '\\' && static_cast<unsigned char>(c) >= 0x20;
+  if (ok) return ok_status();
+  return invalid_argument("series description '" + d +
+                          "' is not a DICOM LO value: at most 64 characters, no backslash or control characters");
+}
+
+}  // namespace
+
+Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
+                                        const std::string& series_description) {
+  SOIQ_RETURN_IF_ERROR(check_series_description(series_description));
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures, structures_of_one_series(store, ids));
+  const std::string& series_uid = structures.front().source_series_uid;
+  Result<db::SeriesRecord> series = store.get_series(series_uid);
+  if (!series.ok() && series.status().code() == StatusCode::kNotFound)
+    return not_found("the image series " + series_uid + " that " + named(structures.front()) +
+                     " was converted on is no longer stored; import it again");
+  SOIQ_RETURN_IF_ERROR(series.status());
+  if (series->frame_of_reference_uid.empty() || series->sop_class_uid.empty() ||
+      series->slice_instance_uids.size() != size_t(series->geometry.dims[2]))
+    return failed_precondition("series " + series_uid +
+                               " was stored without its DICOM references (frame of reference, slice SOP instances); "
+                               "import its files again with 'soiq import' to export a SEG on it");
+  SOIQ_RETURN_IF_ERROR(check_grid_size(series->geometry, features.max_grid_voxels()));
+  SOIQ_ASSIGN_OR_RETURN(const db::StudyRecord study, store.get_study(series->study_uid));
+  SOIQ_ASSIGN_OR_RETURN(const db::PatientRecord patient, store.get_patient(study.patient_id));
+
+  dicom::SegSource source;
+  source.patient_id = patient.patient_id;  // no name: soiq keeps none
+  source.patient_sex = patient.sex;
+  source.patient_birth_date = patient.birth_date;
+  source.study_uid = study.study_uid;
+  source.study_date = study.study_date;
+  source.study_time = study.study_time;
+  source.study_id = study.study_id;
+  source.accession_number = study.accession_number;
+  source.series_uid = series->series_uid;
+  source.frame_of_reference_uid = series->frame_of_reference_uid;
+  source.modality = series->modality;
+  source.sop_class_uid = series->sop_class_uid;
+  source.slice_sop_instance_uids = series->slice_instance_uids;
+  source.geometry = series->geometry;
+
+  std::vector<dicom::SegSegment> segments;
+  for (const db::StructureRecord& s : structures) {
+    // Imported surfaces are closed and free of self-intersections: both fill rules agree.
+    SOIQ_ASSIGN_OR_RETURN(Voxelization v, features.convert(s, series->geometry, FillRule::kNonZero));
+    dicom::SegSegment segment;
+    segment.label = s.name;
+    segment.volume = std::move(v.volume);
+    segments.push_back(std::move(segment));
+  }
+  dicom::SegWriteOptions options;
+  if (!series_description.empty()) options.series_description = series_description;
+  return dicom::write_seg(source, segments, options);
+}
+
+}  // namespace soiq::server

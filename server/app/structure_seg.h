@@ -1,0 +1,34 @@
+#pragma once
+// Imported structures as one binary DICOM SEG on the image series they were converted on
+// (ExportSeg and PacsPush). Each structure's stored surface is converted
+// back on that series' grid by the 1D method (lossless for imported structures: their surface is
+// the marching-cubes surface of exactly that volume), then dicom::write_seg writes the object.
+//
+// Inputs   ids: 1..kMaxSegStructures distinct structure ids, all imported from DICOM and all
+//          converted on the same series. series_description: "" for write_seg's default.
+// Output   The written SEG, segment n = ids[n-1], labelled with the structure's name.
+// Errors   INVALID_ARGUMENT: no ids, too many, a repeated id; NOT_FOUND: an unknown id or a
+//          series no longer stored; FAILED_PRECONDITION: an uploaded structure (no DICOM images
+//          to reference: import images and RT Structure Set with 'soiq import'), structures of
+//          different series, a series stored without DICOM references; RESOURCE_EXHAUSTED: a
+//          grid over max_grid_voxels; INVALID_ARGUMENT from write_seg (e.g. an empty structure).
+// Cost     one conversion per structure, then O(frames x rows x columns). Thread-safe as
+//          FeatureEngine and Store are.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/base/status.h"
+#include "db/store.h"
+#include "dicom/seg_export.h"
+#include "server/app/feature_engine.h"
+
+namespace soiq::server {
+
+inline constexpr int kMaxSegStructures = 256;
+
+Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
+                                        const std::string& series_description);
+
+}  // namespace soiq::server
