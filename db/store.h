@@ -118,7 +118,7 @@ struct NewSeries {
   std::string image_blob;  // encoded (db/image_blob.h)
 };
 
-// Everything one DICOM import adds (server/api/dicom_import.h), written by import_batch in one
+// Everything one DICOM import adds (server/app/dicom_import.h), written by import_batch in one
 // transaction: either all of it is stored or, on any error, none of it.
 struct ImportBatch {
   std::vector<NewSeries> series;

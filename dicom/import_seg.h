@@ -12,7 +12,7 @@
 //          "segment N", contour_count 0, volume = read_seg's on the referenced series' grid,
 //          surface = volume_surface); segments without voxels are listed in `skipped`.
 //          Re-imports are the store's business: soiqd recognises a segment that repeats a stored
-//          structure of its series (server/api/dicom_import.h), so soiq's own SEG coming back adds
+//          structure of its series (server/app/dicom_import.h), so soiq's own SEG coming back adds
 //          no copy. The referenced series is the SEG's Referenced Series Sequence; a SEG without one
 //          (allowed for single-series SEGs by some tools) falls back to the one imported image
 //          series of its study with its Frame of Reference.

@@ -90,6 +90,30 @@ Status check_laterality(const std::string& laterality) {
   return invalid_argument("laterality must be L, R or empty, got '" + laterality + "'");
 }
 
+v1::ImportDicomResponse to_proto(const DicomImportResult& r) {
+  v1::ImportDicomResponse out;
+  for (const db::PatientRecord& p : r.patients) *out.add_patients() = to_proto(p);
+  for (const db::StudyRecord& s : r.studies) *out.add_studies() = to_proto(s);
+  for (const db::SeriesRecord& s : r.series) *out.add_series() = to_proto(s);
+  for (const ImportedStructure& s : r.structures) {
+    v1::ImportedStructure* p = out.add_structures();
+    *p->mutable_structure() = to_proto(s.structure);
+    p->set_referenced_series_uid(s.referenced_series_uid);
+    p->set_voxel_count(s.voxel_count);
+    p->set_replaced(s.replaced);
+  }
+  for (const ImportProblem& p : r.problems) {
+    v1::ImportProblem* q = out.add_problems();
+    q->set_path(p.path);
+    q->set_code(status_code_name(p.code));
+    q->set_message(p.message);
+  }
+  out.set_files_received(r.files_received);
+  out.set_dicom_files_read(r.dicom_files_read);
+  out.set_milliseconds(r.milliseconds);
+  return out;
+}
+
 Result<db::PatientRecord> from_proto(const v1::Patient& p) {
   if (p.patient_id().empty()) return invalid_argument("patient.patient_id is required");
   SOIQ_RETURN_IF_ERROR(check_sex(p.sex(), "patient.sex"));

@@ -5,6 +5,7 @@
 #include "core/base/image_geometry.h"
 #include "core/base/status.h"
 #include "db/store.h"
+#include "server/app/dicom_import.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
@@ -14,6 +15,8 @@ v1::Study to_proto(const db::StudyRecord& r);
 v1::Series to_proto(const db::SeriesRecord& r);
 v1::Structure to_proto(const db::StructureRecord& r);
 v1::ImageGeometry to_proto(const ImageGeometry& g);
+// ImportDicom's reply (PacsPull's last event too); bytes_received is the handler's to set.
+v1::ImportDicomResponse to_proto(const DicomImportResult& r);
 
 // Validates what a client sent: DICOM-like sex (M, F, O or empty), dates (YYYYMMDD or empty),
 // laterality (L, R or empty), non-empty ids. INVALID_ARGUMENT naming the field otherwise.

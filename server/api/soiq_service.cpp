@@ -12,11 +12,11 @@
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 #include "db/validate_records.h"
-#include "server/api/dicom_import.h"
 #include "server/api/grpc_status.h"
 #include "server/api/proto_records.h"
 #include "server/api/received_dicom_files.h"
 #include "server/api/rpc_handling.h"
+#include "server/app/dicom_import.h"
 #include "server/app/uploaded_files.h"
 #include "server/util/log.h"
 #include "server/util/temp_dir.h"
@@ -158,10 +158,11 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
   return handle(__func__, *ctx, [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
     SOIQ_ASSIGN_OR_RETURN(ReceivedFiles files, receive_dicom_files(*reader, dir.path(), config_.max_upload_bytes));
-    SOIQ_ASSIGN_OR_RETURN(*response, on_pool<v1::ImportDicomResponse>([&] {
-      return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels, budget_,
-                                 [&] { return stop_status(*ctx); });
-    }));
+    SOIQ_ASSIGN_OR_RETURN(const DicomImportResult imported, on_pool<DicomImportResult>([&] {
+                            return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels,
+                                                       budget_, [&] { return stop_status(*ctx); });
+                          }));
+    *response = to_proto(imported);
     response->set_bytes_received(files.bytes);
     return ok_status();
   });

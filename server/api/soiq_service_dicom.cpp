@@ -5,9 +5,10 @@
 #include "dicom/pacs_echo.h"
 #include "dicom/pacs_find.h"
 #include "dicom/pacs_store.h"
-#include "server/api/dicom_import.h"
 #include "server/api/pacs_find_request.h"
+#include "server/api/proto_records.h"
 #include "server/api/rpc_handling.h"
+#include "server/app/dicom_import.h"
 #include "server/app/pacs_pull_studies.h"
 #include "server/app/structure_seg.h"
 #include "server/util/temp_dir.h"
@@ -97,10 +98,11 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     Result<PulledFiles> pulled = pacs_pull_studies(peer, *request, dir.path(), config_.max_upload_bytes, progress);
     if (client_gone) return Status(StatusCode::kCancelled, "the client cancelled the pull; nothing was imported");
     SOIQ_RETURN_IF_ERROR(pulled.status());
-    SOIQ_ASSIGN_OR_RETURN(v1::ImportDicomResponse imported, on_pool<v1::ImportDicomResponse>([&] {
+    SOIQ_ASSIGN_OR_RETURN(const DicomImportResult result, on_pool<DicomImportResult>([&] {
                             return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels,
                                                        budget_, [&] { return stop_status(*ctx); });
                           }));
+    v1::ImportDicomResponse imported = to_proto(result);
     imported.set_bytes_received(pulled->bytes);
     v1::PacsPullEvent last;
     *last.mutable_imported() = std::move(imported);

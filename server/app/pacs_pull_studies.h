@@ -1,6 +1,6 @@
 #pragma once
 // PacsPull's transfer: the studies asked for (or every study of a patient, found by C-FIND) pulled
-// by C-GET into one folder, ready for import_dicom_folder (server/api/dicom_import.h). The import only
+// by C-GET into one folder, ready for import_dicom_folder (server/app/dicom_import.h). The import only
 // starts when every study came complete, so a pull that fails midway stores nothing.
 //
 // Inputs   peer: the configured PACS. request: study_uids (distinct, at most kMaxPulledStudies),

@@ -1,15 +1,15 @@
-#include "server/api/dicom_import.h"
+#include "server/app/dicom_import.h"
 
 #include <chrono>
 #include <map>
 #include <optional>
 
 #include "core/base/run_length_volume.h"
+#include "db/age_years.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
 #include "db/validate_records.h"
 #include "dicom/import_dicom.h"
-#include "server/api/proto_records.h"
 #include "server/app/dicom_import_bytes.h"
 
 namespace soiq::server {
@@ -25,11 +25,8 @@ struct Relative {
   }
 };
 
-void add_problem(v1::ImportDicomResponse& r, const std::string& path, StatusCode code, const std::string& message) {
-  v1::ImportProblem* p = r.add_problems();
-  p->set_path(path);
-  p->set_code(status_code_name(code));
-  p->set_message(message);
+void add_problem(DicomImportResult& r, const std::string& path, StatusCode code, const std::string& message) {
+  r.problems.push_back({path, code, message});
 }
 
 // DICOM values the store would refuse are dropped rather than failing the import: the series and
@@ -37,8 +34,8 @@ void add_problem(v1::ImportDicomResponse& r, const std::string& path, StatusCode
 db::PatientRecord patient_of(const dicom::DicomPatient& p) {
   db::PatientRecord r;
   r.patient_id = p.patient_id;
-  if (check_sex(p.sex, "sex").ok()) r.sex = p.sex;
-  if (check_date(p.birth_date, "birth_date").ok()) r.birth_date = p.birth_date;
+  if (db::validate_sex(p.sex).ok()) r.sex = p.sex;
+  if (db::validate_date(p.birth_date, "birth_date").ok()) r.birth_date = p.birth_date;
   return r;
 }
 
@@ -46,7 +43,7 @@ db::StudyRecord study_of(const dicom::DicomStudy& s) {
   db::StudyRecord r;
   r.study_uid = s.study_uid;
   r.patient_id = s.patient_id;
-  if (check_date(s.study_date, "study_date").ok()) r.study_date = s.study_date;
+  if (db::validate_date(s.study_date, "study_date").ok()) r.study_date = s.study_date;
   // Kept for the SEGs soiq writes on the study (server/app/structure_seg.h), which checks each against
   // its VR; here only what the store takes.
   const auto storable = [](const std::string& v) { return db::validate_text(v, "", db::kMaxIdBytes).ok(); };
@@ -105,7 +102,7 @@ struct Planned {
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, v1::ImportDicomResponse& r) {
+Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, DicomImportResult& r) {
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
     db::NewSeries s;
@@ -165,7 +162,7 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
   return out;
 }
 
-void list_records(const db::ImportBatch& batch, v1::ImportDicomResponse& r) {
+void list_records(const db::ImportBatch& batch, DicomImportResult& r) {
   std::map<std::string, db::PatientRecord> patients;
   std::map<std::string, db::StudyRecord> studies;
   for (const auto& s : batch.series) {
@@ -176,15 +173,15 @@ void list_records(const db::ImportBatch& batch, v1::ImportDicomResponse& r) {
     patients.emplace(s.patient.patient_id, s.patient);
     studies.emplace(s.study.study_uid, s.study);
   }
-  for (const auto& [id, p] : patients) *r.add_patients() = to_proto(p);
-  for (const auto& [uid, s] : studies) *r.add_studies() = to_proto(s);
+  for (const auto& [id, p] : patients) r.patients.push_back(p);
+  for (const auto& [uid, s] : studies) r.studies.push_back(s);
 }
 
 }  // namespace
 
-Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
-                                                    const std::vector<std::string>& sent, int64_t max_voxels,
-                                                    MemoryBudget& budget, const std::function<Status()>& stop) {
+Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
+                                              const std::vector<std::string>& sent, int64_t max_voxels,
+                                              MemoryBudget& budget, const std::function<Status()>& stop) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
   // Held to the end: the decoded images and their blobs live until the write is done.
@@ -199,9 +196,9 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
   };
   SOIQ_ASSIGN_OR_RETURN(const dicom::DicomImport in,
                         dicom::import_dicom({dir}, max_voxels, stored_series(store), admit));
-  v1::ImportDicomResponse r;
-  r.set_files_received(int64_t(sent.size()));
-  r.set_dicom_files_read(in.scan.files_read);
+  DicomImportResult r;
+  r.files_received = int64_t(sent.size());
+  r.dicom_files_read = in.scan.files_read;
   for (const dicom::FileProblem& p : in.problems) add_problem(r, rel(p.path), p.status.code(), rel(p.status.message()));
   if (in.scan.non_dicom_skipped > 0) {
     add_problem(r, "", StatusCode::kInvalidArgument,
@@ -209,8 +206,8 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
   }
   SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, r));
   if (planned.batch.series.empty() && planned.batch.structures.empty()) {
-    const std::string why = r.problems_size() > 0 && !r.problems(0).path().empty()
-                                ? r.problems(0).path() + ": " + r.problems(0).message()
+    const std::string why = !r.problems.empty() && !r.problems[0].path.empty()
+                                ? r.problems[0].path + ": " + r.problems[0].message
                                 : "no CT, MR or PET series and no RT Structure Set in '" +
                                       (sent.empty() ? "" : sent[0]) + "'" +
                                       (sent.size() > 1 ? " and the other files" : "");
@@ -219,16 +216,13 @@ Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std:
   }
   SOIQ_ASSIGN_OR_RETURN(const db::ImportedBatch stored, store.import_batch(planned.batch));
   list_records(planned.batch, r);
-  for (const auto& s : planned.batch.series) *r.add_series() = to_proto(s.series);
+  for (const auto& s : planned.batch.series) r.series.push_back(s.series);
   for (size_t i = 0; i < stored.structures.size(); ++i) {
-    v1::ImportedStructure* s = r.add_structures();
-    *s->mutable_structure() = to_proto(stored.structures[i].structure);
-    s->set_referenced_series_uid(planned.referenced_series[i]);
-    s->set_voxel_count(planned.voxel_counts[i]);
-    // Recognised counts as imported before: the response names the stored structure, same id.
-    s->set_replaced(stored.structures[i].replaced || stored.structures[i].recognised);
+    // Recognised counts as imported before: the result names the stored structure, same id.
+    r.structures.push_back({stored.structures[i].structure, planned.referenced_series[i], planned.voxel_counts[i],
+                            stored.structures[i].replaced || stored.structures[i].recognised});
   }
-  r.set_milliseconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
 

@@ -9,7 +9,7 @@
 //          after the header scan and before any pixel is decoded, and held until the write is
 //          done; while others hold the budget the import waits, first come first served, until
 //          `stop` returns non-OK. Call on a worker (as FeatureEngine::admit).
-// Output   The response of ImportDicom:
+// Output   What was imported (the api layer turns it into ImportDicom's reply, proto_records.h):
 //          - series: each CT, MR and PET series as an image, in its DICOM study and patient
 //            (sex, birth and study dates kept when valid, age at study from dicom/; no names);
 //          - structures: one per RT Structure Set ROI with a non-empty volume, named as the ROI,
@@ -47,12 +47,36 @@
 #include "core/base/status.h"
 #include "db/store.h"
 #include "server/app/memory_budget.h"
-#include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
 
-Result<v1::ImportDicomResponse> import_dicom_folder(db::Store& store, const std::string& dir,
-                                                    const std::vector<std::string>& sent, int64_t max_voxels,
-                                                    MemoryBudget& budget, const std::function<Status()>& stop);
+// A file, series or ROI that was skipped; `path` relative to the folder ("" for the whole import).
+struct ImportProblem {
+  std::string path;
+  StatusCode code = StatusCode::kInvalidArgument;
+  std::string message;
+};
+
+struct ImportedStructure {
+  db::StructureRecord structure;
+  std::string referenced_series_uid;  // the grid its volume was converted on
+  int64_t voxel_count = 0;            // voxels inside on that grid
+  bool replaced = false;              // an earlier import's structure, updated or recognised
+};
+
+struct DicomImportResult {
+  std::vector<db::PatientRecord> patients;  // by patient id
+  std::vector<db::StudyRecord> studies;     // by study uid
+  std::vector<db::SeriesRecord> series;
+  std::vector<ImportedStructure> structures;
+  std::vector<ImportProblem> problems;
+  int64_t files_received = 0;
+  int64_t dicom_files_read = 0;
+  double milliseconds = 0;
+};
+
+Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
+                                              const std::vector<std::string>& sent, int64_t max_voxels,
+                                              MemoryBudget& budget, const std::function<Status()>& stop);
 
 }  // namespace soiq::server
