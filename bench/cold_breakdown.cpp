@@ -57,7 +57,7 @@ Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage
   const Clock::time_point t0 = Clock::now();
   SOIQ_ASSIGN_OR_RETURN(std::vector<db::Candidate> candidates, store->stage1(filter, 100000));
   out.stage1_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  SOIQ_ASSIGN_OR_RETURN(const server::GridChoice choice, server::grid_choice(v1::GridSpec{}));
+  const server::GridChoice choice;  // the default: axis-aligned 1 mm grid, 2-voxel margin
   SOIQ_ASSIGN_OR_RETURN(const RegionSpec shell, parse_region("shell:3"));
   std::map<std::string, std::shared_ptr<const Image>> images;
   int64_t sampled = 0;  // by study, as the server caches them

@@ -9,6 +9,14 @@
 namespace soiq::db {
 namespace {
 
+// A hit's contralateral twin: same study, same name in ASCII lower case (SQLite's lower(), as
+// stage1_rows.name_lower), the other laterality; the lowest id when a study has several.
+constexpr char kTwinIdColumn[] = R"sql(
+  (SELECT t.id FROM structures s JOIN structures t
+     ON t.study_pk = s.study_pk AND lower(t.name) = lower(s.name)
+    AND t.laterality = CASE s.laterality WHEN 'L' THEN 'R' WHEN 'R' THEN 'L' END
+   WHERE s.id = r.structure_id ORDER BY t.id LIMIT 1))sql";
+
 // Every condition is on stage1_rows (alias r), so the query reads one narrow table and joins the
 // records only for the rows it returns.
 SqlConditions stage1_conditions(const Stage1Filter& f) {
@@ -47,15 +55,18 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     // The matching ids from stage1_rows alone, at most limit + 1 of them: the filters choose the
     // plan on that one narrow table, and no record is built before we know there are not too many.
-    std::vector<int64_t> ids;
+    // With twins, each hit's twin id comes from the same query (a self-join of structures).
+    std::vector<std::pair<int64_t, std::optional<int64_t>>> ids;
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT r.structure_id FROM stage1_rows r WHERE 1" + where.sql() +
-                                                   " ORDER BY r.structure_id LIMIT " + std::to_string(limit + 1)));
+      SOIQ_ASSIGN_OR_RETURN(Statement q,
+                            c.prepare(std::string("SELECT r.structure_id, ") + (f.twins ? kTwinIdColumn : "NULL") +
+                                      " FROM stage1_rows r WHERE 1" + where.sql() + " ORDER BY r.structure_id LIMIT " +
+                                      std::to_string(limit + 1)));
       where.bind(q);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
         if (!row) break;
-        ids.push_back(q.int64(0));
+        ids.emplace_back(q.int64(0), q.is_null(1) ? std::nullopt : std::optional<int64_t>(q.int64(1)));
       }
     }
     if (int64_t(ids.size()) > limit) {
@@ -72,7 +83,7 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
                           c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns + ", " +
                                     kStudyColumns + " FROM " + kStructureJoin + " WHERE s.id = ?1"));
     out.reserve(ids.size());
-    for (int64_t id : ids) {
+    for (const auto& [id, twin_id] : ids) {
       q.bind(1, id);
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
       if (!row) return internal_error("stage1_rows names structure " + std::to_string(id) + " that does not exist");
@@ -80,8 +91,15 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
       cand.structure = read_structure(q, 0);
       cand.patient = read_patient(q, kStructureColumnCount);
       cand.study = read_study(q, kStructureColumnCount + kPatientColumnCount);
-      out.push_back(std::move(cand));
       q.reset();
+      if (twin_id) {
+        q.bind(1, *twin_id);
+        SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
+        if (!found) return internal_error("twin structure " + std::to_string(*twin_id) + " vanished in a read");
+        cand.twin = read_structure(q, 0);
+        q.reset();
+      }
+      out.push_back(std::move(cand));
     }
     return ok_status();
   }));

@@ -165,6 +165,8 @@ struct Stage1Filter {
   std::string study_description_glob;
   std::string structure_name_glob;  // case-insensitive
   std::string laterality;
+  // Also find each hit's contralateral twin (Candidate::twin), for asymmetry features.
+  bool twins = false;
 };
 
 // One stage-1 hit: the structure with its patient and study, everything stage 2 needs to decide
@@ -173,6 +175,10 @@ struct Candidate {
   StructureRecord structure;
   PatientRecord patient;
   StudyRecord study;
+  // With Stage1Filter::twins: the structure of the same study with the same name (ASCII
+  // case-insensitive) and the other laterality (L <-> R), the lowest id if several; whether or not
+  // the filter keeps it. Never set for a structure without laterality.
+  std::optional<StructureRecord> twin;
 };
 
 // Feature cache. A cache key names one computation context: surface sha256, grid, conversion

@@ -5,8 +5,8 @@
 
 #include "core/features/feature_catalogue.h"
 #include "core/regions/regions.h"
+#include "server/api/grid_spec.h"
 #include "server/api/proto_records.h"
-#include "server/app/grid_choice.h"
 
 namespace soiq::server {
 namespace {
@@ -43,8 +43,8 @@ Result<db::Stage1Filter> parse_stage1(const v1::Stage1Filter& s) {
   return f;
 }
 
-Result<ParsedRef> parse_ref(const v1::FeatureRef& r, const char* field) {
-  ParsedRef p;
+Result<QueryFeature> parse_ref(const v1::FeatureRef& r, const char* field) {
+  QueryFeature p;
   p.name = r.name();
   if (p.name.empty()) return invalid_argument(std::string(field) + ": feature name is empty");
   if (Status known = check_feature_name(p.name); !known.ok())
@@ -61,63 +61,61 @@ Result<ParsedRef> parse_ref(const v1::FeatureRef& r, const char* field) {
     return invalid_argument(std::string(field) + ": shape feature '" + p.name + "' takes no region or image");
   }
   p.asymmetry = r.asymmetry();
-  p.label.set_name(p.asymmetry ? "asym(" + p.name + ")" : p.name);
+  p.label.name = p.asymmetry ? "asym(" + p.name + ")" : p.name;
   if (p.intensity) {
-    p.label.set_region(region_name(p.region));
-    p.label.set_image(p.image);
+    p.label.region = region_name(p.region);
+    p.label.image = p.image;
   }
   return p;
 }
 
-}  // namespace
-
-bool compare(double value, v1::ComparisonOp op, double threshold) {
-  if (std::isnan(value)) return false;
+Result<Comparison> comparison_of(v1::ComparisonOp op, const std::string& field) {
   switch (op) {
     case v1::LT:
-      return value < threshold;
+      return Comparison::kLess;
     case v1::LE:
-      return value <= threshold;
+      return Comparison::kLessOrEqual;
     case v1::GT:
-      return value > threshold;
+      return Comparison::kGreater;
     case v1::GE:
-      return value >= threshold;
+      return Comparison::kGreaterOrEqual;
     case v1::EQ:
-      return value == threshold;
+      return Comparison::kEqual;
     case v1::NE:
-      return value != threshold;
+      return Comparison::kNotEqual;
     default:
-      return false;
+      return invalid_argument(field + ": comparison is not set (LT, LE, GT, GE, EQ or NE)");
   }
 }
 
-Result<ParsedQuery> parse_query(const v1::QueryRequest& request, int result_cap) {
-  ParsedQuery q;
+}  // namespace
+
+Result<Query> parse_query(const v1::QueryRequest& request, int result_cap) {
+  Query q;
   SOIQ_ASSIGN_OR_RETURN(q.stage1, parse_stage1(request.stage1()));
   for (int i = 0; i < request.where_size(); ++i) {
     const v1::Predicate& p = request.where(i);
     const std::string field = "where[" + std::to_string(i) + "]";
-    SOIQ_ASSIGN_OR_RETURN(ParsedRef ref, parse_ref(p.feature(), field.c_str()));
+    SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(p.feature(), field.c_str()));
     if (is_array_feature(ref.name))
       return invalid_argument(field + ": " + ref.name + " is an array; it can be selected, not compared");
-    if (p.op() == v1::COMPARISON_OP_UNSPECIFIED || !v1::ComparisonOp_IsValid(p.op()))
-      return invalid_argument(field + ": comparison is not set (LT, LE, GT, GE, EQ or NE)");
+    SOIQ_ASSIGN_OR_RETURN(const Comparison op, comparison_of(p.op(), field));
     if (!std::isfinite(p.value())) return invalid_argument(field + ": the value must be a finite number");
-    q.where.push_back({q.refs.size(), p.op(), p.value()});
-    q.refs.push_back(std::move(ref));
+    q.where.push_back({q.features.size(), op, p.value()});
+    q.features.push_back(std::move(ref));
   }
   for (int i = 0; i < request.select_size(); ++i) {
     const std::string field = "select[" + std::to_string(i) + "]";
-    SOIQ_ASSIGN_OR_RETURN(ParsedRef ref, parse_ref(request.select(i), field.c_str()));
+    SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(request.select(i), field.c_str()));
     if (ref.asymmetry && is_array_feature(ref.name))
       return invalid_argument(field + ": the asymmetry of an array feature is not defined");
-    q.refs.push_back(std::move(ref));
+    q.features.push_back(std::move(ref));
   }
   if (request.has_order_by()) {
-    SOIQ_ASSIGN_OR_RETURN(ParsedRef ref, parse_ref(request.order_by(), "order_by"));
+    SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(request.order_by(), "order_by"));
     if (is_array_feature(ref.name)) return invalid_argument("order_by: " + ref.name + " is an array");
-    q.order_ref = q.refs.size();
-    q.refs.push_back(std::move(ref));
+    q.order_by = q.features.size();
+    q.features.push_back(std::move(ref));
   }
   q.descending = request.descending();
   if (request.limit() < 0) return invalid_argument("limit must be >= 0 (0: the server's cap)");
@@ -126,8 +124,8 @@ Result<ParsedQuery> parse_query(const v1::QueryRequest& request, int result_cap)
   SOIQ_ASSIGN_OR_RETURN(q.ask.grid, grid_choice(request.grid()));
   SOIQ_RETURN_IF_ERROR(check_enum(request.interpolation(), v1::Interpolation_IsValid, "interpolation"));
   q.ask.interpolation = request.interpolation() == v1::LINEAR ? Interpolation::kLinear : Interpolation::kNearest;
-  for (const ParsedRef& r : q.refs) {
-    q.needs_twins = q.needs_twins || r.asymmetry;
+  for (const QueryFeature& r : q.features) {
+    q.stage1.twins = q.stage1.twins || r.asymmetry;
     if (!contains(q.ask.names, r.name)) q.ask.names.push_back(r.name);
     if (!r.intensity) continue;
     const bool region_known = std::any_of(q.ask.regions.begin(), q.ask.regions.end(),
@@ -137,6 +135,46 @@ Result<ParsedQuery> parse_query(const v1::QueryRequest& request, int result_cap)
   }
   if (!q.ask.names.empty()) SOIQ_RETURN_IF_ERROR(complete_feature_ask(q.ask));
   return q;
+}
+
+v1::QueryEvent to_event(const QueryProgress& p) {
+  v1::QueryEvent e;
+  e.mutable_progress()->set_stage(p.stage);
+  e.mutable_progress()->set_done(p.done);
+  e.mutable_progress()->set_total(p.total);
+  return e;
+}
+
+v1::QueryEvent to_event(const QueryRow& r) {
+  v1::QueryEvent e;
+  v1::QueryRow* row = e.mutable_row();
+  *row->mutable_structure() = to_proto(r.structure);
+  *row->mutable_patient() = to_proto(r.patient);
+  *row->mutable_study() = to_proto(r.study);
+  for (const RowValue& v : r.values) {
+    v1::FeatureValue* out = row->add_values();
+    out->set_name(v.label.name);
+    out->set_region(v.label.region);
+    out->set_image(v.label.image);
+    for (double x : v.values) out->add_value(x);
+  }
+  return e;
+}
+
+v1::QueryEvent to_event(const QuerySummary& s) {
+  v1::QueryEvent e;
+  v1::QuerySummary* out = e.mutable_summary();
+  out->set_stage1_candidates(s.stage1_candidates);
+  out->set_computed(s.computed);
+  out->set_cache_hits(s.cache_hits);
+  out->set_matched(s.matched);
+  out->set_returned(s.returned);
+  out->set_failed(s.failed);
+  for (const std::string& f : s.failures) out->add_failures(f);
+  out->set_stage1_ms(s.stage1_ms);
+  out->set_stage2_ms(s.stage2_ms);
+  out->set_total_ms(s.total_ms);
+  return e;
 }
 
 }  // namespace soiq::server

@@ -54,11 +54,7 @@ grpc::Status SoiqService::handle(const char* method, grpc::ServerContext& ctx, B
 
 template <typename T>
 Result<T> SoiqService::on_pool(const std::function<Result<T>()>& work) {
-  // The promise is shared: the worker may still be inside set_value when get() returns.
-  auto done = std::make_shared<std::promise<Result<T>>>();
-  std::future<Result<T>> result = done->get_future();
-  pool_.submit([done, &work] { done->set_value(work()); });
-  return result.get();  // `work` is only used before set_value, while this call waits
+  return pool_.call(work);
 }
 
 }  // namespace soiq::server

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "db/store.h"
-#include "server/api/query_engine.h"
 #include "server/app/feature_engine.h"
 #include "server/app/memory_budget.h"
+#include "server/app/query_engine.h"
 #include "server/app/server_config.h"
 #include "server/util/worker_pool.h"
 #include "soiq/v1/soiq.grpc.pb.h"

@@ -89,13 +89,17 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
     SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the pulled files on return
     bool client_gone = false;
-    auto progress = [&](const v1::PacsPullProgress& p) {
+    auto progress = [&](const PullProgress& p) {
       v1::PacsPullEvent e;
-      *e.mutable_progress() = p;
+      e.mutable_progress()->set_study(p.study);
+      e.mutable_progress()->set_studies(p.studies);
+      e.mutable_progress()->set_received(p.received);
+      e.mutable_progress()->set_remaining(p.remaining);
       client_gone = ctx->IsCancelled() || !writer->Write(e);
       return !client_gone;
     };
-    Result<PulledFiles> pulled = pacs_pull_studies(peer, *request, dir.path(), config_.max_upload_bytes, progress);
+    const PullRequest asked{{request->study_uids().begin(), request->study_uids().end()}, request->patient_id()};
+    Result<PulledFiles> pulled = pacs_pull_studies(peer, asked, dir.path(), config_.max_upload_bytes, progress);
     if (client_gone) return Status(StatusCode::kCancelled, "the client cancelled the pull; nothing was imported");
     SOIQ_RETURN_IF_ERROR(pulled.status());
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult result, on_pool<DicomImportResult>([&] {

@@ -19,18 +19,16 @@
 #include "core/base/image_geometry.h"
 #include "core/base/status.h"
 #include "db/store.h"
-#include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
 
+// Made from a request by the api (server/api/grid_spec.h), which checks spacing and margin.
 struct GridChoice {
   enum class Kind { kAxisAligned, kSeriesUid, kSeriesModality } kind = Kind::kAxisAligned;
   Vec3 spacing_mm{1, 1, 1};
   int margin_voxels = 2;
   std::string series;  // uid or modality
 };
-
-Result<GridChoice> grid_choice(const v1::GridSpec& spec);
 
 struct ResolvedGrid {
   ImageGeometry geometry;

@@ -10,29 +10,29 @@
 namespace soiq::server {
 namespace {
 
-Result<std::vector<std::string>> studies_to_pull(const dicom::PacsPeer& peer, const v1::PacsPullRequest& r) {
-  if (r.study_uids().empty() == r.patient_id().empty())
+Result<std::vector<std::string>> studies_to_pull(const dicom::PacsPeer& peer, const PullRequest& r) {
+  if (r.study_uids.empty() == r.patient_id.empty())
     return invalid_argument("give either study uids or a patient id to pull (not both, not neither)");
-  if (!r.study_uids().empty()) {
-    if (r.study_uids_size() > kMaxPulledStudies)
-      return invalid_argument(std::to_string(r.study_uids_size()) + " studies asked; one pull takes at most " +
+  if (!r.study_uids.empty()) {
+    if (r.study_uids.size() > size_t(kMaxPulledStudies))
+      return invalid_argument(std::to_string(r.study_uids.size()) + " studies asked; one pull takes at most " +
                               std::to_string(kMaxPulledStudies));
     std::set<std::string> seen;
-    for (const std::string& uid : r.study_uids())
+    for (const std::string& uid : r.study_uids)
       if (!seen.insert(uid).second) return invalid_argument("study " + uid + " is named twice");
-    return std::vector<std::string>(r.study_uids().begin(), r.study_uids().end());
+    return r.study_uids;
   }
-  if (r.patient_id().find_first_of("*?") != std::string::npos)
-    return invalid_argument("patient id '" + r.patient_id() +
+  if (r.patient_id.find_first_of("*?") != std::string::npos)
+    return invalid_argument("patient id '" + r.patient_id +
                             "' has a wildcard; a pull takes one exact patient id (list them with 'soiq pacs find')");
   dicom::PacsQuery q;
   q.level = dicom::PacsLevel::kStudy;
   q.model = dicom::PacsModel::kStudyRoot;
-  q.patient_id = r.patient_id();
+  q.patient_id = r.patient_id;
   q.max_matches = kMaxPulledStudies;
   Result<std::vector<dicom::PacsMatch>> found = dicom::pacs_find(peer, q);
   if (!found.ok() && found.status().code() == StatusCode::kResourceExhausted)
-    return resource_exhausted("patient '" + r.patient_id() + "' has more than " + std::to_string(kMaxPulledStudies) +
+    return resource_exhausted("patient '" + r.patient_id + "' has more than " + std::to_string(kMaxPulledStudies) +
                               " studies on " + dicom::describe_pacs_peer(peer) + "; pull them by study uid");
   SOIQ_RETURN_IF_ERROR(found.status());
   std::vector<std::string> uids;
@@ -40,15 +40,14 @@ Result<std::vector<std::string>> studies_to_pull(const dicom::PacsPeer& peer, co
   for (const dicom::PacsMatch& m : *found)
     if (!m.study_uid.empty() && seen.insert(m.study_uid).second) uids.push_back(m.study_uid);
   if (uids.empty())
-    return not_found("patient '" + r.patient_id() + "' has no study on " + dicom::describe_pacs_peer(peer));
+    return not_found("patient '" + r.patient_id + "' has no study on " + dicom::describe_pacs_peer(peer));
   return uids;
 }
 
 }  // namespace
 
-Result<PulledFiles> pacs_pull_studies(const dicom::PacsPeer& peer, const v1::PacsPullRequest& request,
-                                      const std::string& dir, int64_t max_bytes,
-                                      const std::function<bool(const v1::PacsPullProgress&)>& progress) {
+Result<PulledFiles> pacs_pull_studies(const dicom::PacsPeer& peer, const PullRequest& request, const std::string& dir,
+                                      int64_t max_bytes, const std::function<bool(const PullProgress&)>& progress) {
   SOIQ_ASSIGN_OR_RETURN(const std::vector<std::string> uids, studies_to_pull(peer, request));
   PulledFiles out;
   out.studies = int(uids.size());
@@ -64,11 +63,7 @@ Result<PulledFiles> pacs_pull_studies(const dicom::PacsPeer& peer, const v1::Pac
         over_limit = true;
         return false;
       }
-      v1::PacsPullProgress e;
-      e.set_study(int32_t(n + 1));
-      e.set_studies(int32_t(uids.size()));
-      e.set_received(received_before + p.received);
-      e.set_remaining(p.remaining);
+      const PullProgress e{int(n + 1), int(uids.size()), received_before + p.received, p.remaining};
       return !progress || progress(e);
     };
     Result<dicom::PacsPullResult> pulled = dicom::pacs_pull(peer, uids[n], dir + "/" + sub, on_instance);

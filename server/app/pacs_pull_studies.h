@@ -23,11 +23,23 @@
 
 #include "core/base/status.h"
 #include "dicom/pacs_peer.h"
-#include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
 
 inline constexpr int kMaxPulledStudies = 100;
+
+// What to pull: study uids, or, when there are none, every study of one patient.
+struct PullRequest {
+  std::vector<std::string> study_uids;
+  std::string patient_id;
+};
+
+// After each instance received: study n of studies (from 1), instances received so far in all,
+// instances the PACS says remain in this study.
+struct PullProgress {
+  int study = 0, studies = 0;
+  int received = 0, remaining = 0;
+};
 
 struct PulledFiles {
   std::vector<std::string> paths;  // relative to dir
@@ -35,8 +47,7 @@ struct PulledFiles {
   int studies = 0;
 };
 
-Result<PulledFiles> pacs_pull_studies(const dicom::PacsPeer& peer, const v1::PacsPullRequest& request,
-                                      const std::string& dir, int64_t max_bytes,
-                                      const std::function<bool(const v1::PacsPullProgress&)>& progress);
+Result<PulledFiles> pacs_pull_studies(const dicom::PacsPeer& peer, const PullRequest& request, const std::string& dir,
+                                      int64_t max_bytes, const std::function<bool(const PullProgress&)>& progress);
 
 }  // namespace soiq::server

@@ -6,8 +6,11 @@
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <future>
+#include <memory>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace soiq::server {
@@ -36,6 +39,18 @@ class WorkerPool {
     wake_.notify_one();
   }
   int size() const { return static_cast<int>(threads_.size()); }
+
+  // Runs `work` on a worker and waits for what it returns: heavy work from every caller shares the
+  // pool, so its size bounds how much runs at once. Never call it from a worker (it could wait for
+  // itself).
+  template <typename Work>
+  std::invoke_result_t<Work&> call(Work& work) {
+    // The promise is shared: the worker may still be inside set_value when get() returns.
+    auto done = std::make_shared<std::promise<std::invoke_result_t<Work&>>>();
+    auto result = done->get_future();
+    submit([done, &work] { done->set_value(work()); });
+    return result.get();  // `work` is only used before set_value, while this call waits
+  }
 
  private:
   void run() {

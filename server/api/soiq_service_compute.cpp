@@ -1,0 +1,137 @@
+// SoiqService's computations on stored structures: a conversion, one structure's features, a query.
+#include <algorithm>
+
+#include "core/base/run_length_volume.h"
+#include "core/features/feature_catalogue.h"
+#include "server/api/grid_spec.h"
+#include "server/api/proto_records.h"
+#include "server/api/query_request.h"
+#include "server/api/rpc_handling.h"
+#include "server/app/stored_structure_features.h"
+#include "server/app/structure_conversion.h"
+
+namespace soiq::server {
+namespace {
+
+constexpr size_t kChunkBytes = 1 << 20;  // mask chunks: well under gRPC's 4 MiB message limit
+constexpr int kRunsPerMessage = 65536;
+
+FillRule fill_rule_of(v1::FillRule f) { return f == v1::EVEN_ODD ? FillRule::kEvenOdd : FillRule::kNonZero; }
+
+// The runs as RunBatch messages after the summary.
+Status write_runs(const RunLengthVolume& volume, int64_t ny, grpc::ServerWriter<v1::ConvertResponse>& writer) {
+  v1::ConvertResponse batch;
+  for (int64_t l = 0; l < volume.line_count(); ++l) {
+    for (int64_t r = volume.line_start[l]; r < volume.line_start[l + 1]; ++r) {
+      v1::RunBatch* b = batch.mutable_runs();
+      b->add_j(int32_t(l % ny));
+      b->add_k(int32_t(l / ny));
+      b->add_begin(volume.runs[r].begin);
+      b->add_end(volume.runs[r].end);
+      if (b->j_size() == kRunsPerMessage) {
+        if (!writer.Write(batch)) return Status(StatusCode::kCancelled, "the client closed the conversion");
+        batch.Clear();
+      }
+    }
+  }
+  if (batch.has_runs() && !writer.Write(batch))
+    return Status(StatusCode::kCancelled, "the client closed the conversion");
+  return ok_status();
+}
+
+// A FeaturesRequest as the app's FeatureAsk; images without names ask every shape and intensity
+// feature.
+Result<FeatureAsk> ask_of(const v1::FeaturesRequest& request) {
+  FeatureAsk ask;
+  ask.names.assign(request.features().begin(), request.features().end());
+  for (const std::string& r : request.regions()) {
+    SOIQ_ASSIGN_OR_RETURN(RegionSpec spec, parse_region(r));
+    ask.regions.push_back(spec);
+  }
+  ask.images.assign(request.images().begin(), request.images().end());
+  if (request.images_size() > 0 && request.features_size() == 0) {
+    ask.names = shape_feature_names();
+    for (const auto& n : intensity_feature_names())
+      if (std::find(ask.names.begin(), ask.names.end(), n) == ask.names.end()) ask.names.push_back(n);
+  }
+  SOIQ_RETURN_IF_ERROR(check_enum(request.interpolation(), v1::Interpolation_IsValid, "interpolation"));
+  ask.interpolation = request.interpolation() == v1::LINEAR ? Interpolation::kLinear : Interpolation::kNearest;
+  SOIQ_ASSIGN_OR_RETURN(ask.grid, grid_choice(request.grid()));
+  SOIQ_RETURN_IF_ERROR(complete_feature_ask(ask));
+  return ask;
+}
+
+}  // namespace
+
+grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertRequest* request,
+                                  grpc::ServerWriter<v1::ConvertResponse>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    const Clock::time_point start = Clock::now();
+    SOIQ_RETURN_IF_ERROR(check_enum(request->fill_rule(), v1::FillRule_IsValid, "fill_rule"));
+    SOIQ_RETURN_IF_ERROR(check_enum(request->encoding(), v1::VolumeEncoding_IsValid, "encoding"));
+    SOIQ_ASSIGN_OR_RETURN(const GridChoice choice, grid_choice(request->grid()));
+    const bool runs = request->encoding() == v1::RUNS;
+    SOIQ_ASSIGN_OR_RETURN(
+        const StructureConversion c,
+        convert_structure(store_, features_, pool_, request->structure_id(), choice, fill_rule_of(request->fill_rule()),
+                          !runs, [&] { return stop_status(*ctx); }));
+    const RunLengthVolume& volume = c.voxelization.volume;
+    v1::ConvertResponse first;
+    v1::ConvertSummary* summary = first.mutable_summary();
+    *summary->mutable_geometry() = to_proto(c.grid.geometry);
+    summary->set_voxel_count(voxel_count(volume));
+    summary->set_volume_mm3(double(summary->voxel_count()) * c.grid.geometry.voxel_volume_mm3());
+    summary->set_milliseconds(ms_since(start));
+    summary->set_defects(c.structure.robust ? describe(c.voxelization.defects) : "closed (checked at upload)");
+    if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
+    if (runs) return write_runs(volume, c.grid.geometry.dims[1], *writer);
+    SOIQ_ASSIGN_OR_RETURN(const std::string bytes, mask_nifti_bytes(volume, config_.max_grid_voxels));
+    for (size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+      v1::ConvertResponse chunk;
+      chunk.set_nifti_chunk(bytes.substr(at, kChunkBytes));
+      if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the conversion");
+    }
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::ComputeFeatures(grpc::ServerContext* ctx, const v1::FeaturesRequest* request,
+                                          v1::FeaturesResponse* response) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const FeatureAsk ask, ask_of(*request));
+    SOIQ_ASSIGN_OR_RETURN(const StoredStructureFeatures f,
+                          stored_structure_features(store_, features_, pool_, request->structure_id(), ask));
+    if (!f.from_cache) {
+      v1::Timing* t = response->add_timings();
+      t->set_part("conversion and features");
+      t->set_milliseconds(f.compute_ms);
+    }
+    response->set_from_cache(f.from_cache);
+    *response->mutable_geometry() = to_proto(f.plan.grid.geometry);
+    for (const WantedValue& w : f.plan.wants) {
+      v1::FeatureValue* out = response->add_features();
+      out->set_name(w.name);
+      out->set_region(w.region);
+      out->set_image(w.image);
+      for (double x : f.values.at(w.entry)) out->add_value(x);
+    }
+    return ok_status();
+  });
+}
+
+grpc::Status SoiqService::Query(grpc::ServerContext* ctx, const v1::QueryRequest* request,
+                                grpc::ServerWriter<v1::QueryEvent>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const soiq::server::Query query, parse_query(*request, queries_.limits().result_cap));
+    auto write = [&](const v1::QueryEvent& e) {
+      return writer->Write(e) ? ok_status() : Status(StatusCode::kCancelled, "the client closed the query stream");
+    };
+    const QueryOutput out{[&](const QueryProgress& p) { return write(to_event(p)); },
+                          [&](QueryRow&& row) { return write(to_event(row)); }};
+    SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, queries_.run(
+                                                          query, [&] { return stop_status(*ctx); }, out));
+    return write(to_event(summary));
+  });
+}
+
+}  // namespace soiq::server

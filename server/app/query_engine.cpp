@@ -1,0 +1,334 @@
+#include "server/app/query_engine.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "core/features/asymmetry_index.h"
+
+namespace soiq::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// One structure whose features the query needs: a candidate, or a candidate's twin.
+struct Subject {
+  db::StructureRecord structure;
+  std::optional<FeaturePlan> plan;
+  Status error;
+  FeatureValues values;
+  bool ready = false;
+  std::vector<size_t> dependents;  // candidates waiting for this subject
+};
+
+// What the workers hand back to the query's thread.
+struct Completions {
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<std::pair<size_t, Result<FeatureValues>>> done;
+  std::atomic<bool> cancelled{false};
+};
+
+// One run of one query: the steps of query_engine.h, in order, over shared state.
+class QueryRun {
+ public:
+  QueryRun(const Query& q, db::Store& store, FeatureEngine& features, WorkerPool& pool,
+           const std::function<Status()>& stop, const QueryOutput& out)
+      : q_(q), store_(store), features_(features), pool_(pool), stop_(stop), out_(out) {}
+
+  Result<QuerySummary> run(int64_t stage1_cap) {
+    const Clock::time_point start = Clock::now();
+    SOIQ_ASSIGN_OR_RETURN(candidates_, store_.stage1(q_.stage1, stage1_cap));
+    summary_.stage1_candidates = int64_t(candidates_.size());
+    summary_.stage1_ms = ms_since(start);
+    const Clock::time_point stage2_start = Clock::now();
+    SOIQ_RETURN_IF_ERROR(progress("stage1", summary_.stage1_candidates));
+    add_subjects();
+    SOIQ_ASSIGN_OR_RETURN(const std::vector<size_t> misses, plan_and_read_cache());
+    for (size_t i = 0; i < candidates_.size() && !enough_; ++i) SOIQ_RETURN_IF_ERROR(evaluate(i));
+    SOIQ_RETURN_IF_ERROR(compute(misses));
+    SOIQ_RETURN_IF_ERROR(stream_ordered());
+    summary_.stage2_ms = ms_since(stage2_start);
+    summary_.total_ms = ms_since(start);
+    return summary_;
+  }
+
+ private:
+  Status progress(const char* stage, int64_t done) {
+    return out_.progress(QueryProgress{stage, done, int64_t(candidates_.size())});
+  }
+
+  // Candidates and their twins, each structure once.
+  void add_subjects() {
+    auto add = [&](const db::StructureRecord& s, size_t candidate) {
+      auto [it, fresh] = subject_of_.emplace(s.id, subjects_.size());
+      if (fresh) subjects_.push_back(Subject{s, std::nullopt, ok_status(), {}, false, {}});
+      subjects_[it->second].dependents.push_back(candidate);
+      return it->second;
+    };
+    own_.resize(candidates_.size());
+    twin_.resize(candidates_.size());
+    evaluated_.assign(candidates_.size(), false);
+    for (size_t i = 0; i < candidates_.size(); ++i) own_[i] = add(candidates_[i].structure, i);
+    for (size_t i = 0; i < candidates_.size(); ++i)
+      if (candidates_[i].twin) twin_[i] = add(*candidates_[i].twin, i);
+  }
+
+  // Each subject's plan, then the cache for every plan in one round trip. Subjects answered by the
+  // cache (or that cannot be planned) are ready; the others are returned, to compute.
+  Result<std::vector<size_t>> plan_and_read_cache() {
+    std::vector<std::string> keys;
+    for (Subject& s : subjects_) {
+      if (q_.ask.names.empty()) {
+        s.ready = true;
+        continue;
+      }
+      SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord>* series, study_series(s.structure.study_uid));
+      Result<FeaturePlan> plan = features_.plan(s.structure, *series, q_.ask);
+      if (!plan.ok()) {
+        s.error = plan.status();
+        s.ready = true;
+        continue;
+      }
+      s.plan = std::move(plan).value();
+      keys.push_back(s.plan->cache_key);
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::map<std::string, FeatureValues> cached;
+    if (!keys.empty()) {
+      SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> entries, store_.cached_features(keys));
+      for (auto& e : entries) cached[e.key][e.entry] = std::move(e.value);
+    }
+    std::vector<size_t> misses;
+    for (size_t i = 0; i < subjects_.size(); ++i) {
+      Subject& s = subjects_[i];
+      if (s.ready) continue;
+      const FeatureValues& have = cached[s.plan->cache_key];
+      const bool complete = std::all_of(s.plan->wants.begin(), s.plan->wants.end(),
+                                        [&](const WantedValue& w) { return have.count(w.entry) > 0; });
+      if (!complete) {
+        misses.push_back(i);
+        continue;
+      }
+      s.values = have;
+      s.ready = true;
+      ++summary_.cache_hits;
+    }
+    return misses;
+  }
+
+  // A study's series, read once per study.
+  Result<const std::vector<db::SeriesRecord>*> study_series(const std::string& uid) {
+    auto it = series_of_.find(uid);
+    if (it == series_of_.end()) {
+      SOIQ_ASSIGN_OR_RETURN(auto list, store_.list_series(uid));
+      it = series_of_.emplace(uid, std::move(list)).first;
+    }
+    return &it->second;
+  }
+
+  // The misses on the worker pool; each candidate is evaluated as its subjects complete.
+  Status compute(const std::vector<size_t>& misses) {
+    auto completions = std::make_shared<Completions>();
+    // Whatever way this returns, workers not yet started skip their structure.
+    struct CancelOnExit {
+      Completions& c;
+      ~CancelOnExit() { c.cancelled = true; }
+    } cancel_on_exit{*completions};
+    size_t pending = enough_ ? 0 : submit(misses, completions);
+    Clock::time_point last_progress = Clock::now();
+    while (pending > 0 && !enough_) {
+      std::deque<std::pair<size_t, Result<FeatureValues>>> batch;
+      {
+        std::unique_lock<std::mutex> lock(completions->mutex);
+        completions->wake.wait_for(lock, std::chrono::milliseconds(50), [&] { return !completions->done.empty(); });
+        batch.swap(completions->done);
+      }
+      SOIQ_RETURN_IF_ERROR(stop_());
+      for (auto& [idx, result] : batch) {
+        --pending;
+        SOIQ_RETURN_IF_ERROR(complete(idx, std::move(result)));
+      }
+      if (ms_since(last_progress) >= 100 || pending == 0) {
+        SOIQ_RETURN_IF_ERROR(progress("stage2", done_));
+        last_progress = Clock::now();
+      }
+    }
+    if (misses.empty() || enough_) SOIQ_RETURN_IF_ERROR(progress("stage2", done_));
+    return ok_status();
+  }
+
+  size_t submit(const std::vector<size_t>& misses, const std::shared_ptr<Completions>& completions) {
+    auto ask = std::make_shared<const FeatureAsk>(q_.ask);
+    FeatureEngine* engine = &features_;
+    for (size_t idx : misses) {
+      auto plan = std::make_shared<const FeaturePlan>(*subjects_[idx].plan);
+      pool_.submit([completions, ask, plan, engine, idx] {
+        Result<FeatureValues> r = completions->cancelled.load()
+                                      ? Result<FeatureValues>(Status(StatusCode::kCancelled, "cancelled"))
+                                      : engine->compute(*plan, *ask, &completions->cancelled);
+        std::lock_guard<std::mutex> lock(completions->mutex);
+        completions->done.emplace_back(idx, std::move(r));
+        completions->wake.notify_one();
+      });
+    }
+    return misses.size();
+  }
+
+  Status complete(size_t idx, Result<FeatureValues> result) {
+    Subject& s = subjects_[idx];
+    s.ready = true;
+    if (result.ok()) {
+      s.values = std::move(result).value();
+      ++summary_.computed;
+    } else {
+      s.error = result.status();
+    }
+    for (size_t c : s.dependents) SOIQ_RETURN_IF_ERROR(evaluate(c));
+    return ok_status();
+  }
+
+  // A candidate once it and its twin are ready: its row, the predicates, then out or in the sort.
+  Status evaluate(size_t i) {
+    const Subject& s = subjects_[own_[i]];
+    if (evaluated_[i] || !s.ready || (twin_[i] && !subjects_[*twin_[i]].ready)) return ok_status();
+    evaluated_[i] = true;
+    ++done_;
+    if (!s.error.ok()) {
+      ++summary_.failed;
+      if (summary_.failures.size() < 10)
+        summary_.failures.push_back("structure " + std::to_string(s.structure.id) + ": " + s.error.to_string());
+      return ok_status();
+    }
+    QueryRow row;
+    std::vector<std::optional<double>> scalar(q_.features.size());
+    for (size_t f = 0; f < q_.features.size(); ++f) {
+      std::optional<std::vector<double>> v = value_for(f, i);
+      RowValue& out = row.values.emplace_back(RowValue{q_.features[f].label, {}});
+      if (!v) continue;
+      out.values = *v;
+      if (v->size() == 1) scalar[f] = (*v)[0];
+    }
+    for (const QueryPredicate& p : q_.where)
+      if (!scalar[p.feature] || !compare(*scalar[p.feature], p.op, p.value)) return ok_status();
+    ++summary_.matched;
+    row.structure = s.structure;
+    row.patient = candidates_[i].patient;
+    row.study = candidates_[i].study;
+    if (q_.order_by) {
+      const std::optional<double> key = scalar[*q_.order_by];
+      ordered_.emplace_back(key ? *key : std::nan(""), std::move(row));
+      return ok_status();
+    }
+    return send(std::move(row));
+  }
+
+  Status send(QueryRow&& row) {
+    if (summary_.returned >= q_.limit) {
+      enough_ = true;
+      return ok_status();
+    }
+    ++summary_.returned;
+    SOIQ_RETURN_IF_ERROR(out_.row(std::move(row)));
+    if (summary_.returned >= q_.limit) enough_ = true;
+    return ok_status();
+  }
+
+  // Feature f of candidate i, or nothing when it cannot be had.
+  std::optional<std::vector<double>> value_for(size_t f, size_t i) const {
+    const QueryFeature& feature = q_.features[f];
+    std::optional<std::vector<double>> v = stored_value(feature, subjects_[own_[i]]);
+    if (!feature.asymmetry) return v;
+    std::optional<std::vector<double>> t;
+    if (twin_[i]) t = stored_value(feature, subjects_[*twin_[i]]);
+    if (!v || !t || v->size() != 1 || t->size() != 1) return std::nullopt;
+    const bool left = subjects_[own_[i]].structure.laterality == "L";
+    Result<double> a = left ? asymmetry_index((*v)[0], (*t)[0]) : asymmetry_index((*t)[0], (*v)[0]);
+    if (!a.ok()) return std::nullopt;
+    return std::vector<double>{*a};
+  }
+
+  std::optional<std::vector<double>> stored_value(const QueryFeature& f, const Subject& s) const {
+    if (!s.ready || !s.error.ok() || !s.plan) return std::nullopt;
+    std::string entry = f.name;
+    if (f.intensity) {
+      const auto& images = q_.ask.images;
+      const size_t image = std::find(images.begin(), images.end(), f.image) - images.begin();
+      entry = feature_entry(f.name, region_name(f.region), s.plan->images.at(image).sha256, q_.ask.interpolation);
+    }
+    auto it = s.values.find(entry);
+    if (it == s.values.end()) return std::nullopt;
+    return it->second;
+  }
+
+  // With an order: the matches sorted, missing values (NaN) last in either direction, up to limit.
+  Status stream_ordered() {
+    if (!q_.order_by) return ok_status();
+    std::stable_sort(ordered_.begin(), ordered_.end(), [&](const auto& a, const auto& b) {
+      if (std::isnan(a.first) || std::isnan(b.first)) return !std::isnan(a.first) && std::isnan(b.first);
+      return q_.descending ? a.first > b.first : a.first < b.first;
+    });
+    for (auto& entry : ordered_) {
+      if (enough_) break;
+      SOIQ_RETURN_IF_ERROR(send(std::move(entry.second)));
+    }
+    return ok_status();
+  }
+
+  const Query& q_;
+  db::Store& store_;
+  FeatureEngine& features_;
+  WorkerPool& pool_;
+  const std::function<Status()>& stop_;
+  const QueryOutput& out_;
+
+  std::vector<db::Candidate> candidates_;
+  std::vector<Subject> subjects_;
+  std::map<int64_t, size_t> subject_of_;     // structure id -> subject
+  std::vector<size_t> own_;                  // candidate -> its subject
+  std::vector<std::optional<size_t>> twin_;  // candidate -> its twin's subject
+  std::map<std::string, std::vector<db::SeriesRecord>> series_of_;
+  std::vector<bool> evaluated_;
+  std::vector<std::pair<double, QueryRow>> ordered_;
+  int64_t done_ = 0;
+  bool enough_ = false;  // limit rows sent: nothing more to compute
+  QuerySummary summary_;
+};
+
+}  // namespace
+
+bool compare(double value, Comparison op, double threshold) {
+  if (std::isnan(value)) return false;
+  switch (op) {
+    case Comparison::kLess:
+      return value < threshold;
+    case Comparison::kLessOrEqual:
+      return value <= threshold;
+    case Comparison::kGreater:
+      return value > threshold;
+    case Comparison::kGreaterOrEqual:
+      return value >= threshold;
+    case Comparison::kEqual:
+      return value == threshold;
+    case Comparison::kNotEqual:
+      return value != threshold;
+  }
+  return false;
+}
+
+Result<QuerySummary> QueryEngine::run(const Query& query, const std::function<Status()>& stop, const QueryOutput& out) {
+  if (query.limit < 1) return invalid_argument("a query's limit must be >= 1, got " + std::to_string(query.limit));
+  return QueryRun(query, store_, features_, pool_, stop, out).run(limits_.stage1_cap);
+}
+
+}  // namespace soiq::server

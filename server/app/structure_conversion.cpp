@@ -1,0 +1,37 @@
+#include "server/app/structure_conversion.h"
+
+#include "core/base/run_length_volume.h"
+#include "core/io/write_image.h"
+#include "server/util/temp_file.h"
+
+namespace soiq::server {
+
+Result<StructureConversion> convert_structure(db::Store& store, FeatureEngine& features, WorkerPool& pool,
+                                              int64_t structure_id, const GridChoice& choice, FillRule fill_rule,
+                                              bool mask_export, const std::function<Status()>& stop) {
+  StructureConversion out;
+  SOIQ_ASSIGN_OR_RETURN(out.structure, store.get_structure(structure_id));
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store.list_series(out.structure.study_uid));
+  SOIQ_ASSIGN_OR_RETURN(out.grid, resolve_grid(choice, out.structure, series, 0, features.max_grid_voxels()));
+  // Admitted on the worker, never before: a reservation held while waiting for a worker could
+  // block workers that wait for the budget.
+  FeatureEngine::WorkExtras extras;
+  extras.mask_export = mask_export;
+  auto work = [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(out.held, features.admit(out.structure, out.grid.geometry, extras, stop));
+    SOIQ_ASSIGN_OR_RETURN(out.voxelization, features.convert(out.structure, out.grid.geometry, fill_rule));
+    return ok_status();
+  };
+  SOIQ_RETURN_IF_ERROR(pool.call(work));
+  return out;
+}
+
+Result<std::string> mask_nifti_bytes(const RunLengthVolume& volume, int64_t max_voxels) {
+  SOIQ_ASSIGN_OR_RETURN(const Mask mask, to_mask(volume, max_voxels));
+  // libnifti writes to a path: a private temporary file, never one a client named.
+  SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".nii.gz"));
+  SOIQ_RETURN_IF_ERROR(write_mask(mask, file.path()));
+  return file.read();
+}
+
+}  // namespace soiq::server

@@ -1,0 +1,246 @@
+// The query engine on its own, without gRPC: a real SQLite store of boxes whose volumes are known
+// exactly (mesh_volume_mm3 of a box is the product of its sides), queried through every step:
+// stage 1 with twins, the cache, computation on the pool, predicates, order and limit, failures
+// and stops.
+#include "server/app/query_engine.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/geometry/primitives.h"
+#include "db/surface_blob.h"
+#include "tests/db/temp_store.h"
+
+namespace soiq::server {
+namespace {
+
+using db::testing::TempDir;
+
+class QueryEngineTest : public ::testing::Test {
+ protected:
+  // A box of `x` x 10 x 10 mm in study S1 of patient P1: mesh_volume_mm3 = 100 x.
+  int64_t add_box(const std::string& name, const std::string& laterality, double x, const std::string& study = "S1") {
+    db::NewStructure s;
+    s.patient.patient_id = "P1";
+    s.study.study_uid = study;
+    s.name = name;
+    s.laterality = laterality;
+    // Distinct positions give distinct surfaces (and cache keys) for equal sizes.
+    const double at = double(++boxes_) * 100;
+    Result<db::EncodedSurface> encoded = db::encode_surface(box({at, 0, 0}, {at + x, 10, 10}));
+    EXPECT_TRUE(encoded.ok());
+    s.surface = encoded->info;
+    s.surface_blob = encoded->blob;
+    Result<db::AddedStructure> added = store_->add_structure(s);
+    EXPECT_TRUE(added.ok()) << added.status().to_string();
+    return added.ok() ? added->structure.id : -1;
+  }
+
+  static QueryFeature shape(const std::string& name, bool asymmetry = false) {
+    QueryFeature f;
+    f.name = name;
+    f.asymmetry = asymmetry;
+    f.label.name = asymmetry ? "asym(" + name + ")" : name;
+    return f;
+  }
+
+  // A query over every structure reading `features`, with the ask that covers them.
+  static Query query_of(std::vector<QueryFeature> features) {
+    Query q;
+    q.limit = 100;
+    for (const QueryFeature& f : features) {
+      q.ask.names.push_back(f.name);
+      q.stage1.twins = q.stage1.twins || f.asymmetry;
+    }
+    q.features = std::move(features);
+    EXPECT_TRUE(complete_feature_ask(q.ask).ok());
+    return q;
+  }
+
+  struct Ran {
+    Result<QuerySummary> summary;
+    std::vector<QueryRow> rows;
+    std::vector<QueryProgress> progress;
+  };
+
+  Ran run(
+      const Query& q, std::function<Status()> stop = [] { return ok_status(); }) {
+    Ran ran{Status(StatusCode::kInternal, "not run"), {}, {}};
+    const QueryOutput out{[&](const QueryProgress& p) {
+                            ran.progress.push_back(p);
+                            return ok_status();
+                          },
+                          [&](QueryRow&& r) {
+                            ran.rows.push_back(std::move(r));
+                            return ok_status();
+                          }};
+    ran.summary = engine_.run(q, stop, out);
+    return ran;
+  }
+
+  TempDir tmp_;
+  std::unique_ptr<db::SqliteStore> store_ = db::testing::open_store(tmp_.file("soiq.db"));
+  MemoryBudget budget_{int64_t(1) << 30};
+  FeatureEngine features_{*store_, int64_t(1) << 26, budget_};
+  WorkerPool pool_{2};
+  QueryEngine engine_{*store_, features_, pool_, QueryLimits{}};
+  int boxes_ = 0;
+};
+
+TEST_F(QueryEngineTest, EveryMatchComesWithItsValuesRecordsAndASummary) {
+  const int64_t a = add_box("a", "", 10);
+  const int64_t b = add_box("b", "", 20);
+  Query q = query_of({shape("mesh_volume_mm3")});
+  q.where.push_back({0, Comparison::kGreater, 1500});
+  Ran ran = run(q);
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  ASSERT_EQ(ran.rows.size(), 1u);
+  EXPECT_EQ(ran.rows[0].structure.id, b);
+  EXPECT_EQ(ran.rows[0].patient.patient_id, "P1");
+  EXPECT_EQ(ran.rows[0].study.study_uid, "S1");
+  ASSERT_EQ(ran.rows[0].values.size(), 1u);
+  EXPECT_EQ(ran.rows[0].values[0].label.name, "mesh_volume_mm3");
+  ASSERT_EQ(ran.rows[0].values[0].values.size(), 1u);
+  EXPECT_NEAR(ran.rows[0].values[0].values[0], 2000, 1e-9);  // exact up to rounding of the sum
+  EXPECT_EQ(ran.summary->stage1_candidates, 2);
+  EXPECT_EQ(ran.summary->computed, 2);
+  EXPECT_EQ(ran.summary->matched, 1);
+  EXPECT_EQ(ran.summary->returned, 1);
+  EXPECT_EQ(ran.summary->failed, 0);
+  ASSERT_FALSE(ran.progress.empty());
+  EXPECT_EQ(ran.progress.front().stage, "stage1");
+  EXPECT_EQ(ran.progress.back().stage, "stage2");
+  EXPECT_EQ(ran.progress.back().done, 2);
+  EXPECT_EQ(ran.progress.back().total, 2);
+  (void)a;
+}
+
+TEST_F(QueryEngineTest, ASecondRunIsAnsweredFromTheCacheWithTheSameValues) {
+  add_box("a", "", 10);
+  add_box("b", "", 30);
+  const Query q = query_of({shape("mesh_volume_mm3"), shape("voxel_count")});
+  Ran first = run(q);
+  Ran second = run(q);
+  ASSERT_TRUE(first.summary.ok() && second.summary.ok());
+  EXPECT_EQ(first.summary->computed, 2);
+  EXPECT_EQ(first.summary->cache_hits, 0);
+  EXPECT_EQ(second.summary->computed, 0);
+  EXPECT_EQ(second.summary->cache_hits, 2);
+  ASSERT_EQ(first.rows.size(), 2u);
+  ASSERT_EQ(second.rows.size(), 2u);
+  for (size_t r = 0; r < 2; ++r)
+    for (size_t v = 0; v < 2; ++v) EXPECT_EQ(first.rows[r].values[v].values, second.rows[r].values[v].values);
+}
+
+TEST_F(QueryEngineTest, AnOrderSortsEveryMatchThenKeepsTheFirstLimit) {
+  for (double x : {30.0, 10.0, 50.0, 20.0, 40.0}) add_box("s", "", x);
+  Query q = query_of({shape("mesh_volume_mm3")});
+  q.order_by = 0;
+  q.descending = true;
+  q.limit = 2;
+  Ran ran = run(q);
+  ASSERT_TRUE(ran.summary.ok());
+  ASSERT_EQ(ran.rows.size(), 2u);
+  EXPECT_NEAR(ran.rows[0].values[0].values[0], 5000, 1e-9);
+  EXPECT_NEAR(ran.rows[1].values[0].values[0], 4000, 1e-9);
+  EXPECT_EQ(ran.summary->matched, 5);
+  EXPECT_EQ(ran.summary->returned, 2);
+}
+
+TEST_F(QueryEngineTest, AnAsymmetryReadsTheTwinEvenWhenStage1DoesNotKeepIt) {
+  const int64_t left = add_box("Hippocampus", "L", 10);
+  add_box("hippocampus", "R", 8);        // the twin: same name but for case, other side
+  add_box("hippocampus", "R", 2, "S2");  // another study: never the twin
+  Query q = query_of({shape("mesh_volume_mm3", true)});
+  q.stage1.laterality = "L";
+  Ran ran = run(q);
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  ASSERT_EQ(ran.rows.size(), 1u);
+  EXPECT_EQ(ran.rows[0].structure.id, left);
+  EXPECT_EQ(ran.rows[0].values[0].label.name, "asym(mesh_volume_mm3)");
+  ASSERT_EQ(ran.rows[0].values[0].values.size(), 1u);
+  EXPECT_NEAR(ran.rows[0].values[0].values[0], (1000.0 - 800.0) / 900.0, 1e-12);
+  EXPECT_EQ(ran.summary->computed, 2);  // the structure and its twin
+}
+
+TEST_F(QueryEngineTest, AStructureWithoutTwinHasNoAsymmetryAndMatchesNoPredicateOnIt) {
+  add_box("amygdala", "L", 10);
+  add_box("insula", "", 10);
+  Query q = query_of({shape("mesh_volume_mm3", true)});
+  Ran selected = run(q);
+  ASSERT_TRUE(selected.summary.ok());
+  ASSERT_EQ(selected.rows.size(), 2u);
+  for (const QueryRow& row : selected.rows) EXPECT_TRUE(row.values[0].values.empty()) << row.structure.name;
+  q.where.push_back({0, Comparison::kNotEqual, 12345});
+  Ran filtered = run(q);
+  ASSERT_TRUE(filtered.summary.ok());
+  EXPECT_TRUE(filtered.rows.empty());
+}
+
+TEST_F(QueryEngineTest, AStructureWhoseFeaturesCannotBeHadIsCountedAsFailedWithItsReason) {
+  const int64_t id = add_box("a", "", 10);
+  QueryFeature mean;
+  mean.name = "mean";
+  mean.intensity = true;
+  mean.image = "PT";  // the study has no image at all
+  mean.label = {"mean", "inside", "PT"};
+  Query q = query_of({mean});
+  q.ask.images = {"PT"};
+  q.ask.regions = {RegionSpec{}};
+  Ran ran = run(q);
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  EXPECT_TRUE(ran.rows.empty());
+  EXPECT_EQ(ran.summary->failed, 1);
+  ASSERT_EQ(ran.summary->failures.size(), 1u);
+  EXPECT_NE(ran.summary->failures[0].find("structure " + std::to_string(id) + ": NOT_FOUND"), std::string::npos)
+      << ran.summary->failures[0];
+}
+
+TEST_F(QueryEngineTest, AStopEndsTheRunWithItsStatus) {
+  add_box("a", "", 10);
+  add_box("b", "", 20);
+  Ran ran = run(query_of({shape("voxel_count")}),
+                [] { return Status(StatusCode::kDeadlineExceeded, "the request ran past its deadline"); });
+  EXPECT_EQ(ran.summary.status().code(), StatusCode::kDeadlineExceeded);
+}
+
+TEST_F(QueryEngineTest, AClosedOutputEndsTheRunWithItsStatus) {
+  add_box("a", "", 10);
+  const QueryOutput out{[](const QueryProgress&) { return ok_status(); },
+                        [](QueryRow&&) { return Status(StatusCode::kCancelled, "the client closed the stream"); }};
+  Result<QuerySummary> r = engine_.run(
+      query_of({shape("voxel_count")}), [] { return ok_status(); }, out);
+  EXPECT_EQ(r.status().code(), StatusCode::kCancelled);
+  EXPECT_NE(r.status().message().find("closed the stream"), std::string::npos);
+}
+
+TEST_F(QueryEngineTest, MoreCandidatesThanTheStage1CapIsResourceExhaustedBeforeAnyComputation) {
+  for (int i = 0; i < 3; ++i) add_box("s", "", 10);
+  QueryEngine capped(*store_, features_, pool_, QueryLimits{100, 2});
+  const QueryOutput out{[](const QueryProgress&) { return ok_status(); }, [](QueryRow&&) { return ok_status(); }};
+  Result<QuerySummary> r = capped.run(
+      query_of({shape("voxel_count")}), [] { return ok_status(); }, out);
+  EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted);
+  EXPECT_NE(r.status().message().find("narrow the stage-1 filter"), std::string::npos);
+  Result<db::Counts> counts = store_->counts();
+  ASSERT_TRUE(counts.ok());
+  EXPECT_EQ(counts->cached_features, 0);
+}
+
+TEST(Compare, NaNNeverMatchesAndEachOperatorComparesAsItsName) {
+  EXPECT_TRUE(compare(1, Comparison::kLess, 2));
+  EXPECT_FALSE(compare(2, Comparison::kLess, 2));
+  EXPECT_TRUE(compare(2, Comparison::kLessOrEqual, 2));
+  EXPECT_TRUE(compare(3, Comparison::kGreater, 2));
+  EXPECT_TRUE(compare(2, Comparison::kGreaterOrEqual, 2));
+  EXPECT_TRUE(compare(2, Comparison::kEqual, 2));
+  EXPECT_TRUE(compare(1, Comparison::kNotEqual, 2));
+  for (Comparison op : {Comparison::kLess, Comparison::kLessOrEqual, Comparison::kGreater, Comparison::kGreaterOrEqual,
+                        Comparison::kEqual, Comparison::kNotEqual})
+    EXPECT_FALSE(compare(std::nan(""), op, 0));
+}
+
+}  // namespace
+}  // namespace soiq::server
