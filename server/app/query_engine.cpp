@@ -307,25 +307,6 @@ class QueryRun {
 
 }  // namespace
 
-bool compare(double value, Comparison op, double threshold) {
-  if (std::isnan(value)) return false;
-  switch (op) {
-    case Comparison::kLess:
-      return value < threshold;
-    case Comparison::kLessOrEqual:
-      return value <= threshold;
-    case Comparison::kGreater:
-      return value > threshold;
-    case Comparison::kGreaterOrEqual:
-      return value >= threshold;
-    case Comparison::kEqual:
-      return value == threshold;
-    case Comparison::kNotEqual:
-      return value != threshold;
-  }
-  return false;
-}
-
 Result<QuerySummary> QueryEngine::run(const Query& query, const std::function<Status()>& stop, const QueryOutput& out) {
   if (query.limit < 1) return invalid_argument("a query's limit must be >= 1, got " + std::to_string(query.limit));
   return QueryRun(query, store_, features_, pool_, stop, out).run(limits_.stage1_cap);
