@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/simulated_models.h"
+#include "tests/support/simulated_models.h"
 #include "core/features/structure_features.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "bench/simulated_models.h"
+#include "tests/support/simulated_models.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/method_run.h"
-#include "bench/simulated_models.h"
+#include "tests/support/simulated_models.h"
 #include "core/geometry/mesh_defects.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "bench/simulated_models.h"
+#include "tests/support/simulated_models.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
 #include "core/voxelize/voxelize_1d.h"
@@ -64,7 +64,7 @@ INSTANTIATE_TEST_SUITE_P(RealMasks, RoundTrip, ::testing::ValuesIn(real_masks())
   return n;
 });
 
-// The paper's simulated models SM1-SM11 at 1 mm (bench/simulated_models.h): V1 is the analytic
+// The paper's simulated models SM1-SM11 at 1 mm (tests/support/simulated_models.h): V1 is the analytic
 // voxel-centre volume, S1 its marching-cubes surface; S1 converted back must be V1 exactly.
 class SimulatedRoundTrip : public ::testing::TestWithParam<bench::SimModel> {};
 

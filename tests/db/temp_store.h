@@ -1,6 +1,6 @@
 #pragma once
-// Test support for tests/db: a unique temporary directory removed at the end of the test, and
-// small builders of valid store inputs.
+// Test support for tests/db: the temporary directory of tests/support, and small builders of
+// valid store inputs.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,28 +13,11 @@
 #include "db/image_blob.h"
 #include "db/sqlite_store.h"
 #include "db/surface_blob.h"
+#include "tests/support/temp_dir.h"
 
 namespace soiq::db::testing {
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("soiq_db_" + std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()) + "_" +
-             std::to_string(counter++) + "_" + std::to_string(std::random_device{}()));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  std::filesystem::path path_;
-};
+using soiq::testing::TempDir;
 
 inline std::unique_ptr<SqliteStore> open_store(const std::string& path, SqliteOptions options = {}) {
   auto store = SqliteStore::open(path, options);

@@ -10,29 +10,12 @@
 #include <random>
 #include <string>
 
+#include "tests/support/temp_dir.h"
+
 namespace soiq::dicom::testing {
 
 inline std::string data_dir(const std::string& sub) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + sub; }
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("soiq_dicom_" + std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()) + "_" +
-             std::to_string(counter++) + "_" + std::to_string(std::random_device{}()));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using soiq::testing::TempDir;
 
 }  // namespace soiq::dicom::testing

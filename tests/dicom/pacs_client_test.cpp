@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/base/run_length_volume.h"
-#include "dcmqrscp_process.h"
+#include "tests/support/dcmqrscp_process.h"
 #include "dicom/import_dicom.h"
 #include "dicom_test_support.h"
 

@@ -17,7 +17,7 @@
 #include "core/io/read_image.h"
 #include "dicom/pacs_pull.h"
 #include "dicom/read_seg.h"
-#include "tests/dicom/dcmqrscp_process.h"
+#include "tests/support/dcmqrscp_process.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/sts_query.h"
 

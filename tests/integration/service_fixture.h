@@ -10,7 +10,7 @@
 
 #include "client/soiq_client.h"
 #include "core/base/triangle_mesh.h"
-#include "tests/integration/soiqd_process.h"
+#include "tests/support/soiqd_process.h"
 
 namespace soiq::testing {
 

@@ -1,4 +1,4 @@
-#include "tests/integration/soiqd_process.h"
+#include "tests/support/soiqd_process.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -27,16 +27,6 @@ int wait_exit(pid_t pid, std::chrono::seconds timeout) {
 }
 
 }  // namespace
-
-TempDir::TempDir() {
-  std::string pattern = (std::filesystem::temp_directory_path() / "soiq-it-XXXXXX").string();
-  path_ = mkdtemp(pattern.data());
-}
-
-TempDir::~TempDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
 
 SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args) {
   const std::string dir = std::filesystem::path(db_path).parent_path().string();

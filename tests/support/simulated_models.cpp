@@ -1,4 +1,4 @@
-#include "bench/simulated_models.h"
+#include "tests/support/simulated_models.h"
 
 #include <algorithm>
 #include <cmath>

@@ -28,9 +28,11 @@
 
 #include "dicom/pacs_echo.h"
 #include "dicom/pacs_peer.h"
-#include "dicom_test_support.h"
+#include "tests/support/temp_dir.h"
 
 namespace soiq::dicom::testing {
+
+using soiq::testing::TempDir;
 
 // The absolute path of `name` on PATH, or "" when it is not there.
 inline std::string find_on_path(const std::string& name) {
