@@ -1,0 +1,93 @@
+#include "bench/query_report.h"
+
+#include <cstdio>
+#include <string>
+
+namespace soiq::bench {
+
+void print_query_report(const QueryBenchFigures& f) {
+  std::vector<double> s1_server, s1_client, cold_client, cold_stage2, warm_client, warm_total;
+  for (const ServerRun& r : f.runs) {
+    s1_server.push_back(r.stage1.summary.stage1_ms());
+    s1_client.push_back(r.stage1.client_ms);
+    cold_client.push_back(r.cold.client_ms);
+    cold_stage2.push_back(r.cold.summary.stage2_ms());
+    for (const Timed& w : r.warm) {
+      warm_client.push_back(w.client_ms);
+      warm_total.push_back(w.summary.total_ms());
+    }
+  }
+  const Stats s1 = stats(f.stage1_ms), s1s = stats(s1_server), s1c = stats(s1_client), cc = stats(cold_client),
+              cs2 = stats(cold_stage2), wc = stats(warm_client), wt = stats(warm_total);
+  auto ok = [](double v, double limit) { return v < limit ? "met" : "**not met**"; };
+  const int64_t matched_patients = f.size.matched;
+  std::printf(
+      "Cohort: %d patients (sex F/M ~50/50, born 1930-2005, one study 2010-2025, MR 50 %% / CT 35 %% / PT 15 %%);\n"
+      "stage 1 (F, MR, study 2020-2023, age at study 60-75) keeps exactly %lld of them: %zu structures\n"
+      "(hippocampus, amygdala, caudate, putamen, thalamus, L and R; deformed ellipsoids of %lld-%lld triangles,\n"
+      "checked closed with core/geometry/mesh_defects), each study with a %lldx%lldx%lld MR image of 2 mm. The other\n"
+      "patients have one structure each on %d shared surface blobs. Database: %.0f MiB. soiqd: --workers %d.\n\n",
+      f.size.patients, (long long)matched_patients, f.candidates, (long long)f.min_triangles,
+      (long long)f.max_triangles, (long long)f.size.image_dims[0], (long long)f.size.image_dims[1],
+      (long long)f.size.image_dims[2], f.size.background_blobs, f.db_mib, f.workers);
+  std::printf(
+      "Query: `voxel_volume_mm3, sphericity, mean[shell:3, MR]` of every candidate, ordered by\n"
+      "voxel_volume_mm3 descending, limit 20, on the default grid (1 mm, axis-aligned, margin grown for the\n"
+      "shell), nearest-neighbour sampling of the MR image.\n\n");
+  std::printf("| load | items | time | rate |\n|---|---:|---:|---:|\n");
+  std::printf("| background patients, SqliteStore::add_structure on tmpfs | %lld | %.1f s | %.0f patients/s |\n",
+              (long long)f.background.patients, f.background.seconds,
+              double(f.background.patients) / f.background.seconds);
+  std::printf(
+      "| MR images, `upload_image` (NIfTI, 2 clients) | %lld (%.0f MiB) | %.1f s | %.1f images/s, %.1f MiB/s |\n",
+      (long long)f.uploaded.images, double(f.uploaded.image_bytes) / (1 << 20), f.uploaded.image_seconds,
+      double(f.uploaded.images) / f.uploaded.image_seconds,
+      double(f.uploaded.image_bytes) / (1 << 20) / f.uploaded.image_seconds);
+  std::printf(
+      "| surfaces, `upload_surface` (binary PLY, 2 clients) | %lld (%.0f MiB, %.1f M triangles) | %.1f s | "
+      "%.1f surfaces/s, %.1f MiB/s, %.2f M triangles/s |\n\n",
+      (long long)f.uploaded.structures, double(f.uploaded.surface_bytes) / (1 << 20),
+      double(f.uploaded.triangles) / 1e6, f.uploaded.surface_seconds,
+      double(f.uploaded.structures) / f.uploaded.surface_seconds,
+      double(f.uploaded.surface_bytes) / (1 << 20) / f.uploaded.surface_seconds,
+      double(f.uploaded.triangles) / 1e6 / f.uploaded.surface_seconds);
+  std::printf("| measure | best | median | runs | target |\n|---|---:|---:|---:|---|\n");
+  std::printf("| stage 1, SqliteStore::stage1 in-process | %.1f ms | %.1f ms | %zu | < 50 ms: %s |\n", s1.best,
+              s1.median, f.stage1_ms.size(), ok(s1.best, 50));
+  std::printf("| stage 1, server's f.stage1_ms (feature-less query) | %.1f ms | %.1f ms | %zu | < 50 ms: %s |\n",
+              s1s.best, s1s.median, s1_server.size(), ok(s1s.best, 50));
+  std::printf("| stage 1, client end to end (%zu rows streamed) | %.1f ms | %.1f ms | %zu | |\n", f.candidates,
+              s1c.best, s1c.median, s1_client.size());
+  std::printf("| cold query, client end to end | %.2f s | %.2f s | %zu | < 10 s: %s |\n", cc.best / 1000,
+              cc.median / 1000, cold_client.size(), ok(cc.best, 10000));
+  std::printf("| cold query, server's stage2_ms | %.2f s | %.2f s | %zu | |\n", cs2.best / 1000, cs2.median / 1000,
+              cold_stage2.size());
+  std::printf("| warm query, client end to end | %.1f ms | %.1f ms | %zu | < 100 ms: %s |\n", wc.best, wc.median,
+              warm_client.size(), ok(wc.best, 100));
+  std::printf("| warm query, server's total_ms | %.1f ms | %.1f ms | %zu | |\n\n", wt.best, wt.median,
+              warm_total.size());
+  std::printf("Concurrent clients repeating the warm query for %.0f s each (own channel per client):\n\n", f.seconds);
+  std::printf("| clients | queries | queries/s | p50 | p95 |\n|---:|---:|---:|---:|---:|\n");
+  for (const Throughput& t : f.load)
+    std::printf("| %d | %lld | %.1f | %.1f ms | %.1f ms |\n", t.clients, (long long)t.queries, t.per_second,
+                t.latency.median, t.latency.p95);
+  std::printf(
+      "\nWhere the cold time goes: the same %lld structures (%.1f M triangles, %.1f M voxels inside, %.1f M\n"
+      "in the shells), part by part in one thread of soiq-bench (cold_breakdown.h), summed:\n\n",
+      (long long)f.breakdown.structures, double(f.breakdown.triangles) / 1e6, double(f.breakdown.voxels) / 1e6,
+      double(f.breakdown.shell_voxels) / 1e6);
+  std::printf("| part | total | per structure | share |\n|---|---:|---:|---:|\n");
+  double sum = 0;
+  for (const auto& [part, ms] : f.breakdown.parts_ms)
+    if (part.rfind("(before)", 0) != 0) sum += ms;
+  for (const auto& [part, ms] : f.breakdown.parts_ms)
+    std::printf(
+        "| %s | %.0f ms | %.2f ms | %s |\n", part.c_str(), ms, ms / double(f.breakdown.structures),
+        part.rfind("(before)", 0) == 0 ? "(not in sum)" : (std::to_string(int(100 * ms / sum + 0.5)) + " %").c_str());
+  std::printf("| **sum (server's path)** | %.0f ms | %.2f ms | |\n", sum, sum / double(f.breakdown.structures));
+  std::printf("| whole pass, one thread (stage 1 %.0f ms and the (before) parts included) | %.0f ms | | |\n",
+              f.breakdown.stage1_ms, f.breakdown.total_ms);
+  std::printf("| server's cold stage 2 on %d workers (best) | %.0f ms | | |\n\n", f.workers, cs2.best);
+}
+
+}  // namespace soiq::bench
