@@ -1,0 +1,93 @@
+// soiqd's configuration on its own: defaults, flags over environment variables, and a refusal
+// naming the flag or variable for every bad value.
+#include "server/app/server_config.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace soiq::server {
+namespace {
+
+struct Parsed {
+  Result<ServerConfig> config;
+  bool help = false;
+};
+
+Parsed parse(std::vector<std::string> args, std::map<std::string, std::string> env = {}) {
+  args.insert(args.begin(), "soiqd");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  Parsed p{Status(StatusCode::kInternal, "not parsed"), false};
+  p.config = parse_server_config(int(argv.size()), argv.data(), p.help, [&](const char* name) -> const char* {
+    auto it = env.find(name);
+    return it == env.end() ? nullptr : it->second.c_str();
+  });
+  return p;
+}
+
+bool says(const Status& s, const std::string& part) { return s.message().find(part) != std::string::npos; }
+
+TEST(ServerConfig, WithNothingGivenEveryValueIsTheDocumentedDefault) {
+  Parsed p = parse({});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_EQ(p.config->listen, "127.0.0.1:50051");
+  EXPECT_EQ(p.config->db_path, "var/soiq.db");
+  EXPECT_EQ(p.config->max_upload_bytes, 256ll << 20);
+  EXPECT_EQ(p.config->max_grid_voxels, 500'000'000);
+  EXPECT_GT(p.config->memory_budget_bytes, 0);  // half the RAM, whatever this machine has
+  EXPECT_GT(p.config->workers, 0);
+  EXPECT_FALSE(p.config->pacs_peer);
+  EXPECT_FALSE(p.help);
+}
+
+TEST(ServerConfig, AFlagWinsOverItsEnvironmentVariable) {
+  Parsed p = parse({"--workers", "3"}, {{"SOIQ_WORKERS", "7"}, {"SOIQ_DB", "/tmp/x.db"}});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_EQ(p.config->workers, 3);
+  EXPECT_EQ(p.config->db_path, "/tmp/x.db");
+}
+
+TEST(ServerConfig, TheMemoryBudgetTakesUnits) {
+  Parsed p = parse({"--memory-budget", "512M"});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_EQ(p.config->memory_budget_bytes, 512ll << 20);
+}
+
+TEST(ServerConfig, APacsFlagGivesAPeerWithTheCallingAeAndTimeout) {
+  Parsed p = parse({"--pacs", "ORTHANC@127.0.0.1:4242", "--pacs-calling-ae", "ME", "--pacs-timeout", "5"});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  ASSERT_TRUE(p.config->pacs_peer);
+  EXPECT_EQ(p.config->pacs_peer->called_ae, "ORTHANC");
+  EXPECT_EQ(p.config->pacs_peer->host, "127.0.0.1");
+  EXPECT_EQ(p.config->pacs_peer->port, 4242);
+  EXPECT_EQ(p.config->pacs_peer->calling_ae, "ME");
+  EXPECT_EQ(p.config->pacs_peer->timeout_seconds, 5);
+}
+
+TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
+  const std::vector<std::pair<Parsed, std::string>> cases = {
+      {parse({"--workers", "0"}), "--workers"},
+      {parse({"--workers", "many"}), "--workers"},
+      {parse({}, {{"SOIQ_MAX_UPLOAD_BYTES", "-1"}}), "SOIQ_MAX_UPLOAD_BYTES"},
+      {parse({"--tls-cert", "a.pem"}), "--tls-key"},
+      {parse({"--pacs", "no-at-sign:4242"}), "--pacs"},
+      {parse({"--frobnicate"}), "--frobnicate"},
+      {parse({"--db"}), "--db"},
+  };
+  for (const auto& [p, name] : cases) {
+    EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
+    EXPECT_TRUE(says(p.config.status(), name)) << p.config.status().message();
+  }
+}
+
+TEST(ServerConfig, HelpIsReportedNotAnError) {
+  Parsed p = parse({"--help"});
+  EXPECT_TRUE(p.help);
+  EXPECT_NE(std::string(server_usage()).find("--memory-budget"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace soiq::server

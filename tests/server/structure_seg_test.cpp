@@ -1,0 +1,77 @@
+// Imported structures as one DICOM SEG, on its own: STS_002's CT and RT Structure Set imported into
+// a real store, the GTV written as a SEG on the CT's grid, and the refusals for structures a SEG
+// cannot hold.
+#include "server/app/structure_seg.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "db/surface_blob.h"
+#include "server/app/dicom_import.h"
+#include "tests/db/temp_store.h"
+
+namespace soiq::server {
+namespace {
+
+namespace fs = std::filesystem;
+using db::testing::TempDir;
+
+class StructureSeg : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path ct = fs::path(SOIQ_TEST_DATA_DIR) / "sts/STS_002/dicom/CT";
+    const std::string dir = tmp_.file("received");
+    fs::create_directories(dir);
+    std::vector<std::string> sent;
+    for (const char* part : {"image", "mask"}) {
+      for (const auto& f : fs::directory_iterator(ct / part)) {
+        const std::string name = std::string(part) + "_" + f.path().filename().string();
+        fs::copy_file(f.path(), fs::path(dir) / name);
+        sent.push_back(name);
+      }
+    }
+    Result<DicomImportResult> r = import_dicom_folder(*store_, dir, sent, int64_t(1) << 26, budget_, {});
+    ASSERT_TRUE(r.ok()) << r.status().to_string();
+    for (const ImportedStructure& s : r->structures) imported_.push_back(s.structure.id);
+    ASSERT_FALSE(imported_.empty());
+  }
+
+  TempDir tmp_;
+  std::unique_ptr<db::SqliteStore> store_ = db::testing::open_store(tmp_.file("soiq.db"));
+  MemoryBudget budget_{int64_t(1) << 30};
+  FeatureEngine features_{*store_, int64_t(1) << 26, budget_};
+  std::vector<int64_t> imported_;
+};
+
+TEST_F(StructureSeg, ImportedStructuresBecomeOneSegOnTheirSeries) {
+  Result<dicom::WrittenSeg> seg = structure_seg(*store_, features_, imported_, "GTV as SEG");
+  ASSERT_TRUE(seg.ok()) << seg.status().to_string();
+  ASSERT_GT(seg->bytes.size(), 132u);
+  EXPECT_EQ(seg->bytes.substr(128, 4), "DICM");  // a Part 10 file
+  EXPECT_GT(seg->frame_count, 0);
+  EXPECT_FALSE(seg->series_uid.empty());
+  EXPECT_FALSE(seg->sop_instance_uid.empty());
+}
+
+TEST_F(StructureSeg, NoIdsOrARepeatedIdIsInvalidArgument) {
+  EXPECT_EQ(structure_seg(*store_, features_, {}, "").status().code(), StatusCode::kInvalidArgument);
+  const std::vector<int64_t> twice = {imported_[0], imported_[0]};
+  EXPECT_EQ(structure_seg(*store_, features_, twice, "").status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST_F(StructureSeg, AnUnknownStructureIsNotFound) {
+  EXPECT_EQ(structure_seg(*store_, features_, {imported_.back() + 100}, "").status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(StructureSeg, AnUploadedStructureHasNoImagesToReferenceAndSaysHowToGetThem) {
+  Result<db::AddedStructure> uploaded = store_->add_structure(db::testing::new_structure("P", "S", "uploaded", 1));
+  ASSERT_TRUE(uploaded.ok());
+  Result<dicom::WrittenSeg> seg = structure_seg(*store_, features_, {uploaded->structure.id}, "");
+  EXPECT_EQ(seg.status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_NE(seg.status().message().find("soiq import"), std::string::npos) << seg.status().message();
+}
+
+}  // namespace
+}  // namespace soiq::server
