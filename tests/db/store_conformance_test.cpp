@@ -209,7 +209,9 @@ TYPED_TEST(StoreConformance, CachedFeaturesReadBackByKeyAndGoWithTheirSurface) {
   for (const CachedFeature& e : *k1) {
     EXPECT_EQ(e.key, "k1");
     names.insert(e.entry);
-    if (e.entry == "centroid") EXPECT_EQ(e.value, (std::vector<double>{1, 2, 3}));
+    if (e.entry == "centroid") {
+      EXPECT_EQ(e.value, (std::vector<double>{1, 2, 3}));
+    }
   }
   EXPECT_EQ(names, (std::set<std::string>{"volume", "centroid"}));
   ASSERT_TRUE(this->store().delete_structure(id).ok());
