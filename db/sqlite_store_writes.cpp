@@ -186,9 +186,11 @@ Status delete_image_if_orphan(Connection& c, const std::string& sha256) {
   return del.run();
 }
 
+constexpr char kStructureByIdSql[] = R"sql(
+  WHERE s.id = ?1)sql";
+
 Result<StructureRecord> structure_by_id(Connection& c, int64_t id) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStructureColumns + " FROM " + kStructureJoin +
-                                               " WHERE s.id = ?1"));
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql})));
   q.bind(1, id);
   SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
   if (!row) return not_found("structure " + std::to_string(id) + " not found");
