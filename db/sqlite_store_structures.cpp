@@ -30,6 +30,18 @@ constexpr char kInsertSurfaceSql[] = R"sql(
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
+// Stores the surface blob unless one with its sha256 is there; true when it already was.
+Result<bool> insert_surface(Connection& c, const NewStructure& s) {
+  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertSurfaceSql));
+  ins.bind(1, s.surface.sha256);
+  ins.bind(2, s.surface.vertex_count);
+  ins.bind(3, s.surface.triangle_count);
+  for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
+  ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
+  SOIQ_RETURN_IF_ERROR(ins.run());
+  return sqlite3_changes64(c.handle()) == 0;
+}
+
 constexpr char kStructureBySourceUidSql[] = R"sql(
   SELECT s.id, s.surface_sha256, st.patient_pk, p.patient_id
   FROM structures s
@@ -42,6 +54,37 @@ constexpr char kUpdateStructureSql[] = R"sql(
   SET study_pk = ?2, name = ?3, laterality = ?4, robust = ?5, surface_sha256 = ?6, source_series_uid = ?7
   WHERE id = ?1)sql";
 
+// A re-imported structure (same source_uid) keeps its id: the stored structure with s.source_uid,
+// if any, is updated to `s` (its old surface goes if orphaned) and its id returned.
+// FAILED_PRECONDITION when that structure belongs to another patient.
+Result<std::optional<int64_t>> replace_by_source_uid(Connection& c, const NewStructure& s, const StudyKeys& keys) {
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureBySourceUidSql));
+  q.bind(1, s.source_uid);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+  if (!row) return std::optional<int64_t>();
+  const int64_t id = q.int64(0);
+  const std::string old_sha = q.text(1);
+  const int64_t old_patient_pk = q.int64(2);
+  if (old_patient_pk != keys.patient_pk) {
+    return failed_precondition("structure " + std::to_string(id) + " (source '" + s.source_uid +
+                               "') belongs to patient '" + q.text(3) + "', not to '" + s.patient.patient_id +
+                               "': an import never moves a structure to another patient");
+  }
+  SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpdateStructureSql));
+  up.bind(1, id);
+  up.bind(2, keys.study_pk);
+  up.bind(3, s.name);
+  up.bind(4, s.laterality);
+  up.bind(5, int64_t{s.robust});
+  up.bind(6, s.surface.sha256);
+  up.bind(7, s.source_series_uid);
+  SOIQ_RETURN_IF_ERROR(up.run());
+  if (old_sha != s.surface.sha256) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, old_sha));
+  SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+  if (old_patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, old_patient_pk));
+  return std::optional<int64_t>(id);
+}
+
 // The lowest id: when copies already exist (stored before this rule), always the same one.
 constexpr char kStructureWithSameContentSql[] = R"sql(
   SELECT id FROM structures
@@ -49,10 +92,37 @@ constexpr char kStructureWithSameContentSql[] = R"sql(
   ORDER BY id
   LIMIT 1)sql";
 
+// The stored structure that `s` is by NewStructure::same_content_is_same_structure, if any.
+Result<std::optional<int64_t>> structure_with_same_content(Connection& c, const NewStructure& s, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureWithSameContentSql));
+  q.bind(1, study_pk);
+  q.bind(2, s.source_series_uid);
+  q.bind(3, s.name);
+  q.bind(4, s.surface.sha256);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+  if (!row) return std::optional<int64_t>();
+  return std::optional<int64_t>(q.int64(0));
+}
+
 constexpr char kInsertStructureSql[] = R"sql(
   INSERT INTO structures(study_pk, name, laterality, robust, surface_sha256, source_series_uid, source_uid)
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)
   RETURNING id)sql";
+
+// Inserts `s` as a new structure of the study; returns its id.
+Result<int64_t> insert_structure_row(Connection& c, const NewStructure& s, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertStructureSql));
+  ins.bind(1, study_pk);
+  ins.bind(2, s.name);
+  ins.bind(3, s.laterality);
+  ins.bind(4, int64_t{s.robust});
+  ins.bind(5, s.surface.sha256);
+  ins.bind(6, s.source_series_uid);
+  ins.bind(7, s.source_uid);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
+  if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
+  return ins.int64(0);
+}
 
 }  // namespace
 
@@ -71,75 +141,24 @@ Status validate_new_structure(const NewStructure& s) {
 Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
   AddedStructure out;
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
-  {
-    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertSurfaceSql));
-    ins.bind(1, s.surface.sha256);
-    ins.bind(2, s.surface.vertex_count);
-    ins.bind(3, s.surface.triangle_count);
-    for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
-    ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
-    SOIQ_RETURN_IF_ERROR(ins.run());
-    out.surface_already_stored = sqlite3_changes64(c.handle()) == 0;
-  }
-  // A re-imported structure (same source_uid) keeps its id; its old surface goes if orphaned.
-  std::optional<int64_t> old_patient_pk;
+  SOIQ_ASSIGN_OR_RETURN(out.surface_already_stored, insert_surface(c, s));
   if (!s.source_uid.empty()) {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureBySourceUidSql));
-    q.bind(1, s.source_uid);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (row) {
-      const int64_t id = q.int64(0);
-      const std::string old_sha = q.text(1);
-      old_patient_pk = q.int64(2);
-      if (*old_patient_pk != keys.patient_pk) {
-        return failed_precondition("structure " + std::to_string(id) + " (source '" + s.source_uid +
-                                   "') belongs to patient '" + q.text(3) + "', not to '" + s.patient.patient_id +
-                                   "': an import never moves a structure to another patient");
-      }
-      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpdateStructureSql));
-      up.bind(1, id);
-      up.bind(2, keys.study_pk);
-      up.bind(3, s.name);
-      up.bind(4, s.laterality);
-      up.bind(5, int64_t{s.robust});
-      up.bind(6, s.surface.sha256);
-      up.bind(7, s.source_series_uid);
-      SOIQ_RETURN_IF_ERROR(up.run());
-      if (old_sha != s.surface.sha256) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, old_sha));
+    SOIQ_ASSIGN_OR_RETURN(const std::optional<int64_t> replaced, replace_by_source_uid(c, s, keys));
+    if (replaced) {
       out.replaced = true;
-      SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
-      if (*old_patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, *old_patient_pk));
-      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
+      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, *replaced));
       return out;
     }
   }
   if (s.same_content_is_same_structure) {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureWithSameContentSql));
-    q.bind(1, keys.study_pk);
-    q.bind(2, s.source_series_uid);
-    q.bind(3, s.name);
-    q.bind(4, s.surface.sha256);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (row) {
+    SOIQ_ASSIGN_OR_RETURN(const std::optional<int64_t> same, structure_with_same_content(c, s, keys.study_pk));
+    if (same) {
       out.recognised = true;
-      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, q.int64(0)));
+      SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, *same));
       return out;
     }
   }
-  int64_t id = 0;
-  {
-    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertStructureSql));
-    ins.bind(1, keys.study_pk);
-    ins.bind(2, s.name);
-    ins.bind(3, s.laterality);
-    ins.bind(4, int64_t{s.robust});
-    ins.bind(5, s.surface.sha256);
-    ins.bind(6, s.source_series_uid);
-    ins.bind(7, s.source_uid);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
-    if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
-    id = ins.int64(0);
-  }
+  SOIQ_ASSIGN_OR_RETURN(const int64_t id, insert_structure_row(c, s, keys.study_pk));
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
   SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
   return out;
