@@ -2,6 +2,18 @@
 
 namespace soiq::db {
 
+std::string select_sql(std::initializer_list<std::string_view> column_lists,
+                       std::initializer_list<std::string_view> rest) {
+  std::string sql = "SELECT ";
+  const char* separator = "";
+  for (std::string_view columns : column_lists) {
+    sql.append(separator).append(columns);
+    separator = ", ";
+  }
+  for (std::string_view part : rest) sql.append(" ").append(part);
+  return sql;
+}
+
 std::string join_uid_list(const std::vector<std::string>& uids) {
   std::string out;
   for (size_t i = 0; i < uids.size(); ++i) {

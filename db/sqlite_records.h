@@ -1,44 +1,58 @@
 #pragma once
 // The SELECT column lists of the store's records and the code that reads a row back into a record,
 // shared by every query that returns records (sqlite_store_*.cpp). Each list assumes the aliases
-// of kStructureJoin: s = structures, st = studies, p = patients, sf = surfaces.
+// of kStructureFrom: s = structures, st = studies, p = patients, sf = surfaces.
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "db/sqlite_statement.h"
 #include "db/store.h"
 
 namespace soiq::db {
 
-inline constexpr char kStructureJoin[] =
-    "structures s JOIN studies st ON st.pk = s.study_pk JOIN patients p ON p.pk = st.patient_pk "
-    "JOIN surfaces sf ON sf.sha256 = s.surface_sha256";
+// The FROM clause of a query over structures with their study, patient and surface.
+inline constexpr char kStructureFrom[] = R"sql(
+  FROM structures s
+  JOIN studies st ON st.pk = s.study_pk
+  JOIN patients p ON p.pk = st.patient_pk
+  JOIN surfaces sf ON sf.sha256 = s.surface_sha256)sql";
 
 // PatientRecord with its counts; needs p.
-inline constexpr char kPatientColumns[] =
-    "p.patient_id, p.sex, p.birth_date, "
-    "(SELECT count(*) FROM studies c WHERE c.patient_pk = p.pk), "
-    "(SELECT count(*) FROM studies c JOIN structures cs ON cs.study_pk = c.pk WHERE c.patient_pk = p.pk)";
+inline constexpr char kPatientColumns[] = R"sql(
+  p.patient_id, p.sex, p.birth_date,
+  (SELECT count(*) FROM studies c WHERE c.patient_pk = p.pk),
+  (SELECT count(*) FROM studies c JOIN structures cs ON cs.study_pk = c.pk WHERE c.patient_pk = p.pk))sql";
 inline constexpr int kPatientColumnCount = 5;
 
 // StudyRecord with its structure count; needs st and p.
-inline constexpr char kStudyColumns[] =
-    "st.study_uid, p.patient_id, st.study_date, st.description, st.modality, st.age_years, "
-    "(SELECT count(*) FROM structures cs WHERE cs.study_pk = st.pk), st.study_time, st.study_id, "
-    "st.accession_number";
+inline constexpr char kStudyColumns[] = R"sql(
+  st.study_uid, p.patient_id, st.study_date, st.description, st.modality, st.age_years,
+  (SELECT count(*) FROM structures cs WHERE cs.study_pk = st.pk), st.study_time, st.study_id,
+  st.accession_number)sql";
 inline constexpr int kStudyColumnCount = 10;
 
 // StructureRecord with its SurfaceInfo; needs s, st, p, sf.
-inline constexpr char kStructureColumns[] =
-    "s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256, "
-    "sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z, "
-    "s.source_series_uid, s.source_uid";
+inline constexpr char kStructureColumns[] = R"sql(
+  s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256,
+  sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z,
+  s.source_series_uid, s.source_uid)sql";
 inline constexpr int kStructureColumnCount = 18;
 
 // SeriesRecord; needs se = series and st.
-inline constexpr char kSeriesColumns[] =
-    "se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x, "
-    "se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, "
-    "se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid, "
-    "se.slice_instance_uids";
+inline constexpr char kSeriesColumns[] = R"sql(
+  se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x,
+  se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11,
+  se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid,
+  se.slice_instance_uids)sql";
+
+// The SQL of a query returning records: "SELECT", the column lists above separated by commas,
+// then the parts of the rest (FROM onwards) separated by spaces. Only the column lists and the
+// clauses vary between the store's record queries, so each query names just those.
+std::string select_sql(std::initializer_list<std::string_view> column_lists,
+                       std::initializer_list<std::string_view> rest);
 
 // A list of UIDs as one column: joined with '\\' (DICOM's value separator; no UID contains it).
 std::string join_uid_list(const std::vector<std::string>& uids);

@@ -59,13 +59,23 @@ Result<int> SqliteStore::schema_version() {
   return version;
 }
 
+namespace {
+
+// The row count of each table, in the order of Counts' fields.
+constexpr char kCountsSql[] = R"sql(
+  SELECT (SELECT count(*) FROM patients),
+         (SELECT count(*) FROM studies),
+         (SELECT count(*) FROM series),
+         (SELECT count(*) FROM structures),
+         (SELECT count(*) FROM surfaces),
+         (SELECT count(*) FROM feature_cache))sql";
+
+}  // namespace
+
 Result<Counts> SqliteStore::counts() {
   Counts n;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare("SELECT (SELECT count(*) FROM patients), (SELECT count(*) FROM "
-                                                  "studies), (SELECT count(*) FROM series), (SELECT count(*) FROM "
-                                                  "structures), (SELECT count(*) FROM surfaces), (SELECT count(*) "
-                                                  "FROM feature_cache)"));
+    SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(kCountsSql));
     SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
     if (!row) return internal_error("count query returned no row");
     n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5)};

@@ -14,10 +14,18 @@ static_assert(std::endian::native == std::endian::little, "cached values are sto
 // padding: at most 9 statement shapes in the cache, and few round trips for many keys.
 constexpr size_t kMaxKeysPerQuery = 256;
 
+// Every entry under any of the keys: the IN list's parameters go between the two.
+constexpr char kCachedFeaturesSql[] = R"sql(
+  SELECT key, entry, value
+  FROM feature_cache
+  WHERE key IN ()sql";
+constexpr char kCachedFeaturesOrderSql[] = R"sql()
+  ORDER BY key, entry)sql";
+
 std::string in_list_sql(size_t n) {
-  std::string sql = "SELECT key, entry, value FROM feature_cache WHERE key IN (";
+  std::string sql = kCachedFeaturesSql;
   for (size_t i = 1; i <= n; ++i) sql += (i > 1 ? ", ?" : "?") + std::to_string(i);
-  return sql + ") ORDER BY key, entry";
+  return sql + kCachedFeaturesOrderSql;
 }
 
 }  // namespace
@@ -50,6 +58,17 @@ Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vecto
   return out;
 }
 
+namespace {
+
+constexpr char kSurfaceExistsSql[] = R"sql(
+  SELECT 1 FROM surfaces WHERE sha256 = ?1)sql";
+
+constexpr char kUpsertCachedFeatureSql[] = R"sql(
+  INSERT INTO feature_cache(key, entry, surface_sha256, value) VALUES (?1, ?2, ?3, ?4)
+  ON CONFLICT(key, entry) DO UPDATE SET surface_sha256 = excluded.surface_sha256, value = excluded.value)sql";
+
+}  // namespace
+
 Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
   SOIQ_RETURN_IF_ERROR(validate_sha256(surface_sha256, "surface"));
   for (const CachedFeature& f : entries) {
@@ -57,17 +76,14 @@ Status SqliteStore::put_cached_features(const std::string& surface_sha256, const
   }
   return write([&](Connection& c) -> Status {
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT 1 FROM surfaces WHERE sha256 = ?1"));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
       q.bind(1, surface_sha256);
       SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
       // The surface may have been deleted while its features were computed: nothing to cache then.
       if (!found) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
     }
     for (const CachedFeature& f : entries) {
-      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare("INSERT INTO feature_cache(key, entry, surface_sha256, value) "
-                                                    "VALUES (?1, ?2, ?3, ?4) ON CONFLICT(key, entry) DO UPDATE SET "
-                                                    "surface_sha256 = excluded.surface_sha256, value = "
-                                                    "excluded.value"));
+      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertCachedFeatureSql));
       up.bind(1, f.key);
       up.bind(2, f.entry);
       up.bind(3, surface_sha256);

@@ -8,12 +8,18 @@
 #include "db/validate_records.h"
 
 namespace soiq::db {
+namespace {
+
+constexpr char kPatientByIdSql[] = R"sql(
+  FROM patients p
+  WHERE p.patient_id = ?1)sql";
+
+}  // namespace
 
 Result<PatientRecord> SqliteStore::get_patient(const std::string& patient_id) {
   PatientRecord out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(
-        Statement q, c.prepare(std::string("SELECT ") + kPatientColumns + " FROM patients p WHERE p.patient_id = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kPatientColumns}, {kPatientByIdSql})));
     q.bind(1, patient_id);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("patient '" + patient_id + "' not found");
@@ -23,6 +29,19 @@ Result<PatientRecord> SqliteStore::get_patient(const std::string& patient_id) {
   return out;
 }
 
+namespace {
+
+// A page of patients: the filter's conditions (" AND …") go between these two, the page size + 1
+// after them.
+constexpr char kPatientPageFromSql[] = R"sql(
+  FROM patients p
+  WHERE 1)sql";
+constexpr char kPatientPageOrderSql[] = R"sql(
+  ORDER BY p.patient_id
+  LIMIT)sql";
+
+}  // namespace
+
 Result<Page<PatientRecord>> SqliteStore::list_patients(const PatientFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("patients", p.page_token));
@@ -31,8 +50,8 @@ Result<Page<PatientRecord>> SqliteStore::list_patients(const PatientFilter& f, c
   if (!p.page_token.empty()) where.compare("p.patient_id", ">", after);
   if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
   if (!f.sex.empty()) where.equal("p.sex", f.sex);
-  const std::string sql = std::string("SELECT ") + kPatientColumns + " FROM patients p WHERE 1" + where.sql() +
-                          " ORDER BY p.patient_id LIMIT " + std::to_string(size + 1);
+  const std::string sql =
+      select_sql({kPatientColumns}, {kPatientPageFromSql, where.sql(), kPatientPageOrderSql, std::to_string(size + 1)});
 
   Page<PatientRecord> page;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
@@ -53,12 +72,19 @@ Result<Page<PatientRecord>> SqliteStore::list_patients(const PatientFilter& f, c
   return page;
 }
 
+namespace {
+
+constexpr char kStudyByUidSql[] = R"sql(
+  FROM studies st
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE st.study_uid = ?1)sql";
+
+}  // namespace
+
 Result<StudyRecord> SqliteStore::get_study(const std::string& study_uid) {
   StudyRecord out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStudyColumns +
-                                                 " FROM studies st JOIN patients p ON p.pk = st.patient_pk "
-                                                 "WHERE st.study_uid = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStudyColumns}, {kStudyByUidSql})));
     q.bind(1, study_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("study '" + study_uid + "' not found");
@@ -68,21 +94,32 @@ Result<StudyRecord> SqliteStore::get_study(const std::string& study_uid) {
   return out;
 }
 
+namespace {
+
+constexpr char kPatientExistsSql[] = R"sql(
+  SELECT 1 FROM patients WHERE patient_id = ?1)sql";
+
+constexpr char kStudyPageSql[] = R"sql(
+  FROM studies st
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE p.patient_id = ?1 AND st.study_uid > ?2
+  ORDER BY st.study_uid
+  LIMIT ?3)sql";
+
+}  // namespace
+
 Result<Page<StudyRecord>> SqliteStore::list_studies(const std::string& patient_id, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("studies", p.page_token));
   Page<StudyRecord> page;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT 1 FROM patients WHERE patient_id = ?1"));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kPatientExistsSql));
       q.bind(1, patient_id);
       SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
       if (!found) return not_found("patient '" + patient_id + "' not found");
     }
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStudyColumns +
-                                                 " FROM studies st JOIN patients p ON p.pk = st.patient_pk "
-                                                 "WHERE p.patient_id = ?1 AND st.study_uid > ?2 "
-                                                 "ORDER BY st.study_uid LIMIT ?3"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStudyColumns}, {kStudyPageSql})));
     q.bind(1, patient_id);
     q.bind(2, after);  // "" sorts before every uid
     q.bind(3, int64_t{size} + 1);
@@ -100,18 +137,29 @@ Result<Page<StudyRecord>> SqliteStore::list_studies(const std::string& patient_i
   return page;
 }
 
+namespace {
+
+constexpr char kStudyExistsSql[] = R"sql(
+  SELECT 1 FROM studies WHERE study_uid = ?1)sql";
+
+constexpr char kSeriesOfStudySql[] = R"sql(
+  FROM series se
+  JOIN studies st ON st.pk = se.study_pk
+  WHERE st.study_uid = ?1
+  ORDER BY se.series_uid)sql";
+
+}  // namespace
+
 Result<std::vector<SeriesRecord>> SqliteStore::list_series(const std::string& study_uid) {
   std::vector<SeriesRecord> out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT 1 FROM studies WHERE study_uid = ?1"));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStudyExistsSql));
       q.bind(1, study_uid);
       SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
       if (!found) return not_found("study '" + study_uid + "' not found");
     }
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kSeriesColumns +
-                                                 " FROM series se JOIN studies st ON st.pk = se.study_pk "
-                                                 "WHERE st.study_uid = ?1 ORDER BY se.series_uid"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kSeriesColumns}, {kSeriesOfStudySql})));
     q.bind(1, study_uid);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -123,12 +171,19 @@ Result<std::vector<SeriesRecord>> SqliteStore::list_series(const std::string& st
   return out;
 }
 
+namespace {
+
+constexpr char kSeriesByUidSql[] = R"sql(
+  FROM series se
+  JOIN studies st ON st.pk = se.study_pk
+  WHERE se.series_uid = ?1)sql";
+
+}  // namespace
+
 Result<SeriesRecord> SqliteStore::get_series(const std::string& series_uid) {
   SeriesRecord out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kSeriesColumns +
-                                                 " FROM series se JOIN studies st ON st.pk = se.study_pk "
-                                                 "WHERE se.series_uid = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kSeriesColumns}, {kSeriesByUidSql})));
     q.bind(1, series_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("series '" + series_uid + "' not found");
@@ -138,11 +193,20 @@ Result<SeriesRecord> SqliteStore::get_series(const std::string& series_uid) {
   return out;
 }
 
+namespace {
+
+constexpr char kImageBlobOfSeriesSql[] = R"sql(
+  SELECT b.blob
+  FROM series se
+  JOIN image_blobs b ON b.sha256 = se.image_sha256
+  WHERE se.series_uid = ?1)sql";
+
+}  // namespace
+
 Result<std::string> SqliteStore::get_image_blob(const std::string& series_uid) {
   std::string out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT b.blob FROM series se JOIN image_blobs b ON b.sha256 = "
-                                                 "se.image_sha256 WHERE se.series_uid = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kImageBlobOfSeriesSql));
     q.bind(1, series_uid);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("series '" + series_uid + "' not found");
@@ -152,11 +216,17 @@ Result<std::string> SqliteStore::get_image_blob(const std::string& series_uid) {
   return out;
 }
 
+namespace {
+
+constexpr char kStructureByIdSql[] = R"sql(
+  WHERE s.id = ?1)sql";
+
+}  // namespace
+
 Result<StructureRecord> SqliteStore::get_structure(int64_t id) {
   StructureRecord out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(std::string("SELECT ") + kStructureColumns + " FROM " +
-                                                 kStructureJoin + " WHERE s.id = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql})));
     q.bind(1, id);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("structure " + std::to_string(id) + " not found");
@@ -165,6 +235,18 @@ Result<StructureRecord> SqliteStore::get_structure(int64_t id) {
   }));
   return out;
 }
+
+namespace {
+
+// A page of structures: the last id of the previous page follows the first, the filter's
+// conditions (" AND …") come next, then the second and the page size + 1.
+constexpr char kStructurePageWhereSql[] = R"sql(
+  WHERE s.id >)sql";
+constexpr char kStructurePageOrderSql[] = R"sql(
+  ORDER BY s.id
+  LIMIT)sql";
+
+}  // namespace
 
 Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
@@ -180,14 +262,14 @@ Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter
     }
     if (used != after.size()) return invalid_argument("page_token does not hold a structure id");
   }
-  std::string sql = std::string("SELECT ") + kStructureColumns + " FROM " + kStructureJoin + " WHERE s.id > " +
-                    std::to_string(after_id);
   SqlConditions where;
   if (!f.patient_id.empty()) where.equal("p.patient_id", f.patient_id);
   if (!f.study_uid.empty()) where.equal("st.study_uid", f.study_uid);
   if (!f.name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.name_glob));
   if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);
-  sql += where.sql() + " ORDER BY s.id LIMIT " + std::to_string(size + 1);
+  const std::string sql =
+      select_sql({kStructureColumns}, {kStructureFrom, kStructurePageWhereSql, std::to_string(after_id), where.sql(),
+                                       kStructurePageOrderSql, std::to_string(size + 1)});
 
   Page<StructureRecord> page;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
@@ -207,10 +289,17 @@ Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter
   return page;
 }
 
+namespace {
+
+constexpr char kSurfaceBlobSql[] = R"sql(
+  SELECT blob FROM surfaces WHERE sha256 = ?1)sql";
+
+}  // namespace
+
 Result<std::string> SqliteStore::get_surface_blob(const std::string& sha256) {
   std::string out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT blob FROM surfaces WHERE sha256 = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceBlobSql));
     q.bind(1, sha256);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found("surface " + sha256 + " not found");

@@ -16,6 +16,35 @@ constexpr char kTwinIdColumn[] = R"sql(
      ON t.study_pk = s.study_pk AND lower(t.name) = lower(s.name)
     AND t.laterality = CASE s.laterality WHEN 'L' THEN 'R' WHEN 'R' THEN 'L' END
    WHERE s.id = r.structure_id ORDER BY t.id LIMIT 1))sql";
+constexpr char kNoTwinIdColumn[] = R"sql( NULL)sql";
+
+// The stage-1 rows the filter keeps: its conditions (" AND …", stage1_conditions) follow.
+constexpr char kStage1RowsSql[] = R"sql(
+  FROM stage1_rows r
+  WHERE 1)sql";
+
+// The ids of the rows, each with its twin's id or NULL, at most `limit` of them.
+constexpr char kStage1IdsSql[] = R"sql(
+  SELECT r.structure_id,)sql";
+constexpr char kStage1IdsOrderSql[] = R"sql(
+  ORDER BY r.structure_id
+  LIMIT )sql";
+
+std::string stage1_ids_sql(const SqlConditions& where, bool twins, int64_t limit) {
+  return std::string(kStage1IdsSql) + (twins ? kTwinIdColumn : kNoTwinIdColumn) + kStage1RowsSql + where.sql() +
+         kStage1IdsOrderSql + std::to_string(limit);
+}
+
+constexpr char kStage1CountSql[] = R"sql(
+  SELECT count(*))sql";
+
+std::string stage1_count_sql(const SqlConditions& where) {
+  return std::string(kStage1CountSql) + kStage1RowsSql + where.sql();
+}
+
+// One candidate's records by structure id, after SELECT and their column lists.
+constexpr char kCandidateByIdSql[] = R"sql(
+  WHERE s.id = ?1)sql";
 
 // Every condition is on stage1_rows (alias r), so the query reads one narrow table and joins the
 // records only for the rows it returns.
@@ -58,10 +87,7 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
     // With twins, each hit's twin id comes from the same query (a self-join of structures).
     std::vector<std::pair<int64_t, std::optional<int64_t>>> ids;
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q,
-                            c.prepare(std::string("SELECT r.structure_id, ") + (f.twins ? kTwinIdColumn : "NULL") +
-                                      " FROM stage1_rows r WHERE 1" + where.sql() + " ORDER BY r.structure_id LIMIT " +
-                                      std::to_string(limit + 1)));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(stage1_ids_sql(where, f.twins, limit + 1)));
       where.bind(q);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -71,7 +97,7 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
     }
     if (int64_t(ids.size()) > limit) {
       // Only for the message: the full count, in the same snapshot.
-      SOIQ_ASSIGN_OR_RETURN(Statement all, c.prepare("SELECT count(*) FROM stage1_rows r WHERE 1" + where.sql()));
+      SOIQ_ASSIGN_OR_RETURN(Statement all, c.prepare(stage1_count_sql(where)));
       where.bind(all);
       SOIQ_ASSIGN_OR_RETURN(const bool counted, all.step());
       const int64_t total = counted ? all.int64(0) : limit + 1;
@@ -79,9 +105,8 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
                                 std::to_string(limit) + "; narrow the stage-1 filter");
     }
     // Then each record by key (one cached statement, a few index probes per row).
-    SOIQ_ASSIGN_OR_RETURN(Statement q,
-                          c.prepare(std::string("SELECT ") + kStructureColumns + ", " + kPatientColumns + ", " +
-                                    kStudyColumns + " FROM " + kStructureJoin + " WHERE s.id = ?1"));
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns, kPatientColumns, kStudyColumns},
+                                                            {kStructureFrom, kCandidateByIdSql})));
     out.reserve(ids.size());
     for (const auto& [id, twin_id] : ids) {
       q.bind(1, id);

@@ -1,0 +1,146 @@
+// SqliteStore::put_series and the series half of import_batch: the image blob stored once per
+// sha256 and the series inserted or replaced in place, never moved to another patient. One write
+// transaction, so any error leaves the database as it was.
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "db/sqlite_records.h"
+#include "db/sqlite_store.h"
+#include "db/sqlite_store_writes.h"
+#include "db/validate_records.h"
+
+namespace soiq::db {
+namespace {
+
+constexpr char kInsertImageBlobSql[] = R"sql(
+  INSERT INTO image_blobs(sha256, blob) VALUES (?1, ?2)
+  ON CONFLICT(sha256) DO NOTHING)sql";
+
+Status insert_image_blob(Connection& c, const NewSeries& s) {
+  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertImageBlobSql));
+  ins.bind(1, s.series.sha256);
+  ins.bind_blob(2, s.image_blob.data(), s.image_blob.size());
+  return ins.run();
+}
+
+constexpr char kSeriesOwnerSql[] = R"sql(
+  SELECT se.image_sha256, st.patient_pk, p.patient_id
+  FROM series se
+  JOIN studies st ON st.pk = se.study_pk
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE se.series_uid = ?1)sql";
+
+// The image and patient of the stored series with s's uid, if any.
+struct StoredSeries {
+  std::string image_sha256;
+  int64_t patient_pk = 0;
+};
+
+// FAILED_PRECONDITION when the series is stored under another patient than `patient_pk`.
+Result<std::optional<StoredSeries>> stored_series(Connection& c, const NewSeries& s, int64_t patient_pk) {
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSeriesOwnerSql));
+  q.bind(1, s.series.series_uid);
+  SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
+  if (!found) return std::optional<StoredSeries>();
+  StoredSeries stored{q.text(0), q.int64(1)};
+  // A series UID is the image's identity: another patient's upload that names it is a mistake
+  // (or an attack), never a reason to move the images.
+  if (stored.patient_pk != patient_pk) {
+    return failed_precondition("series '" + s.series.series_uid + "' belongs to patient '" + q.text(2) + "', not to '" +
+                               s.patient.patient_id + "': an upload never moves a series to another patient");
+  }
+  return std::optional<StoredSeries>(std::move(stored));
+}
+
+// An upsert keeps the series' pk stable when it is replaced.
+constexpr char kUpsertSeriesSql[] = R"sql(
+  INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, spacing_y, spacing_z,
+                     dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, image_sha256,
+                     frame_of_reference_uid, sop_class_uid, slice_instance_uids)
+  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22,
+          ?23, ?24, ?25)
+  ON CONFLICT(series_uid) DO UPDATE SET
+    study_pk = excluded.study_pk, modality = excluded.modality,
+    origin_x = excluded.origin_x, origin_y = excluded.origin_y, origin_z = excluded.origin_z,
+    spacing_x = excluded.spacing_x, spacing_y = excluded.spacing_y, spacing_z = excluded.spacing_z,
+    dim_x = excluded.dim_x, dim_y = excluded.dim_y, dim_z = excluded.dim_z,
+    d00 = excluded.d00, d01 = excluded.d01, d02 = excluded.d02,
+    d10 = excluded.d10, d11 = excluded.d11, d12 = excluded.d12,
+    d20 = excluded.d20, d21 = excluded.d21, d22 = excluded.d22,
+    image_sha256 = excluded.image_sha256, frame_of_reference_uid = excluded.frame_of_reference_uid,
+    sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids)sql";
+
+Status upsert_series_row(Connection& c, const SeriesRecord& series, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertSeriesSql));
+  const ImageGeometry& g = series.geometry;
+  up.bind(1, series.series_uid);
+  up.bind(2, study_pk);
+  up.bind(3, series.modality);
+  for (int a = 0; a < 3; ++a) {
+    up.bind(4 + a, g.origin_mm[a]);
+    up.bind(7 + a, g.spacing_mm[a]);
+    up.bind(10 + a, g.dims[a]);
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int col = 0; col < 3; ++col) up.bind(13 + 3 * r + col, g.direction[r][col]);
+  }
+  up.bind(22, series.sha256);
+  up.bind(23, series.frame_of_reference_uid);
+  up.bind(24, series.sop_class_uid);
+  up.bind(25, join_uid_list(series.slice_instance_uids));
+  return up.run();
+}
+
+}  // namespace
+
+Status validate_new_series(const NewSeries& s) {
+  SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
+  SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
+  if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
+  if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
+    return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
+                            "' but is sent with study '" + s.study.study_uid + "'");
+  }
+  SOIQ_RETURN_IF_ERROR(validate_geometry(s.series.geometry));
+  SOIQ_RETURN_IF_ERROR(validate_sha256(s.series.sha256, "image"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.frame_of_reference_uid, "frame_of_reference_uid"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.sop_class_uid, "sop_class_uid"));
+  for (const std::string& uid : s.series.slice_instance_uids)
+    SOIQ_RETURN_IF_ERROR(validate_uid(uid, "slice instance uid"));
+  if (!s.series.slice_instance_uids.empty() &&
+      int64_t(s.series.slice_instance_uids.size()) != s.series.geometry.dims[2]) {
+    return invalid_argument("series '" + s.series.series_uid + "' has " +
+                            std::to_string(s.series.slice_instance_uids.size()) + " slice instance uids for " +
+                            std::to_string(s.series.geometry.dims[2]) + " slices");
+  }
+  if (s.image_blob.empty()) return invalid_argument("image blob is empty");
+  return ok_status();
+}
+
+Result<bool> insert_series(Connection& c, const NewSeries& s) {
+  SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
+  SOIQ_RETURN_IF_ERROR(insert_image_blob(c, s));
+  SOIQ_ASSIGN_OR_RETURN(const std::optional<StoredSeries> old, stored_series(c, s, keys.patient_pk));
+  SOIQ_RETURN_IF_ERROR(upsert_series_row(c, s.series, keys.study_pk));
+  if (old && old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, old->image_sha256));
+  // The series' modality counts for its study's structures; a series moved from another
+  // patient's study changes that patient's rows too.
+  SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
+  if (old && old->patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, old->patient_pk));
+  return old.has_value();
+}
+
+Result<bool> SqliteStore::put_series(const NewSeries& s) {
+  SOIQ_RETURN_IF_ERROR(validate_new_series(s));
+  bool replaced = false;
+  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(replaced, insert_series(c, s));
+    return ok_status();
+  }));
+  return replaced;
+}
+
+}  // namespace soiq::db

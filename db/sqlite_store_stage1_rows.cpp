@@ -1,0 +1,41 @@
+// stage1_rows, the narrow table stage 1 reads (schema_migrations.cpp), kept in step with the
+// base tables by every write that changes what it copies (refresh_stage1_rows,
+// sqlite_store_writes.h), inside that write's transaction.
+#include "db/sqlite_store_writes.h"
+
+namespace soiq::db {
+namespace {
+
+constexpr char kDeleteStage1RowsSql[] = R"sql(
+  DELETE FROM stage1_rows WHERE patient_pk = ?1)sql";
+
+// modalities is the study's modality and its series', each followed by '/', after a '/': /MR/CT/.
+constexpr char kInsertStage1RowsSql[] = R"sql(
+  INSERT INTO stage1_rows(structure_id, patient_pk, patient_id, sex, birth_date, age_years, study_date,
+                          modalities, description, name_lower, laterality)
+  SELECT s.id, p.pk, p.patient_id, p.sex, p.birth_date, st.age_years, st.study_date,
+         '/' || st.modality || '/' ||
+           coalesce((SELECT group_concat(se.modality || '/', '') FROM series se WHERE se.study_pk = st.pk), ''),
+         st.description, lower(s.name), s.laterality
+  FROM structures s
+  JOIN studies st ON st.pk = s.study_pk
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE p.pk = ?1)sql";
+
+}  // namespace
+
+// Rewrites the stage-1 rows of every structure of the patient from the base tables. Called by
+// each write that changes a structure, or a patient, study or series field stage 1 filters on;
+// a patient has few structures, so rewriting them all is simpler than tracking which changed.
+Status refresh_stage1_rows(Connection& c, int64_t patient_pk) {
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeleteStage1RowsSql));
+    del.bind(1, patient_pk);
+    SOIQ_RETURN_IF_ERROR(del.run());
+  }
+  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertStage1RowsSql));
+  ins.bind(1, patient_pk);
+  return ins.run();
+}
+
+}  // namespace soiq::db

@@ -1,0 +1,45 @@
+#pragma once
+// Internal to db/sqlite_store_*.cpp, not part of the store's interface: the steps SqliteStore's
+// writes are made of, shared between the files that hold the writes of each record kind. Each
+// step runs inside the caller's write transaction (SqliteStore::write) and leaves committing or
+// rolling back to it; inputs are validated before the transaction starts.
+
+#include <cstdint>
+#include <string>
+
+#include "core/base/status.h"
+#include "db/sqlite_connection.h"
+#include "db/store.h"
+
+namespace soiq::db {
+
+// The keys of a study and of its patient, as upsert_patient_and_study leaves them.
+struct StudyKeys {
+  int64_t patient_pk = 0;
+  int64_t study_pk = 0;
+};
+
+// sqlite_store_patients.cpp: inserts or updates the patient and the study (non-empty given fields
+// overwrite), and keeps the computed ages of the patient's studies in step with the dates.
+// FAILED_PRECONDITION when the study belongs to another patient.
+Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& patient, const StudyRecord& study);
+
+// sqlite_store_structures.cpp: the checks of add_structure, and its writes (the patient and study,
+// the surface blob, then a new, replaced or recognised structure).
+Status validate_new_structure(const NewStructure& s);
+Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s);
+
+// sqlite_store_series.cpp: the checks of put_series, and its writes (the patient and study, the
+// image blob, the series). Returns true when a series with the same uid was replaced.
+Status validate_new_series(const NewSeries& s);
+Result<bool> insert_series(Connection& c, const NewSeries& s);
+
+// sqlite_store_stage1_rows.cpp: rewrites the stage-1 rows of every structure of the patient.
+Status refresh_stage1_rows(Connection& c, int64_t patient_pk);
+
+// sqlite_store_deletes.cpp: delete the blob when nothing refers to it any more (a surface takes
+// its cached features with it).
+Status delete_surface_if_orphan(Connection& c, const std::string& sha256);
+Status delete_image_if_orphan(Connection& c, const std::string& sha256);
+
+}  // namespace soiq::db
