@@ -84,4 +84,18 @@ Result<Counts> SqliteStore::counts() {
   return n;
 }
 
+Result<int64_t> SqliteStore::remove(const Removal& r) {
+  switch (r.kind) {
+    case Removal::Kind::kStructure:
+      return remove_structure(r.structure_id);
+    case Removal::Kind::kPatient:
+      return remove_patient(r.patient_id);
+  }
+  return invalid_argument("unknown kind of removal");
+}
+
+Result<std::string> SqliteStore::get_blob(BlobKind kind, const std::string& key) {
+  return kind == BlobKind::kImage ? image_blob(key) : surface_blob(key);
+}
+
 }  // namespace soiq::db

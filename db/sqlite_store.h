@@ -54,29 +54,21 @@ class SqliteStore : public Store {
   static Result<std::unique_ptr<SqliteStore>> open(const std::string& path, const SqliteOptions& options);
   ~SqliteStore() override;
 
-  Result<AddedStructure> add_structure(const NewStructure& s) override;
-  Result<bool> put_series(const NewSeries& s) override;
   Result<ImportedBatch> import_batch(const ImportBatch& b) override;
+  Result<int64_t> remove(const Removal& r) override;
+  Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
 
   Result<PatientRecord> get_patient(const std::string& patient_id) override;
   Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;
   Result<StudyRecord> get_study(const std::string& study_uid) override;
   Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) override;
-  Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
   Result<SeriesRecord> get_series(const std::string& series_uid) override;
-  Result<std::string> get_image_blob(const std::string& series_uid) override;
+  Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
   Result<StructureRecord> get_structure(int64_t id) override;
   Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
-  Result<std::string> get_surface_blob(const std::string& sha256) override;
-
-  Result<int64_t> delete_structure(int64_t id) override;
-  Result<int64_t> delete_patient(const std::string& patient_id) override;
-
+  Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
   Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
-
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) override;
-  Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
-
   Result<Counts> counts() override;
 
   // The schema version of the open database (latest_schema_version() after open).
@@ -84,6 +76,11 @@ class SqliteStore : public Store {
 
  private:
   SqliteStore() = default;
+
+  Result<int64_t> remove_structure(int64_t id);
+  Result<int64_t> remove_patient(const std::string& patient_id);
+  Result<std::string> image_blob(const std::string& series_uid);
+  Result<std::string> surface_blob(const std::string& sha256);
 
   // Units of work: fn runs inside one transaction on a connection this thread holds alone.
   Status read(const std::function<Status(Connection&)>& fn);

@@ -47,7 +47,7 @@ constexpr char kDeleteStructureSql[] = R"sql(
 
 }  // namespace
 
-Result<int64_t> SqliteStore::delete_structure(int64_t id) {
+Result<int64_t> SqliteStore::remove_structure(int64_t id) {
   SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
     SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeleteStructureSql));
     del.bind(1, id);
@@ -82,7 +82,7 @@ constexpr char kDeletePatientSql[] = R"sql(
 
 }  // namespace
 
-Result<int64_t> SqliteStore::delete_patient(const std::string& patient_id) {
+Result<int64_t> SqliteStore::remove_patient(const std::string& patient_id) {
   int64_t deleted = 0;
   SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
     // The blobs the patient refers to, collected before the cascade removes the references.

@@ -203,7 +203,7 @@ constexpr char kImageBlobOfSeriesSql[] = R"sql(
 
 }  // namespace
 
-Result<std::string> SqliteStore::get_image_blob(const std::string& series_uid) {
+Result<std::string> SqliteStore::image_blob(const std::string& series_uid) {
   std::string out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kImageBlobOfSeriesSql));
@@ -296,7 +296,7 @@ constexpr char kSurfaceBlobSql[] = R"sql(
 
 }  // namespace
 
-Result<std::string> SqliteStore::get_surface_blob(const std::string& sha256) {
+Result<std::string> SqliteStore::surface_blob(const std::string& sha256) {
   std::string out;
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceBlobSql));

@@ -1,4 +1,4 @@
-// SqliteStore::put_series and the series half of import_batch: the image blob stored once per
+// The series half of SqliteStore::import_batch: the image blob stored once per
 // sha256 and the series inserted or replaced in place, never moved to another patient. One write
 // transaction, so any error leaves the database as it was.
 #include <optional>
@@ -131,16 +131,6 @@ Result<bool> insert_series(Connection& c, const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
   if (old && old->patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, old->patient_pk));
   return old.has_value();
-}
-
-Result<bool> SqliteStore::put_series(const NewSeries& s) {
-  SOIQ_RETURN_IF_ERROR(validate_new_series(s));
-  bool replaced = false;
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(replaced, insert_series(c, s));
-    return ok_status();
-  }));
-  return replaced;
 }
 
 }  // namespace soiq::db

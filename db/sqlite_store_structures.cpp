@@ -1,4 +1,4 @@
-// SqliteStore::add_structure and the structure half of import_batch: the surface blob stored once
+// The structure half of SqliteStore::import_batch: the surface blob stored once
 // per sha256, and a structure that is new, replaces the one with its source_uid, or is recognised
 // as one already stored. One write transaction, so any error leaves the database as it was.
 #include <sqlite3.h>
@@ -161,16 +161,6 @@ Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
   SOIQ_ASSIGN_OR_RETURN(const int64_t id, insert_structure_row(c, s, keys.study_pk));
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
   SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
-  return out;
-}
-
-Result<AddedStructure> SqliteStore::add_structure(const NewStructure& s) {
-  SOIQ_RETURN_IF_ERROR(validate_new_structure(s));
-  AddedStructure out;
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(out, insert_structure(c, s));
-    return ok_status();
-  }));
   return out;
 }
 

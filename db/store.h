@@ -194,42 +194,73 @@ struct Counts {
   int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
 };
 
+// Which blob get_blob reads: an image series' pixels (by series uid) or a surface (by sha256).
+enum class BlobKind { kImage, kSurface };
+
+// What remove deletes: one structure, or a patient with all of its studies, series and structures.
+struct Removal {
+  enum class Kind { kStructure, kPatient } kind = Kind::kStructure;
+  int64_t structure_id = 0;
+  std::string patient_id;
+};
+
+// The store: 15 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
+// single-record cases; backends implement only the virtual methods.
 class Store {
  public:
   virtual ~Store() = default;
 
-  virtual Result<AddedStructure> add_structure(const NewStructure& s) = 0;
-  // Inserts or replaces the series (same uid) and its image blob. Returns true when replaced.
-  virtual Result<bool> put_series(const NewSeries& s) = 0;
-  // put_series for each series, then add_structure for each structure, all in one transaction.
+  // --- writes -------------------------------------------------------------------------------
+  // Each series (inserted, or replaced by uid with its image blob), then each structure (its
+  // surface stored once by sha256; replaced in place by source_uid; recognised, see NewStructure),
+  // all in one transaction: a refused record (FAILED_PRECONDITION for a study, series or structure
+  // of another patient; INVALID_ARGUMENT for a malformed one) stores nothing.
   virtual Result<ImportedBatch> import_batch(const ImportBatch& b) = 0;
+  // Deletes and returns the number of structures deleted; blobs and cached features nothing refers
+  // to any more go in the same transaction. NOT_FOUND for an unknown structure or patient.
+  virtual Result<int64_t> remove(const Removal& r) = 0;
+  // Stores feature-cache entries; `surface_sha256` ties them to the surface so they go with it.
+  virtual Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) = 0;
 
+  // --- reads (NOT_FOUND naming the id for an unknown one) --------------------------------------
   virtual Result<PatientRecord> get_patient(const std::string& patient_id) = 0;
   virtual Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) = 0;
   virtual Result<StudyRecord> get_study(const std::string& study_uid) = 0;
   virtual Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) = 0;
-  virtual Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) = 0;
   virtual Result<SeriesRecord> get_series(const std::string& series_uid) = 0;
-  virtual Result<std::string> get_image_blob(const std::string& series_uid) = 0;
+  virtual Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) = 0;
   virtual Result<StructureRecord> get_structure(int64_t id) = 0;
   virtual Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) = 0;
-  virtual Result<std::string> get_surface_blob(const std::string& sha256) = 0;
-
-  // Deletes and returns the number of structures deleted. Blobs and cached features nothing refers
-  // to any more go in the same transaction.
-  virtual Result<int64_t> delete_structure(int64_t id) = 0;
-  virtual Result<int64_t> delete_patient(const std::string& patient_id) = 0;
-
+  // An image series' blob by series uid, or a surface's by sha256 (db/image_blob.h, surface_blob.h).
+  virtual Result<std::string> get_blob(BlobKind kind, const std::string& key) = 0;
   // Stage 1, ordered by structure id. More than `limit` candidates is RESOURCE_EXHAUSTED
   // (the message gives the count and says to narrow the filter).
   virtual Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) = 0;
-
   // Every cached entry under each key (one round trip for many keys).
   virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) = 0;
-  // Stores entries; `surface_sha256` ties them to the surface so they go with it.
-  virtual Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) = 0;
-
   virtual Result<Counts> counts() = 0;
+
+  // --- conveniences on the methods above -----------------------------------------------------
+  Result<AddedStructure> add_structure(NewStructure s) {
+    ImportBatch b;
+    b.structures.push_back(std::move(s));
+    SOIQ_ASSIGN_OR_RETURN(ImportedBatch done, import_batch(b));
+    return std::move(done.structures.at(0));
+  }
+  // Inserts or replaces the series (same uid) and its image blob; true when replaced.
+  Result<bool> put_series(NewSeries s) {
+    ImportBatch b;
+    b.series.push_back(std::move(s));
+    SOIQ_ASSIGN_OR_RETURN(const ImportedBatch done, import_batch(b));
+    return bool(done.series_replaced.at(0));
+  }
+  Result<std::string> get_image_blob(const std::string& series_uid) { return get_blob(BlobKind::kImage, series_uid); }
+  Result<std::string> get_surface_blob(const std::string& sha256) { return get_blob(BlobKind::kSurface, sha256); }
+  Result<int64_t> delete_structure(int64_t id) { return remove({Removal::Kind::kStructure, id, ""}); }
+  Result<int64_t> delete_patient(const std::string& patient_id) {
+    return remove({Removal::Kind::kPatient, 0, patient_id});
+  }
 };
 
 }  // namespace soiq::db

@@ -55,7 +55,7 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
     SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(parsed.mesh));
     s.surface = encoded.info;
     s.surface_blob = std::move(encoded.blob);
-    SOIQ_ASSIGN_OR_RETURN(db::AddedStructure added, store_.add_structure(s));
+    SOIQ_ASSIGN_OR_RETURN(db::AddedStructure added, store_.add_structure(std::move(s)));
     *response->mutable_structure() = to_proto(added.structure);
     response->set_surface_already_stored(added.surface_already_stored);
     response->set_defects(describe(parsed.defects));

@@ -53,9 +53,13 @@ class QueryEngineTest : public ::testing::Test {
     for (const QueryFeature& f : features) {
       q.ask.names.push_back(f.name);
       q.stage1.twins = q.stage1.twins || f.asymmetry;
+      if (!f.intensity) continue;
+      q.ask.regions.push_back(f.region);
+      q.ask.images.push_back(f.image);
     }
     q.features = std::move(features);
-    EXPECT_TRUE(complete_feature_ask(q.ask).ok());
+    const Status complete = complete_feature_ask(q.ask);
+    EXPECT_TRUE(complete.ok()) << complete.to_string();
     return q;
   }
 
@@ -186,10 +190,7 @@ TEST_F(QueryEngineTest, AStructureWhoseFeaturesCannotBeHadIsCountedAsFailedWithI
   mean.intensity = true;
   mean.image = "PT";  // the study has no image at all
   mean.label = {"mean", "inside", "PT"};
-  Query q = query_of({mean});
-  q.ask.images = {"PT"};
-  q.ask.regions = {RegionSpec{}};
-  Ran ran = run(q);
+  Ran ran = run(query_of({mean}));
   ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
   EXPECT_TRUE(ran.rows.empty());
   EXPECT_EQ(ran.summary->failed, 1);

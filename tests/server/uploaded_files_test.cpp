@@ -17,9 +17,9 @@ TriangleMesh open_box() {
   return m;
 }
 
-TEST(UploadedFiles, ASurfaceReadsBackAsWrittenInEveryFormat) {
+TEST(UploadedFiles, ASurfaceReadsBackAsWrittenInEveryWritableFormat) {
   const TriangleMesh m = box({1, 2, 3}, {11, 7, 9});
-  for (const char* format : {"stl", "obj", "ply", "off", "vtk", "vtp"}) {
+  for (const char* format : {"stl", "obj", "ply", "vtk", "vtp"}) {  // OFF is read, never written
     Result<std::string> bytes = surface_bytes(m, format, false);
     ASSERT_TRUE(bytes.ok()) << format << ": " << bytes.status().to_string();
     Result<ParsedSurface> back = parse_surface(*bytes, format, false, false, "box");
