@@ -12,7 +12,7 @@
 #include "core/regions/resample.h"
 #include "core/voxelize/voxelize_1d.h"
 #include "db/image_blob.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/surface_blob.h"
 #include "server/app/grid_choice.h"
 

@@ -18,7 +18,7 @@
 #include "bench/soiqd_child.h"
 #include "client/soiq_client.h"
 #include "core/geometry/mesh_defects.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 
 namespace soiq::bench {
 namespace {

@@ -11,7 +11,7 @@
 #include "client/soiq_client.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/surface_blob.h"
 
 namespace soiq::bench {

@@ -17,7 +17,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "server/api/soiq_service.h"
 #include "server/app/server_config.h"
 #include "server/util/log.h"

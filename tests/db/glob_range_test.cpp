@@ -1,4 +1,4 @@
-#include "db/glob_range.h"
+#include "db/sqlite/glob_range.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <thread>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {

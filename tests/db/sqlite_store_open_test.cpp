@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "db/schema_migrations.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/schema_migrations.h"
+#include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {

@@ -2,7 +2,7 @@
 // imported again) is recognised as the stored one, never stored twice; anything that differs is new.
 #include <gtest/gtest.h>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {

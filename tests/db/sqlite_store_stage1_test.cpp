@@ -7,7 +7,7 @@
 #include <set>
 
 #include "db/age_years.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {

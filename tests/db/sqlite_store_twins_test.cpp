@@ -6,7 +6,7 @@
 #include <optional>
 #include <random>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {

@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/store.h"
 #include "tests/db/temp_store.h"
 

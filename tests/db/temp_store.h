@@ -11,7 +11,7 @@
 #include <string>
 
 #include "db/image_blob.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/surface_blob.h"
 #include "tests/support/temp_dir.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/base/status.h"
-#include "db/sqlite_connection.h"
+#include "db/sqlite/sqlite_connection.h"
 #include "db/store.h"
 
 namespace soiq::db {

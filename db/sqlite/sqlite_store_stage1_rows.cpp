@@ -1,7 +1,7 @@
 // stage1_rows, the narrow table stage 1 reads (schema_migrations.cpp), kept in step with the
 // base tables by every write that changes what it copies (refresh_stage1_rows,
 // sqlite_store_writes.h), inside that write's transaction.
-#include "db/sqlite_store_writes.h"
+#include "db/sqlite/sqlite_store_writes.h"
 
 namespace soiq::db {
 namespace {

@@ -1,8 +1,8 @@
-#include "db/sqlite_connection.h"
+#include "db/sqlite/sqlite_connection.h"
 
 #include <sqlite3.h>
 
-#include "db/sqlite_error.h"
+#include "db/sqlite/sqlite_error.h"
 
 namespace soiq::db {
 namespace {

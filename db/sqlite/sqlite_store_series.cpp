@@ -5,9 +5,9 @@
 #include <string>
 #include <utility>
 
-#include "db/sqlite_records.h"
-#include "db/sqlite_store.h"
-#include "db/sqlite_store_writes.h"
+#include "db/sqlite/sqlite_records.h"
+#include "db/sqlite/sqlite_store.h"
+#include "db/sqlite/sqlite_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {

@@ -2,8 +2,8 @@
 // transaction, so an import is stored whole or not at all.
 #include <utility>
 
-#include "db/sqlite_store.h"
-#include "db/sqlite_store_writes.h"
+#include "db/sqlite/sqlite_store.h"
+#include "db/sqlite/sqlite_store_writes.h"
 
 namespace soiq::db {
 

@@ -1,6 +1,6 @@
-#include "db/sql_conditions.h"
+#include "db/sqlite/sql_conditions.h"
 
-#include "db/glob_range.h"
+#include "db/sqlite/glob_range.h"
 
 namespace soiq::db {
 

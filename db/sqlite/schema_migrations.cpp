@@ -1,4 +1,4 @@
-#include "db/schema_migrations.h"
+#include "db/sqlite/schema_migrations.h"
 
 #include <string>
 #include <vector>
@@ -130,10 +130,10 @@ CREATE INDEX stage1_rows_name_lower ON stage1_rows(name_lower);
 )sql";
 
 // Version 2: DICOM references, for objects derived from a series. A series keeps its Frame of
-// Reference UID, its slices' SOP Class UID and SOP Instance UIDs (by slice, joined with '\\', the DICOM multi-value separator, which
-// a UID cannot contain), so soiq can write a DICOM SEG that references them. A structure keeps
-// the series it was converted on and, when imported, "<RT Structure Set SOP Instance UID>/<ROI
-// number>": unique, so a re-import updates the structure in place (same id) instead of copying it.
+// Reference UID, its slices' SOP Class UID and SOP Instance UIDs (by slice, joined with '\\', the DICOM multi-value
+// separator, which a UID cannot contain), so soiq can write a DICOM SEG that references them. A structure keeps the
+// series it was converted on and, when imported, "<RT Structure Set SOP Instance UID>/<ROI number>": unique, so a
+// re-import updates the structure in place (same id) instead of copying it.
 constexpr char kSchemaV2[] = R"sql(
 ALTER TABLE series ADD COLUMN frame_of_reference_uid TEXT NOT NULL DEFAULT '';
 ALTER TABLE series ADD COLUMN sop_class_uid TEXT NOT NULL DEFAULT '';

@@ -7,7 +7,7 @@
 #include <variant>
 #include <vector>
 
-#include "db/sqlite_statement.h"
+#include "db/sqlite/sqlite_statement.h"
 
 namespace soiq::db {
 

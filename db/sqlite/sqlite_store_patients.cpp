@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "db/age_years.h"
-#include "db/sqlite_store_writes.h"
+#include "db/sqlite/sqlite_store_writes.h"
 
 namespace soiq::db {
 namespace {

@@ -6,8 +6,8 @@
 #include <set>
 #include <string>
 
-#include "db/sqlite_store.h"
-#include "db/sqlite_store_writes.h"
+#include "db/sqlite/sqlite_store.h"
+#include "db/sqlite/sqlite_store_writes.h"
 
 namespace soiq::db {
 namespace {

@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "db/sqlite_connection.h"
+#include "db/sqlite/sqlite_connection.h"
 #include "db/store.h"
 
 namespace soiq::db {

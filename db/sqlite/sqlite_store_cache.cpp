@@ -2,7 +2,7 @@
 #include <bit>
 #include <cstring>
 
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {

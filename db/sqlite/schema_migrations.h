@@ -3,7 +3,7 @@
 // applied; steps only go forward, each in its own transaction (schema_migrations.cpp lists them).
 
 #include "core/base/status.h"
-#include "db/sqlite_connection.h"
+#include "db/sqlite/sqlite_connection.h"
 
 namespace soiq::db {
 

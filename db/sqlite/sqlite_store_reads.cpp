@@ -1,10 +1,10 @@
 // SqliteStore's reads of single records and pages. Each method is one read transaction, so a page
 // and its counts come from one snapshot.
-#include "db/glob_range.h"
 #include "db/page_token.h"
-#include "db/sql_conditions.h"
-#include "db/sqlite_records.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/glob_range.h"
+#include "db/sqlite/sql_conditions.h"
+#include "db/sqlite/sqlite_records.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {

@@ -1,10 +1,10 @@
-#include "db/sqlite_statement.h"
+#include "db/sqlite/sqlite_statement.h"
 
 #include <sqlite3.h>
 
 #include <utility>
 
-#include "db/sqlite_error.h"
+#include "db/sqlite/sqlite_error.h"
 
 namespace soiq::db {
 

@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "core/base/status.h"
-#include "db/sqlite_statement.h"
+#include "db/sqlite/sqlite_statement.h"
 
 struct sqlite3;
 struct sqlite3_stmt;

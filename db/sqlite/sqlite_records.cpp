@@ -1,4 +1,4 @@
-#include "db/sqlite_records.h"
+#include "db/sqlite/sqlite_records.h"
 
 namespace soiq::db {
 

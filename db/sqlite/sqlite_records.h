@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "db/sqlite_statement.h"
+#include "db/sqlite/sqlite_statement.h"
 #include "db/store.h"
 
 namespace soiq::db {

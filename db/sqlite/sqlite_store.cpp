@@ -1,6 +1,6 @@
-#include "db/sqlite_store.h"
+#include "db/sqlite/sqlite_store.h"
 
-#include "db/schema_migrations.h"
+#include "db/sqlite/schema_migrations.h"
 
 namespace soiq::db {
 

@@ -1,9 +1,9 @@
 // SqliteStore::stage1: the structured half of a query (DESIGN.md "Queries") as one SQL query over
 // indexed columns.
-#include "db/glob_range.h"
-#include "db/sql_conditions.h"
-#include "db/sqlite_records.h"
-#include "db/sqlite_store.h"
+#include "db/sqlite/glob_range.h"
+#include "db/sqlite/sql_conditions.h"
+#include "db/sqlite/sqlite_records.h"
+#include "db/sqlite/sqlite_store.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
