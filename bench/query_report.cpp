@@ -5,21 +5,12 @@
 
 namespace soiq::bench {
 
-void print_query_report(const QueryBenchFigures& f) {
-  std::vector<double> s1_server, s1_client, cold_client, cold_stage2, warm_client, warm_total;
-  for (const ServerRun& r : f.runs) {
-    s1_server.push_back(r.stage1.summary.stage1_ms());
-    s1_client.push_back(r.stage1.client_ms);
-    cold_client.push_back(r.cold.client_ms);
-    cold_stage2.push_back(r.cold.summary.stage2_ms());
-    for (const Timed& w : r.warm) {
-      warm_client.push_back(w.client_ms);
-      warm_total.push_back(w.summary.total_ms());
-    }
-  }
-  const Stats s1 = stats(f.stage1_ms), s1s = stats(s1_server), s1c = stats(s1_client), cc = stats(cold_client),
-              cs2 = stats(cold_stage2), wc = stats(warm_client), wt = stats(warm_total);
-  auto ok = [](double v, double limit) { return v < limit ? "met" : "**not met**"; };
+namespace {
+
+const char* met(double v, double limit) { return v < limit ? "met" : "**not met**"; }
+
+// The cohort, the query, and the load table.
+void print_cohort_and_load(const QueryBenchFigures& f) {
   const int64_t matched_patients = f.size.matched;
   std::printf(
       "Cohort: %d patients (sex F/M ~50/50, born 1930-2005, one study 2010-2025, MR 50 %% / CT 35 %% / PT 15 %%);\n"
@@ -51,26 +42,51 @@ void print_query_report(const QueryBenchFigures& f) {
       double(f.uploaded.structures) / f.uploaded.surface_seconds,
       double(f.uploaded.surface_bytes) / (1 << 20) / f.uploaded.surface_seconds,
       double(f.uploaded.triangles) / 1e6 / f.uploaded.surface_seconds);
+}
+
+// Stage 1, cold and warm: best and median of every run, against the targets.
+double print_timings(const QueryBenchFigures& f) {
+  std::vector<double> s1_server, s1_client, cold_client, cold_stage2, warm_client, warm_total;
+  for (const ServerRun& r : f.runs) {
+    s1_server.push_back(r.stage1.summary.stage1_ms());
+    s1_client.push_back(r.stage1.client_ms);
+    cold_client.push_back(r.cold.client_ms);
+    cold_stage2.push_back(r.cold.summary.stage2_ms());
+    for (const Timed& w : r.warm) {
+      warm_client.push_back(w.client_ms);
+      warm_total.push_back(w.summary.total_ms());
+    }
+  }
+  const Stats s1 = stats(f.stage1_ms), s1s = stats(s1_server), s1c = stats(s1_client), cc = stats(cold_client),
+              cs2 = stats(cold_stage2), wc = stats(warm_client), wt = stats(warm_total);
   std::printf("| measure | best | median | runs | target |\n|---|---:|---:|---:|---|\n");
   std::printf("| stage 1, SqliteStore::stage1 in-process | %.1f ms | %.1f ms | %zu | < 50 ms: %s |\n", s1.best,
-              s1.median, f.stage1_ms.size(), ok(s1.best, 50));
-  std::printf("| stage 1, server's f.stage1_ms (feature-less query) | %.1f ms | %.1f ms | %zu | < 50 ms: %s |\n",
-              s1s.best, s1s.median, s1_server.size(), ok(s1s.best, 50));
+              s1.median, f.stage1_ms.size(), met(s1.best, 50));
+  std::printf("| stage 1, server's stage1_ms (feature-less query) | %.1f ms | %.1f ms | %zu | < 50 ms: %s |\n",
+              s1s.best, s1s.median, s1_server.size(), met(s1s.best, 50));
   std::printf("| stage 1, client end to end (%zu rows streamed) | %.1f ms | %.1f ms | %zu | |\n", f.candidates,
               s1c.best, s1c.median, s1_client.size());
   std::printf("| cold query, client end to end | %.2f s | %.2f s | %zu | < 10 s: %s |\n", cc.best / 1000,
-              cc.median / 1000, cold_client.size(), ok(cc.best, 10000));
+              cc.median / 1000, cold_client.size(), met(cc.best, 10000));
   std::printf("| cold query, server's stage2_ms | %.2f s | %.2f s | %zu | |\n", cs2.best / 1000, cs2.median / 1000,
               cold_stage2.size());
   std::printf("| warm query, client end to end | %.1f ms | %.1f ms | %zu | < 100 ms: %s |\n", wc.best, wc.median,
-              warm_client.size(), ok(wc.best, 100));
+              warm_client.size(), met(wc.best, 100));
   std::printf("| warm query, server's total_ms | %.1f ms | %.1f ms | %zu | |\n\n", wt.best, wt.median,
               warm_total.size());
+  return cs2.best;
+}
+
+void print_concurrent_clients(const QueryBenchFigures& f) {
   std::printf("Concurrent clients repeating the warm query for %.0f s each (own channel per client):\n\n", f.seconds);
   std::printf("| clients | queries | queries/s | p50 | p95 |\n|---:|---:|---:|---:|---:|\n");
   for (const Throughput& t : f.load)
     std::printf("| %d | %lld | %.1f | %.1f ms | %.1f ms |\n", t.clients, (long long)t.queries, t.per_second,
                 t.latency.median, t.latency.p95);
+}
+
+// Where the cold time goes, part by part, beside the server's own cold stage 2.
+void print_breakdown(const QueryBenchFigures& f, double cold_stage2_best_ms) {
   std::printf(
       "\nWhere the cold time goes: the same %lld structures (%.1f M triangles, %.1f M voxels inside, %.1f M\n"
       "in the shells), part by part in one thread of soiq-bench (cold_breakdown.h), summed:\n\n",
@@ -87,7 +103,16 @@ void print_query_report(const QueryBenchFigures& f) {
   std::printf("| **sum (server's path)** | %.0f ms | %.2f ms | |\n", sum, sum / double(f.breakdown.structures));
   std::printf("| whole pass, one thread (stage 1 %.0f ms and the (before) parts included) | %.0f ms | | |\n",
               f.breakdown.stage1_ms, f.breakdown.total_ms);
-  std::printf("| server's cold stage 2 on %d workers (best) | %.0f ms | | |\n\n", f.workers, cs2.best);
+  std::printf("| server's cold stage 2 on %d workers (best) | %.0f ms | | |\n\n", f.workers, cold_stage2_best_ms);
+}
+
+}  // namespace
+
+void print_query_report(const QueryBenchFigures& f) {
+  print_cohort_and_load(f);
+  const double cold_stage2_best_ms = print_timings(f);
+  print_concurrent_clients(f);
+  print_breakdown(f, cold_stage2_best_ms);
 }
 
 }  // namespace soiq::bench
