@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "tests/support/simulated_models.h"
 #include "core/features/structure_features.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
 #include "core/voxelize/voxelize_1d.h"
+#include "tests/support/simulated_models.h"
 
 namespace soiq::bench {
 

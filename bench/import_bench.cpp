@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "bench/soiqd_child.h"
 #include "client/soiq_client.h"
 #include "core/base/run_length_volume.h"
 #include "core/voxelize/fill_contours.h"
 #include "dicom/convert_rt_struct.h"
 #include "dicom/import_dicom.h"
 #include "dicom/read_rt_struct.h"
+#include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
 namespace {
@@ -128,7 +128,7 @@ Status run(const CliArgs& args) {
   std::string work =
       ((base && *base) ? fs::path(base) : fs::temp_directory_path()).string() + "/soiq-bench-import-XXXXXX";
   if (!mkdtemp(work.data())) return internal_error("cannot create a work folder (set SOIQ_BENCH_TMP)");
-  SoiqdChild server(soiqd, work + "/import.db", {"--workers", "2"});
+  testing::SoiqdProcess server(work + "/import.db", {"--workers", "2"}, soiqd);
   if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
   client::ClientOptions options;
   options.address = server.address();
@@ -173,7 +173,7 @@ Status run(const CliArgs& args) {
     std::printf("| %s | %s | %s | %s | %lld | %lld | %.2f | %.2f |\n", r.case_name.c_str(), r.roi.c_str(),
                 r.modality.c_str(), r.dims.c_str(), (long long)r.contours, (long long)r.voxels, r.fill_ms,
                 r.convert_ms);
-  server.stop();
+  server.terminate();
   std::error_code ec;
   fs::remove_all(work, ec);
   return ok_status();

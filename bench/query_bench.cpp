@@ -15,10 +15,10 @@
 #include "bench/query_load.h"
 #include "bench/query_report.h"
 #include "bench/query_runs.h"
-#include "bench/soiqd_child.h"
 #include "client/soiq_client.h"
 #include "core/geometry/mesh_defects.h"
 #include "db/sqlite/sqlite_store.h"
+#include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
 namespace {
@@ -122,10 +122,10 @@ Status load(const Options& o, const std::vector<CohortPatient>& cohort, const Wo
   SOIQ_ASSIGN_OR_RETURN(f.background, background);
 
   note("soiq-bench query: uploads through soiqd\n");
-  SoiqdChild server(o.soiqd, pristine, {"--workers", std::to_string(o.workers)});
+  testing::SoiqdProcess server(pristine, {"--workers", std::to_string(o.workers)}, o.soiqd);
   if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
   SOIQ_ASSIGN_OR_RETURN(f.uploaded, upload_matched(server.address(), work.path(), cohort, o.size, 2));
-  if (server.stop() != 0) return internal_error("soiqd did not stop cleanly: " + server.log());
+  if (server.terminate() != 0) return internal_error("soiqd did not stop cleanly: " + server.log());
   f.db_mib = double(fs::file_size(pristine)) / (1 << 20);
   return ok_status();
 }
@@ -161,7 +161,7 @@ Status server_runs(const Options& o, const WorkDir& work, const std::string& pri
     f.runs.push_back(std::move(r));
   }
   note("soiq-bench query: concurrent clients\n");
-  SoiqdChild server(o.soiqd, work.path() + "/run.db", {"--workers", std::to_string(o.workers)});
+  testing::SoiqdProcess server(work.path() + "/run.db", {"--workers", std::to_string(o.workers)}, o.soiqd);
   if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(server.address()));
   SOIQ_RETURN_IF_ERROR(timed_query(c, benchmark_request()).status());  // warms the page cache

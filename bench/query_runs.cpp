@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "bench/query_cohort.h"
-#include "bench/soiqd_child.h"
+#include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
 namespace {
@@ -81,7 +81,7 @@ Result<client::Client> connect(const std::string& address) {
 Result<ServerRun> server_run(const std::string& soiqd, int workers, const std::string& pristine, const std::string& db,
                              int warm_runs) {
   fs::copy_file(pristine, db, fs::copy_options::overwrite_existing);
-  SoiqdChild server(soiqd, db, {"--workers", std::to_string(workers)});
+  testing::SoiqdProcess server(db, {"--workers", std::to_string(workers)}, soiqd);
   if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(server.address()));
   SOIQ_RETURN_IF_ERROR(c.server_info().status());

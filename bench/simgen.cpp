@@ -5,10 +5,10 @@
 #include <fstream>
 #include <string>
 
-#include "tests/support/simulated_models.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
+#include "tests/support/simulated_models.h"
 
 namespace soiq::bench {
 

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "bench/method_run.h"
-#include "tests/support/simulated_models.h"
 #include "core/geometry/mesh_defects.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
+#include "tests/support/simulated_models.h"
 
 namespace soiq::bench {
 

@@ -12,6 +12,7 @@
 
 #include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
+#include "tests/support/sts_files.h"
 
 namespace soiq::server {
 namespace {
@@ -21,15 +22,7 @@ using db::testing::TempDir;
 
 // STS_002's CT slices and structure set copied into `dir`, plus one file that is not DICOM.
 std::vector<std::string> sts_002_ct(const std::string& dir) {
-  const fs::path ct = fs::path(SOIQ_TEST_DATA_DIR) / "sts/STS_002/dicom/CT";
-  std::vector<std::string> sent;
-  for (const char* part : {"image", "mask"}) {
-    for (const auto& f : fs::directory_iterator(ct / part)) {
-      const std::string name = std::string(part) + "_" + f.path().filename().string();
-      fs::copy_file(f.path(), fs::path(dir) / name);
-      sent.push_back(name);
-    }
-  }
+  std::vector<std::string> sent = soiq::testing::copy_sts_002_ct(SOIQ_TEST_DATA_DIR, dir);
   std::ofstream(fs::path(dir) / "notes.txt") << "not DICOM";
   sent.push_back("notes.txt");
   return sent;

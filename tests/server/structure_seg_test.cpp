@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "db/surface_blob.h"
 #include "server/app/dicom_import.h"
 #include "tests/db/temp_store.h"
+#include "tests/support/sts_files.h"
 
 namespace soiq::server {
 namespace {
@@ -21,17 +21,9 @@ using db::testing::TempDir;
 class StructureSeg : public ::testing::Test {
  protected:
   void SetUp() override {
-    const fs::path ct = fs::path(SOIQ_TEST_DATA_DIR) / "sts/STS_002/dicom/CT";
     const std::string dir = tmp_.file("received");
     fs::create_directories(dir);
-    std::vector<std::string> sent;
-    for (const char* part : {"image", "mask"}) {
-      for (const auto& f : fs::directory_iterator(ct / part)) {
-        const std::string name = std::string(part) + "_" + f.path().filename().string();
-        fs::copy_file(f.path(), fs::path(dir) / name);
-        sent.push_back(name);
-      }
-    }
+    const std::vector<std::string> sent = soiq::testing::copy_sts_002_ct(SOIQ_TEST_DATA_DIR, dir);
     Result<DicomImportResult> r = import_dicom_folder(*store_, dir, sent, int64_t(1) << 26, budget_, {});
     ASSERT_TRUE(r.ok()) << r.status().to_string();
     for (const ImportedStructure& s : r->structures) imported_.push_back(s.structure.id);

@@ -28,13 +28,15 @@ int wait_exit(pid_t pid, std::chrono::seconds timeout) {
 
 }  // namespace
 
-SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args) {
+SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args,
+                           const std::string& binary) {
   const std::string dir = std::filesystem::path(db_path).parent_path().string();
   static int counter = 0;
   const std::string tag = std::to_string(getpid()) + "-" + std::to_string(++counter);
   log_path_ = dir + "/soiqd-" + tag + ".log";
   port_path_ = dir + "/soiqd-" + tag + ".port";
-  std::vector<std::string> args = {SOIQD_BINARY, "--db", db_path, "--listen", "127.0.0.1:0", "--port-file", port_path_};
+  std::vector<std::string> args = {
+      binary.empty() ? SOIQD_BINARY : binary, "--db", db_path, "--listen", "127.0.0.1:0", "--port-file", port_path_};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = fork();
   if (pid_ == 0) {
@@ -46,7 +48,7 @@ SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::st
     execv(argv[0], argv.data());
     _exit(127);
   }
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (std::chrono::steady_clock::now() < until) {
     std::ifstream in(port_path_);
     if (in >> port_ && port_ > 0) {
@@ -69,7 +71,7 @@ SoiqdProcess::~SoiqdProcess() {
 int SoiqdProcess::terminate() {
   if (pid_ <= 0) return -1;
   kill(pid_, SIGTERM);
-  const int status = wait_exit(pid_, std::chrono::seconds(15));
+  const int status = wait_exit(pid_, std::chrono::seconds(30));
   if (status >= 0) pid_ = -1;
   return status;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// A real soiqd for integration tests: started as a child process on a free loopback port (port 0,
-// read back from --port-file) with its own temporary directory and SQLite file, stopped with
+// A real soiqd for integration tests and benchmarks: started as a child process on a free loopback
+// port (port 0, read back from --port-file) with its own temporary directory and SQLite file, stopped with
 // SIGTERM (graceful shutdown, which the tests also check) or killed with SIGKILL.
 
 #include <sys/types.h>
@@ -14,17 +14,20 @@ namespace soiq::testing {
 
 class SoiqdProcess {
  public:
-  // Starts soiqd with `--db db_path --listen 127.0.0.1:0` plus `extra_args`; waits (up to 30 s) for
-  // the port. On failure address() is empty and log() says why.
-  SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args = {});
-  ~SoiqdProcess();  // SIGTERM, then SIGKILL after 15 s
+  // Starts `binary` (empty: this build's soiqd) with `--db db_path --listen 127.0.0.1:0` plus
+  // `extra_args`; waits (up to 60 s: a benchmark's database can be large) for the port. On failure
+  // address() is empty and log() says why.
+  SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args = {},
+               const std::string& binary = "");
+  ~SoiqdProcess();  // SIGTERM, then SIGKILL after 30 s
   SoiqdProcess(const SoiqdProcess&) = delete;
   SoiqdProcess& operator=(const SoiqdProcess&) = delete;
 
   bool running() const { return pid_ > 0; }
   const std::string& address() const { return address_; }
   int port() const { return port_; }
-  // Sends SIGTERM and waits; returns the exit status (0 for a clean shutdown), -1 on timeout.
+  // Sends SIGTERM and waits up to 30 s (the shutdown checkpoints the WAL); returns the exit status
+  // (0 for a clean shutdown), -1 on timeout.
   int terminate();
   // SIGKILL: a crash, nothing flushed by the server itself.
   void kill_hard();
