@@ -82,6 +82,11 @@ class SqliteStore : public Store {
   Result<std::string> image_blob(const std::string& series_uid);
   Result<std::string> surface_blob(const std::string& sha256);
 
+  // The one row `sql` finds with `key` bound as ?1, made into a T by `make(Statement&)`; NOT_FOUND
+  // with `missing` as the message when there is none. One read transaction (sqlite_store_reads.cpp).
+  template <typename T, typename Key, typename Make>
+  Result<T> one_row(const char* sql, const Key& key, const Make& make, const std::string& missing);
+
   // Units of work: fn runs inside one transaction on a connection this thread holds alone.
   Status read(const std::function<Status(Connection&)>& fn);
   Status write(const std::function<Status(Connection&)>& fn);

@@ -8,6 +8,21 @@
 #include "db/validate_records.h"
 
 namespace soiq::db {
+
+template <typename T, typename Key, typename Make>
+Result<T> SqliteStore::one_row(const char* sql, const Key& key, const Make& make, const std::string& missing) {
+  T out;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(sql));
+    q.bind(1, key);
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    if (!row) return not_found(missing);
+    out = make(q);
+    return ok_status();
+  }));
+  return out;
+}
+
 namespace {
 
 constexpr char kPatientByIdSql[] = R"sql(
@@ -17,16 +32,10 @@ constexpr char kPatientByIdSql[] = R"sql(
 }  // namespace
 
 Result<PatientRecord> SqliteStore::get_patient(const std::string& patient_id) {
-  PatientRecord out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kPatientColumns}, {kPatientByIdSql})));
-    q.bind(1, patient_id);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("patient '" + patient_id + "' not found");
-    out = read_patient(q, 0);
-    return ok_status();
-  }));
-  return out;
+  static const std::string sql = select_sql({kPatientColumns}, {kPatientByIdSql});
+  return one_row<PatientRecord>(
+      sql.c_str(), patient_id, [](Statement& q) { return read_patient(q, 0); },
+      "patient '" + patient_id + "' not found");
 }
 
 namespace {
@@ -82,16 +91,9 @@ constexpr char kStudyByUidSql[] = R"sql(
 }  // namespace
 
 Result<StudyRecord> SqliteStore::get_study(const std::string& study_uid) {
-  StudyRecord out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStudyColumns}, {kStudyByUidSql})));
-    q.bind(1, study_uid);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("study '" + study_uid + "' not found");
-    out = read_study(q, 0);
-    return ok_status();
-  }));
-  return out;
+  static const std::string sql = select_sql({kStudyColumns}, {kStudyByUidSql});
+  return one_row<StudyRecord>(
+      sql.c_str(), study_uid, [](Statement& q) { return read_study(q, 0); }, "study '" + study_uid + "' not found");
 }
 
 namespace {
@@ -181,16 +183,9 @@ constexpr char kSeriesByUidSql[] = R"sql(
 }  // namespace
 
 Result<SeriesRecord> SqliteStore::get_series(const std::string& series_uid) {
-  SeriesRecord out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kSeriesColumns}, {kSeriesByUidSql})));
-    q.bind(1, series_uid);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("series '" + series_uid + "' not found");
-    out = read_series(q, 0);
-    return ok_status();
-  }));
-  return out;
+  static const std::string sql = select_sql({kSeriesColumns}, {kSeriesByUidSql});
+  return one_row<SeriesRecord>(
+      sql.c_str(), series_uid, [](Statement& q) { return read_series(q, 0); }, "series '" + series_uid + "' not found");
 }
 
 namespace {
@@ -204,16 +199,9 @@ constexpr char kImageBlobOfSeriesSql[] = R"sql(
 }  // namespace
 
 Result<std::string> SqliteStore::image_blob(const std::string& series_uid) {
-  std::string out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kImageBlobOfSeriesSql));
-    q.bind(1, series_uid);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("series '" + series_uid + "' not found");
-    out = q.blob(0);
-    return ok_status();
-  }));
-  return out;
+  return one_row<std::string>(
+      kImageBlobOfSeriesSql, series_uid, [](Statement& q) { return q.blob(0); },
+      "series '" + series_uid + "' not found");
 }
 
 namespace {
@@ -224,16 +212,10 @@ constexpr char kStructureByIdSql[] = R"sql(
 }  // namespace
 
 Result<StructureRecord> SqliteStore::get_structure(int64_t id) {
-  StructureRecord out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql})));
-    q.bind(1, id);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("structure " + std::to_string(id) + " not found");
-    out = read_structure(q, 0);
-    return ok_status();
-  }));
-  return out;
+  static const std::string sql = select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql});
+  return one_row<StructureRecord>(
+      sql.c_str(), id, [](Statement& q) { return read_structure(q, 0); },
+      "structure " + std::to_string(id) + " not found");
 }
 
 namespace {
@@ -297,16 +279,8 @@ constexpr char kSurfaceBlobSql[] = R"sql(
 }  // namespace
 
 Result<std::string> SqliteStore::surface_blob(const std::string& sha256) {
-  std::string out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceBlobSql));
-    q.bind(1, sha256);
-    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-    if (!row) return not_found("surface " + sha256 + " not found");
-    out = q.blob(0);
-    return ok_status();
-  }));
-  return out;
+  return one_row<std::string>(
+      kSurfaceBlobSql, sha256, [](Statement& q) { return q.blob(0); }, "surface " + sha256 + " not found");
 }
 
 }  // namespace soiq::db
