@@ -25,6 +25,108 @@ struct Row {
   std::vector<Result<MethodRun>> cells;
 };
 
+struct Column {
+  Method method;
+  int threads;
+  std::string title;
+};
+
+// The table's method columns; print_times' ratio columns name them by these positions.
+std::vector<Column> table5_columns(int threads) {
+  return {
+      {Method::k1d, 1, "1d"},   {Method::k1d, threads, "1d x" + std::to_string(threads)},
+      {Method::k2d, 1, "2d"},   {Method::kVtkStencil, 1, "vtk-stencil"},
+      {Method::kItk, 1, "itk"},
+  };
+}
+
+// Best ms of `runs` mesh defect checks, the cost a conversion pays once when a mesh is loaded;
+// warns on stderr when the mesh is not closed, and goes on: the table still shows what each method
+// makes of it.
+double best_check_ms(const TriangleMesh& mesh, int runs, const std::string& model) {
+  double best = 1e300;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const MeshDefects d = mesh_defects(mesh);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, ms);
+    if (!d.closed()) std::fprintf(stderr, "table5: %s is not closed\n", model.c_str());
+  }
+  return best;
+}
+
+// One model's row: its S1 mesh converted onto the grid of its V1 image by every column's method,
+// interleaved so that all see the same machine. A method that was not built, or failed, gets its
+// reason in the cell (and on stderr); only a model that cannot be read is an error.
+Result<Row> measure_model(const std::string& model, const std::string& base, const std::vector<Column>& columns,
+                          int runs, int pin) {
+  const Result<TriangleMesh> mesh = read_mesh(base + "_S1.vtp");
+  const Result<Image> image = read_image(base + "_V1.nii.gz");
+  if (!mesh.ok()) return mesh.status();
+  if (!image.ok()) return image.status();
+  const Mask v1 = mask_from_image(*image);
+  Row row{model, mesh->triangles.size(), 0, 0, {}};
+  for (uint8_t v : v1.voxels) row.voxels += v;
+  row.check_ms = best_check_ms(*mesh, runs, model);
+  std::vector<MethodSpec> specs;
+  for (const Column& c : columns) specs.push_back({c.method, c.threads});
+  row.cells = run_methods_interleaved(specs, *mesh, v1, runs, pin);
+  for (size_t c = 0; c < columns.size(); ++c) {
+    if (!method_available(columns[c].method)) row.cells[c] = unimplemented("not built");
+    if (!row.cells[c].ok()) {
+      std::fprintf(stderr, "table5: %s %s: %s\n", model.c_str(), columns[c].title.c_str(),
+                   row.cells[c].status().to_string().c_str());
+    }
+  }
+  return row;
+}
+
+// "num / den" of two best times with two decimals, or "n/a" when either is missing.
+std::string ratio(const Result<MethodRun>& num, const Result<MethodRun>& den) {
+  char buf[32];
+  if (!num.ok() || !den.ok() || den->timed.min_ms <= 0) return std::string("n/a");
+  // Two decimals: the targets (10x, 50x, 1.6x) are thresholds, and 1.55 must not read as 1.6.
+  std::snprintf(buf, sizeof buf, "%.2fx", num->timed.min_ms / den->timed.min_ms);
+  return std::string(buf);
+}
+
+// The times table: what was measured and how, then one line per model with the speed-ups.
+void print_times(const std::vector<Row>& rows, const std::vector<Column>& columns, int runs, int threads) {
+  std::printf(
+      "Conversion time, best ms of %d runs taken in rounds, one run of every method per round, so that all methods "
+      "see\n"
+      "the same machine (grid from SMn_V1, mesh SMn_S1 = marching cubes of V1). \"check\" is the\n"
+      "mesh defect check (closedness, orientation) done once when a mesh is loaded; the speed-ups compare 1d on one\n"
+      "thread with the peers on one thread, and 1d on %d threads with 1d on one.\n\n",
+      runs, threads);
+  std::printf("| model | triangles | V1 voxels | check ms |");
+  for (const Column& c : columns) std::printf(" %s ms |", c.title.c_str());
+  std::printf(" itk / 1d | vtk / 1d | 1d x%d speed-up |\n|---|---:|---:|---:|", threads);
+  for (size_t c = 0; c < columns.size() + 3; ++c) std::printf("---:|");
+  std::printf("\n");
+  for (const Row& r : rows) {
+    std::printf("| %s | %zu | %lld | %.1f |", r.model.c_str(), r.triangles, (long long)r.voxels, r.check_ms);
+    for (const auto& cell : r.cells) std::printf(" %s |", time_cell(cell).c_str());
+    // Columns: 0 = 1d, 1 = 1d xT, 2 = 2d, 3 = vtk-stencil, 4 = itk.
+    std::printf(" %s | %s | %s |\n", ratio(r.cells[4], r.cells[0]).c_str(), ratio(r.cells[3], r.cells[0]).c_str(),
+                ratio(r.cells[0], r.cells[1]).c_str());
+  }
+}
+
+// The agreement table: each method's mask against V1 (IoU and differing voxels).
+void print_agreement(const std::vector<Row>& rows, const std::vector<Column>& columns) {
+  std::printf("\nIoU against V1 (differing voxels)\n\n| model |");
+  for (const Column& c : columns) std::printf(" %s |", c.title.c_str());
+  std::printf("\n|---|");
+  for (size_t c = 0; c < columns.size(); ++c) std::printf("---:|");
+  std::printf("\n");
+  for (const Row& r : rows) {
+    std::printf("| %s |", r.model.c_str());
+    for (const auto& cell : r.cells) std::printf(" %s |", agreement_cell(cell).c_str());
+    std::printf("\n");
+  }
+}
+
 }  // namespace
 
 int run_table5(const CliArgs& args) {
@@ -36,88 +138,21 @@ int run_table5(const CliArgs& args) {
     std::fprintf(stderr, "usage: soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n");
     return 2;
   }
-  struct Column {
-    Method method;
-    int threads;
-    std::string title;
-  };
-  const std::vector<Column> columns = {
-      {Method::k1d, 1, "1d"},   {Method::k1d, *threads, "1d x" + std::to_string(*threads)},
-      {Method::k2d, 1, "2d"},   {Method::kVtkStencil, 1, "vtk-stencil"},
-      {Method::kItk, 1, "itk"},
-  };
-
+  const std::vector<Column> columns = table5_columns(*threads);
   std::vector<Row> rows;
   for (const SimModel& model : simulated_models()) {
     const std::string base = dir + "/" + model.name;
     if (!std::filesystem::exists(base + "_S1.vtp")) continue;
-    const Result<TriangleMesh> mesh = read_mesh(base + "_S1.vtp");
-    const Result<Image> image = read_image(base + "_V1.nii.gz");
-    if (!mesh.ok() || !image.ok()) {
-      std::fprintf(stderr, "table5: %s: %s\n", model.name.c_str(),
-                   (!mesh.ok() ? mesh.status() : image.status()).to_string().c_str());
+    Result<Row> row = measure_model(model.name, base, columns, *runs, *pin);
+    if (!row.ok()) {
+      std::fprintf(stderr, "table5: %s: %s\n", model.name.c_str(), row.status().to_string().c_str());
       return 1;
     }
-    const Mask v1 = mask_from_image(*image);
-    Row row{model.name, mesh->triangles.size(), 0, 1e300, {}};
-    for (uint8_t v : v1.voxels) row.voxels += v;
-    for (int r = 0; r < *runs; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const MeshDefects d = mesh_defects(*mesh);
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      row.check_ms = std::min(row.check_ms, ms);
-      if (!d.closed()) std::fprintf(stderr, "table5: %s is not closed\n", model.name.c_str());
-    }
-    std::vector<MethodSpec> specs;
-    for (const Column& c : columns) specs.push_back({c.method, c.threads});
-    row.cells = run_methods_interleaved(specs, *mesh, v1, *runs, *pin);
-    for (size_t c = 0; c < columns.size(); ++c) {
-      if (!method_available(columns[c].method)) row.cells[c] = unimplemented("not built");
-      if (!row.cells[c].ok()) {
-        std::fprintf(stderr, "table5: %s %s: %s\n", model.name.c_str(), columns[c].title.c_str(),
-                     row.cells[c].status().to_string().c_str());
-      }
-    }
     std::fprintf(stderr, "table5: %s done\n", model.name.c_str());
-    rows.push_back(std::move(row));
+    rows.push_back(std::move(*row));
   }
-
-  std::printf(
-      "Conversion time, best ms of %d runs taken in rounds, one run of every method per round, so that all methods "
-      "see\n"
-      "the same machine (grid from SMn_V1, mesh SMn_S1 = marching cubes of V1). \"check\" is the\n"
-      "mesh defect check (closedness, orientation) done once when a mesh is loaded; the speed-ups compare 1d on one\n"
-      "thread with the peers on one thread, and 1d on %d threads with 1d on one.\n\n",
-      *runs, *threads);
-  std::printf("| model | triangles | V1 voxels | check ms |");
-  for (const Column& c : columns) std::printf(" %s ms |", c.title.c_str());
-  std::printf(" itk / 1d | vtk / 1d | 1d x%d speed-up |\n|---|---:|---:|---:|", *threads);
-  for (size_t c = 0; c < columns.size() + 3; ++c) std::printf("---:|");
-  std::printf("\n");
-  auto ratio = [](const Result<MethodRun>& num, const Result<MethodRun>& den) {
-    char buf[32];
-    if (!num.ok() || !den.ok() || den->timed.min_ms <= 0) return std::string("n/a");
-    // Two decimals: the targets (10x, 50x, 1.6x) are thresholds, and 1.55 must not read as 1.6.
-    std::snprintf(buf, sizeof buf, "%.2fx", num->timed.min_ms / den->timed.min_ms);
-    return std::string(buf);
-  };
-  for (const Row& r : rows) {
-    std::printf("| %s | %zu | %lld | %.1f |", r.model.c_str(), r.triangles, (long long)r.voxels, r.check_ms);
-    for (const auto& cell : r.cells) std::printf(" %s |", time_cell(cell).c_str());
-    // Columns: 0 = 1d, 1 = 1d xT, 2 = 2d, 3 = vtk-stencil, 4 = itk.
-    std::printf(" %s | %s | %s |\n", ratio(r.cells[4], r.cells[0]).c_str(), ratio(r.cells[3], r.cells[0]).c_str(),
-                ratio(r.cells[0], r.cells[1]).c_str());
-  }
-  std::printf("\nIoU against V1 (differing voxels)\n\n| model |");
-  for (const Column& c : columns) std::printf(" %s |", c.title.c_str());
-  std::printf("\n|---|");
-  for (size_t c = 0; c < columns.size(); ++c) std::printf("---:|");
-  std::printf("\n");
-  for (const Row& r : rows) {
-    std::printf("| %s |", r.model.c_str());
-    for (const auto& cell : r.cells) std::printf(" %s |", agreement_cell(cell).c_str());
-    std::printf("\n");
-  }
+  print_times(rows, columns, *runs, *threads);
+  print_agreement(rows, columns);
   return 0;
 }
 

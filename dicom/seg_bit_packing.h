@@ -5,7 +5,8 @@
 // columns + n of the whole stream; only the stream as a whole is padded, to an even byte count.
 // DCMTK 3.6.7's SEG module pads every frame to a byte boundary instead, so its files are wrong, and
 // standard files are misread, whenever rows x columns is not a multiple of 8: soiq does not use
-// DCMTK for this layout (dicom/seg_export.cpp, dicom/read_seg.cpp). No DCMTK type appears here.
+// DCMTK for this layout (dicom/seg_export_frames.cpp, dicom/read_seg_frames.cpp). No DCMTK type
+// appears here.
 //
 // BinaryFramePacker
 //   Input    add_frame(pixels): one frame, one byte per pixel (row-major), nonzero = in the segment;

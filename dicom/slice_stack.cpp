@@ -30,56 +30,114 @@ bool near(double a, double b, double tol) { return std::abs(a - b) <= tol; }
 constexpr double kMaxPixelSpacingMm = 1e3;
 constexpr double kMaxPositionMm = 1e6;
 
-}  // namespace
+// Checks every number one slice brings before any is used: a NaN position would break the sort's
+// ordering and pass every distance test below (NaN compares false), an infinite spacing would
+// pass "> 0".
+Status check_slice_values(const SliceInfo& s) {
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(s.position_mm[a]) || std::abs(s.position_mm[a]) > kMaxPositionMm)
+      return invalid_argument("slice " + s.label + ": Image Position (Patient) (0020,0032) " + fmt(s.position_mm) +
+                              " is not a finite position within " + fmt(kMaxPositionMm) + " mm; fix the tag");
+  for (int i = 0; i < 6; ++i)
+    if (!std::isfinite(s.orientation[i]))
+      return invalid_argument("slice " + s.label + ": Image Orientation (Patient) (0020,0037) " +
+                              fmt_orientation(s.orientation) + " is not finite; fix the tag");
+  for (int i = 0; i < 2; ++i)
+    if (!(s.pixel_spacing_mm[i] > 0) || !(s.pixel_spacing_mm[i] <= kMaxPixelSpacingMm))
+      return invalid_argument("slice " + s.label + ": Pixel Spacing (0028,0030) " + fmt(s.pixel_spacing_mm[0]) + "\\" +
+                              fmt(s.pixel_spacing_mm[1]) + " must be finite, > 0 and at most " +
+                              fmt(kMaxPixelSpacingMm) + " mm; fix the tag");
+  if (s.rows <= 0 || s.columns <= 0)
+    return invalid_argument("slice " + s.label + ": Rows (0028,0010) " + std::to_string(s.rows) +
+                            " and Columns (0028,0011) " + std::to_string(s.columns) + " must be positive");
+  return ok_status();
+}
 
-Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double single_slice_spacing_mm) {
-  if (slices.empty()) return invalid_argument("image series has no slices");
-  // Every number a slice brings is checked before any is used: a NaN position would break the
-  // sort's ordering and pass every distance test below (NaN compares false), an infinite spacing
-  // would pass "> 0".
-  for (const SliceInfo& s : slices) {
-    for (int a = 0; a < 3; ++a)
-      if (!std::isfinite(s.position_mm[a]) || std::abs(s.position_mm[a]) > kMaxPositionMm)
-        return invalid_argument("slice " + s.label + ": Image Position (Patient) (0020,0032) " + fmt(s.position_mm) +
-                                " is not a finite position within " + fmt(kMaxPositionMm) + " mm; fix the tag");
-    for (int i = 0; i < 6; ++i)
-      if (!std::isfinite(s.orientation[i]))
-        return invalid_argument("slice " + s.label + ": Image Orientation (Patient) (0020,0037) " +
-                                fmt_orientation(s.orientation) + " is not finite; fix the tag");
-    for (int i = 0; i < 2; ++i)
-      if (!(s.pixel_spacing_mm[i] > 0) || !(s.pixel_spacing_mm[i] <= kMaxPixelSpacingMm))
-        return invalid_argument("slice " + s.label + ": Pixel Spacing (0028,0030) " + fmt(s.pixel_spacing_mm[0]) +
-                                "\\" + fmt(s.pixel_spacing_mm[1]) + " must be finite, > 0 and at most " +
-                                fmt(kMaxPixelSpacingMm) + " mm; fix the tag");
-    if (s.rows <= 0 || s.columns <= 0)
-      return invalid_argument("slice " + s.label + ": Rows (0028,0010) " + std::to_string(s.rows) +
-                              " and Columns (0028,0011) " + std::to_string(s.columns) + " must be positive");
-  }
-  const SliceInfo& first = slices[0];
-  const Vec3 row{first.orientation[0], first.orientation[1], first.orientation[2]};
-  const Vec3 col{first.orientation[3], first.orientation[4], first.orientation[5]};
+// Checks that the first slice's row and column directions are orthonormal: the grid's direction
+// matrix is built from them, and every other slice is compared with this one.
+Status check_orthonormal(const SliceInfo& first, const Vec3& row, const Vec3& col) {
   if (!near(norm(row), 1, 1e-4) || !near(norm(col), 1, 1e-4) || std::abs(dot(row, col)) > 1e-4)
     return invalid_argument("slice " + first.label + ": Image Orientation (Patient) (0020,0037) " +
                             fmt_orientation(first.orientation) +
                             " is not two orthonormal vectors (unit length and perpendicular to 1e-4); fix the tag");
-  const Vec3 n = cross(row, col);
+  return ok_status();
+}
 
-  for (const SliceInfo& s : slices) {
-    for (int i = 0; i < 6; ++i)
-      if (!near(s.orientation[i], first.orientation[i], 1e-4))
-        return invalid_argument("slice " + s.label +
-                                " has a different Image Orientation (Patient) (0020,0037) than slice " + first.label +
-                                "; a series must have one orientation");
-    if (s.rows != first.rows || s.columns != first.columns)
-      return invalid_argument("slice " + s.label + " is " + std::to_string(s.columns) + "x" + std::to_string(s.rows) +
-                              ", slice " + first.label + " is " + std::to_string(first.columns) + "x" +
-                              std::to_string(first.rows) + "; a series must have one size");
-    for (int i = 0; i < 2; ++i)
-      if (!near(s.pixel_spacing_mm[i], first.pixel_spacing_mm[i], 1e-6 * first.pixel_spacing_mm[i]))
-        return invalid_argument("slice " + s.label + " has a different Pixel Spacing (0028,0030) than slice " +
-                                first.label);
+// Checks that a slice has the first slice's orientation, size and pixel spacing: one grid holds
+// the whole series only if they agree.
+Status check_same_as_first(const SliceInfo& s, const SliceInfo& first) {
+  for (int i = 0; i < 6; ++i)
+    if (!near(s.orientation[i], first.orientation[i], 1e-4))
+      return invalid_argument("slice " + s.label +
+                              " has a different Image Orientation (Patient) (0020,0037) than slice " + first.label +
+                              "; a series must have one orientation");
+  if (s.rows != first.rows || s.columns != first.columns)
+    return invalid_argument("slice " + s.label + " is " + std::to_string(s.columns) + "x" + std::to_string(s.rows) +
+                            ", slice " + first.label + " is " + std::to_string(first.columns) + "x" +
+                            std::to_string(first.rows) + "; a series must have one size");
+  for (int i = 0; i < 2; ++i)
+    if (!near(s.pixel_spacing_mm[i], first.pixel_spacing_mm[i], 1e-6 * first.pixel_spacing_mm[i]))
+      return invalid_argument("slice " + s.label + " has a different Pixel Spacing (0028,0030) than slice " +
+                              first.label);
+  return ok_status();
+}
+
+// Checks that consecutive slices (in `order`, sorted along n) are apart by more than `tol` and
+// differ along the normal only; anything else is a tilted or sheared stack that an orthogonal grid
+// cannot represent.
+Status check_stacked_along_normal(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
+                                  const std::vector<double>& along, const Vec3& n, double tol) {
+  for (size_t k = 0; k + 1 < slices.size(); ++k) {
+    const SliceInfo& a = slices[order[k]];
+    const SliceInfo& b = slices[order[k + 1]];
+    const double step = along[order[k + 1]] - along[order[k]];
+    const std::string where =
+        "slices " + a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm);
+    if (step <= tol) return invalid_argument("two slices at the same position: " + where);
+    const Vec3 d = b.position_mm - a.position_mm;
+    if (norm(d - step * n) > tol)
+      return invalid_argument("slices are not stacked along the normal of their planes (gantry tilt?): " + where);
   }
+  return ok_status();
+}
 
+// Checks that every step between consecutive slices equals the smallest one. The mean step hides a
+// gap; the smallest step is the series' real spacing when a slice is missing, so a step of about a
+// whole multiple of it is reported as missing slices.
+Status check_regular_steps(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
+                           const std::vector<double>& along) {
+  double smallest = along[order[1]] - along[order[0]];
+  for (size_t k = 1; k + 1 < slices.size(); ++k) smallest = std::min(smallest, along[order[k + 1]] - along[order[k]]);
+  const double step_tol = std::max(0.01, 0.01 * smallest);
+  for (size_t k = 0; k + 1 < slices.size(); ++k) {
+    const SliceInfo& a = slices[order[k]];
+    const SliceInfo& b = slices[order[k + 1]];
+    const double step = along[order[k + 1]] - along[order[k]];
+    if (near(step, smallest, step_tol)) continue;
+    const double ratio = step / smallest;
+    const double missing = std::round(ratio) - 1;
+    const std::string where = a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm) +
+                              " (" + fmt(step) + " mm apart, the others " + fmt(smallest) + " mm)";
+    if (missing >= 1 && near(ratio, std::round(ratio), 0.05))
+      return invalid_argument(fmt(missing) + " missing slice(s) between " + where);
+    return invalid_argument("irregular slice spacing between " + where);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double single_slice_spacing_mm) {
+  if (slices.empty()) return invalid_argument("image series has no slices");
+  for (const SliceInfo& s : slices) SOIQ_RETURN_IF_ERROR(check_slice_values(s));
+  const SliceInfo& first = slices[0];
+  const Vec3 row{first.orientation[0], first.orientation[1], first.orientation[2]};
+  const Vec3 col{first.orientation[3], first.orientation[4], first.orientation[5]};
+  SOIQ_RETURN_IF_ERROR(check_orthonormal(first, row, col));
+  const Vec3 n = cross(row, col);
+  for (const SliceInfo& s : slices) SOIQ_RETURN_IF_ERROR(check_same_as_first(s, first));
+
+  // Slices in order along the normal; stable, so that slices at one position keep their input order.
   StackGeometry out;
   out.order.resize(slices.size());
   std::iota(out.order.begin(), out.order.end(), size_t{0});
@@ -90,42 +148,9 @@ Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double s
   double spacing =
       single_slice_spacing_mm > 0 && std::isfinite(single_slice_spacing_mm) ? single_slice_spacing_mm : 1.0;
   if (slices.size() > 1) {
-    const size_t last = out.order.back(), lowest = out.order.front();
-    spacing = (along[last] - along[lowest]) / static_cast<double>(slices.size() - 1);
-    const double tol = std::max(0.01, 0.01 * spacing);
-    for (size_t k = 0; k + 1 < slices.size(); ++k) {
-      const SliceInfo& a = slices[out.order[k]];
-      const SliceInfo& b = slices[out.order[k + 1]];
-      const double step = along[out.order[k + 1]] - along[out.order[k]];
-      const std::string where =
-          "slices " + a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm);
-      if (step <= tol) return invalid_argument("two slices at the same position: " + where);
-      // Consecutive positions must differ along the normal only; anything else is a tilted or
-      // sheared stack that an orthogonal grid cannot represent.
-      const Vec3 d = b.position_mm - a.position_mm;
-      if (norm(d - step * n) > tol)
-        return invalid_argument("slices are not stacked along the normal of their planes (gantry tilt?): " + where);
-    }
-    // The mean step hides a gap; the smallest step is the series' real spacing when a slice is
-    // missing, so compare every step with the smallest.
-    double smallest = along[out.order[1]] - along[out.order[0]];
-    for (size_t k = 1; k + 1 < slices.size(); ++k)
-      smallest = std::min(smallest, along[out.order[k + 1]] - along[out.order[k]]);
-    const double step_tol = std::max(0.01, 0.01 * smallest);
-    for (size_t k = 0; k + 1 < slices.size(); ++k) {
-      const SliceInfo& a = slices[out.order[k]];
-      const SliceInfo& b = slices[out.order[k + 1]];
-      const double step = along[out.order[k + 1]] - along[out.order[k]];
-      if (near(step, smallest, step_tol)) continue;
-      const double ratio = step / smallest;
-      const double missing = std::round(ratio) - 1;
-      const std::string where = a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " +
-                                fmt(b.position_mm) + " (" + fmt(step) + " mm apart, the others " + fmt(smallest) +
-                                " mm)";
-      if (missing >= 1 && near(ratio, std::round(ratio), 0.05))
-        return invalid_argument(fmt(missing) + " missing slice(s) between " + where);
-      return invalid_argument("irregular slice spacing between " + where);
-    }
+    spacing = (along[out.order.back()] - along[out.order.front()]) / static_cast<double>(slices.size() - 1);
+    SOIQ_RETURN_IF_ERROR(check_stacked_along_normal(slices, out.order, along, n, std::max(0.01, 0.01 * spacing)));
+    SOIQ_RETURN_IF_ERROR(check_regular_steps(slices, out.order, along));
   }
 
   ImageGeometry& g = out.geometry;

@@ -85,24 +85,100 @@ class Scanner {
   size_t pos_ = 0;
 };
 
-}  // namespace
+Status bad(const std::string& path, const std::string& why) {
+  return invalid_argument("legacy VTK '" + path + "': " + why);
+}
 
-Result<std::string> legacy_vtk_geometry(const std::string& bytes, const std::string& path) {
-  auto bad = [&](const std::string& why) { return invalid_argument("legacy VTK '" + path + "': " + why); };
+struct LegacyHeader {
+  double version = 0;
+  bool binary = false;
+  size_t body_start = 0;  // first byte after the third line
+};
+
+// The three header lines: the version decides how cell sections are laid out (counts before 5.0,
+// OFFSETS and CONNECTIVITY since), the third line how values are stored (ASCII or BINARY).
+Result<LegacyHeader> read_header(const std::string& bytes, const std::string& path) {
   const size_t l1 = bytes.find('\n');
   const size_t l2 = l1 == std::string::npos ? l1 : bytes.find('\n', l1 + 1);
   const size_t l3 = l2 == std::string::npos ? l2 : bytes.find('\n', l2 + 1);
-  if (!bytes.starts_with("# vtk DataFile Version") || l3 == std::string::npos) return bad("malformed header");
+  if (!bytes.starts_with("# vtk DataFile Version") || l3 == std::string::npos) return bad(path, "malformed header");
   const std::string_view version_text = trim(std::string_view(bytes).substr(22, l1 - 22));
   const auto version = parse_double(version_text);
-  if (!version) return bad("malformed header version");
+  if (!version) return bad(path, "malformed header version");
   const std::string format = std::string(trim(std::string_view(bytes).substr(l2 + 1, l3 - l2 - 1)));
-  if (format != "ASCII" && format != "BINARY") return bad("third line must be ASCII or BINARY");
-  Scanner in(bytes, format == "BINARY");
-  in.set_pos(l3 + 1);
+  if (format != "ASCII" && format != "BINARY") return bad(path, "third line must be ASCII or BINARY");
+  return LegacyHeader{*version, format == "BINARY", l3 + 1};
+}
+
+// A cell section before 5.0: `size` ints, per cell its point count and its point ids. Checks that
+// the counts of `cells` cells add up to `size` and every id is one of the `points` points, since
+// VTK's reader trusts both.
+Status check_counted_cells(Scanner& in, const std::string& key, int64_t cells, int64_t size, int64_t points,
+                           const std::string& path) {
+  std::vector<int64_t> ids;
+  if (!in.values(size, 4, true, &ids)) return bad(path, key + " data is truncated or malformed");
+  size_t k = 0;
+  for (int64_t cell = 0; cell < cells; ++cell) {
+    if (k >= ids.size() || ids[k] < 0 || int64_t(ids.size() - k - 1) < ids[k])
+      return bad(path, key + " counts do not add up");
+    const int64_t npts = ids[k++];
+    for (int64_t m = 0; m < npts; ++m, ++k) {
+      if (ids[k] < 0 || ids[k] >= points)
+        return bad(path, key + " point index " + std::to_string(ids[k]) + " is out of range");
+    }
+  }
+  if (k != ids.size()) return bad(path, key + " counts do not add up");
+  return ok_status();
+}
+
+// A cell section since 5.0: OFFSETS (`offset_count` values) then CONNECTIVITY (`size` values).
+// Checks that the offsets rise to `size` and every id is one of the `points` points, since VTK's
+// reader trusts both.
+Status check_offset_cells(Scanner& in, const std::string& key, int64_t offset_count, int64_t size, int64_t points,
+                          const std::string& path) {
+  std::vector<int64_t> offsets, ids;
+  const auto off = in.line_words();
+  if (off.size() != 2 || off[0] != "OFFSETS" || scalar_size(off[1]) == 0) return bad(path, key + " without OFFSETS");
+  if (!in.values(offset_count, scalar_size(off[1]), true, &offsets))
+    return bad(path, key + " OFFSETS are truncated or malformed");
+  const auto conn = in.line_words();
+  if (conn.size() != 2 || conn[0] != "CONNECTIVITY" || scalar_size(conn[1]) == 0)
+    return bad(path, key + " without CONNECTIVITY");
+  if (!in.values(size, scalar_size(conn[1]), true, &ids))
+    return bad(path, key + " CONNECTIVITY is truncated or malformed");
+  for (size_t k = 0; k < offsets.size(); ++k) {
+    if (offsets[k] < 0 || offsets[k] > size || (k > 0 && offsets[k] < offsets[k - 1]))
+      return bad(path, key + " OFFSETS are not increasing");
+  }
+  if (!offsets.empty() && offsets.back() != size)
+    return bad(path, key + " OFFSETS do not end at the CONNECTIVITY size");
+  for (const int64_t id : ids) {
+    if (id < 0 || id >= points) return bad(path, key + " point index " + std::to_string(id) + " is out of range");
+  }
+  return ok_status();
+}
+
+// A VERTICES, LINES, POLYGONS or TRIANGLE_STRIPS section whose keyword line is `w`: its two counts,
+// then its data in the layout of the file's version.
+Status check_cell_section(Scanner& in, const std::vector<std::string>& w, double version, int64_t points,
+                          const std::string& path) {
+  const std::string& key = w[0];
+  const auto a = w.size() == 3 ? parse_integer(w[1]) : std::nullopt;
+  const auto b = w.size() == 3 ? parse_integer(w[2]) : std::nullopt;
+  if (!a || !b || *a < 0 || *b < 0) return bad(path, "malformed " + key + " line");
+  if (version < 5.0) return check_counted_cells(in, key, *a, *b, points, path);
+  return check_offset_cells(in, key, *a, *b, points, path);
+}
+
+}  // namespace
+
+Result<std::string> legacy_vtk_geometry(const std::string& bytes, const std::string& path) {
+  SOIQ_ASSIGN_OR_RETURN(const LegacyHeader header, read_header(bytes, path));
+  Scanner in(bytes, header.binary);
+  in.set_pos(header.body_start);
   const auto dataset = in.line_words();
   if (dataset.size() != 2 || dataset[0] != "DATASET" || dataset[1] != "POLYDATA") {
-    return bad("not polydata (expected 'DATASET POLYDATA')");
+    return bad(path, "not polydata (expected 'DATASET POLYDATA')");
   }
   int64_t points = -1;
   while (!in.at_end()) {
@@ -120,54 +196,18 @@ Result<std::string> legacy_vtk_geometry(const std::string& bytes, const std::str
     if (key == "POINTS") {
       const auto n = w.size() == 3 ? parse_integer(w[1]) : std::nullopt;
       const int size = w.size() == 3 ? scalar_size(w[2]) : 0;
-      if (!n || *n < 0 || size == 0) return bad("malformed POINTS line");
-      if (!in.values(3 * *n, size, false, nullptr)) return bad("POINTS data is truncated or malformed");
+      if (!n || *n < 0 || size == 0) return bad(path, "malformed POINTS line");
+      if (!in.values(3 * *n, size, false, nullptr)) return bad(path, "POINTS data is truncated or malformed");
       points = *n;
       continue;
     }
     if (key != "VERTICES" && key != "LINES" && key != "POLYGONS" && key != "TRIANGLE_STRIPS") {
-      return bad("unsupported section '" + key.substr(0, 40) + "'");
+      return bad(path, "unsupported section '" + key.substr(0, 40) + "'");
     }
-    if (points < 0) return bad(key + " before POINTS");
-    const auto a = w.size() == 3 ? parse_integer(w[1]) : std::nullopt;
-    const auto b = w.size() == 3 ? parse_integer(w[2]) : std::nullopt;
-    if (!a || !b || *a < 0 || *b < 0) return bad("malformed " + key + " line");
-    std::vector<int64_t> ids;
-    if (*version < 5.0) {
-      // n cells, then `size` ints: per cell its point count and its point ids.
-      if (!in.values(*b, 4, true, &ids)) return bad(key + " data is truncated or malformed");
-      size_t k = 0;
-      for (int64_t cell = 0; cell < *a; ++cell) {
-        if (k >= ids.size() || ids[k] < 0 || int64_t(ids.size() - k - 1) < ids[k])
-          return bad(key + " counts do not add up");
-        const int64_t npts = ids[k++];
-        for (int64_t m = 0; m < npts; ++m, ++k) {
-          if (ids[k] < 0 || ids[k] >= points)
-            return bad(key + " point index " + std::to_string(ids[k]) + " is out of range");
-        }
-      }
-      if (k != ids.size()) return bad(key + " counts do not add up");
-      continue;
-    }
-    // 5.x: OFFSETS (a values) then CONNECTIVITY (b values).
-    std::vector<int64_t> offsets;
-    const auto off = in.line_words();
-    if (off.size() != 2 || off[0] != "OFFSETS" || scalar_size(off[1]) == 0) return bad(key + " without OFFSETS");
-    if (!in.values(*a, scalar_size(off[1]), true, &offsets)) return bad(key + " OFFSETS are truncated or malformed");
-    const auto conn = in.line_words();
-    if (conn.size() != 2 || conn[0] != "CONNECTIVITY" || scalar_size(conn[1]) == 0)
-      return bad(key + " without CONNECTIVITY");
-    if (!in.values(*b, scalar_size(conn[1]), true, &ids)) return bad(key + " CONNECTIVITY is truncated or malformed");
-    for (size_t k = 0; k < offsets.size(); ++k) {
-      if (offsets[k] < 0 || offsets[k] > *b || (k > 0 && offsets[k] < offsets[k - 1]))
-        return bad(key + " OFFSETS are not increasing");
-    }
-    if (!offsets.empty() && offsets.back() != *b) return bad(key + " OFFSETS do not end at the CONNECTIVITY size");
-    for (const int64_t id : ids) {
-      if (id < 0 || id >= points) return bad(key + " point index " + std::to_string(id) + " is out of range");
-    }
+    if (points < 0) return bad(path, key + " before POINTS");
+    SOIQ_RETURN_IF_ERROR(check_cell_section(in, w, header.version, points, path));
   }
-  if (points < 0) return bad("no POINTS section");
+  if (points < 0) return bad(path, "no POINTS section");
   return bytes;
 }
 
