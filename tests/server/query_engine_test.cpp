@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/geometry/primitives.h"
-#include "db/surface_blob.h"
 #include "tests/db/temp_store.h"
+#include "tests/server/stored_box.h"
 
 namespace soiq::server {
 namespace {
@@ -22,20 +22,9 @@ class QueryEngineTest : public ::testing::Test {
  protected:
   // A box of `x` x 10 x 10 mm in study S1 of patient P1: mesh_volume_mm3 = 100 x.
   int64_t add_box(const std::string& name, const std::string& laterality, double x, const std::string& study = "S1") {
-    db::NewStructure s;
-    s.patient.patient_id = "P1";
-    s.study.study_uid = study;
-    s.name = name;
-    s.laterality = laterality;
     // Distinct positions give distinct surfaces (and cache keys) for equal sizes.
     const double at = double(++boxes_) * 100;
-    Result<db::EncodedSurface> encoded = db::encode_surface(box({at, 0, 0}, {at + x, 10, 10}));
-    EXPECT_TRUE(encoded.ok());
-    s.surface = encoded->info;
-    s.surface_blob = encoded->blob;
-    Result<db::AddedStructure> added = store_->add_structure(s);
-    EXPECT_TRUE(added.ok()) << added.status().to_string();
-    return added.ok() ? added->structure.id : -1;
+    return testing::add_stored_box(*store_, {at, 0, 0}, {at + x, 10, 10}, name, study, laterality);
   }
 
   static QueryFeature shape(const std::string& name, bool asymmetry = false) {

@@ -44,10 +44,10 @@ TEST(ServerConfig, WithNothingGivenEveryValueIsTheDocumentedDefault) {
 }
 
 TEST(ServerConfig, AFlagWinsOverItsEnvironmentVariable) {
-  Parsed p = parse({"--workers", "3"}, {{"SOIQ_WORKERS", "7"}, {"SOIQ_DB", "/tmp/x.db"}});
+  Parsed p = parse({"--workers", "3"}, {{"SOIQ_WORKERS", "7"}, {"SOIQ_DB", "store/x.db"}});
   ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
   EXPECT_EQ(p.config->workers, 3);
-  EXPECT_EQ(p.config->db_path, "/tmp/x.db");
+  EXPECT_EQ(p.config->db_path, "store/x.db");
 }
 
 TEST(ServerConfig, TheMemoryBudgetTakesUnits) {

@@ -9,9 +9,9 @@
 #include "core/base/run_length_volume.h"
 #include "core/geometry/primitives.h"
 #include "core/io/read_image.h"
-#include "db/surface_blob.h"
 #include "server/app/stored_structure_features.h"
 #include "tests/db/temp_store.h"
+#include "tests/server/stored_box.h"
 
 namespace soiq::server {
 namespace {
@@ -25,17 +25,8 @@ constexpr double kLo[3] = {0.25, 0.35, 0.45}, kHi[3] = {10.6, 5.7, 3.8};
 class StructureConversionTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    db::NewStructure s;
-    s.patient.patient_id = "P1";
-    s.study.study_uid = "S1";
-    s.name = "box";
-    Result<db::EncodedSurface> encoded = db::encode_surface(box({kLo[0], kLo[1], kLo[2]}, {kHi[0], kHi[1], kHi[2]}));
-    ASSERT_TRUE(encoded.ok());
-    s.surface = encoded->info;
-    s.surface_blob = encoded->blob;
-    Result<db::AddedStructure> added = store_->add_structure(s);
-    ASSERT_TRUE(added.ok()) << added.status().to_string();
-    id_ = added->structure.id;
+    id_ = testing::add_stored_box(*store_, {kLo[0], kLo[1], kLo[2]}, {kHi[0], kHi[1], kHi[2]}, "box");
+    ASSERT_GT(id_, 0);
   }
 
   // The centres of `g` strictly inside the box; fails the test if one lies on a face.
