@@ -47,6 +47,7 @@ Result<TriangleMesh> marching_cubes(const Mask& mask) {
       cz > std::numeric_limits<int>::max()) {
     return resource_exhausted("mask of " + describe(g) + " is too large for VTK's marching cubes");
   }
+  VtkMessages messages;  // before the first VTK object: see vtk_messages.h
   vtkNew<vtkImageData> image;
   image->SetDimensions(int(cx), int(cy), int(cz));
   image->SetOrigin(0, 0, 0);
@@ -67,7 +68,6 @@ Result<TriangleMesh> marching_cubes(const Mask& mask) {
   // and shares every edge vertex between the cubes around it by construction: no point merging
   // needed, and the surface of a 0/1 volume is closed. Interpolation at iso 0.5 between 0 and 1
   // gives t = 0.5 exactly.
-  VtkMessages messages;
   vtkNew<vtkFlyingEdges3D> surface;
   surface->SetInputData(image);
   surface->SetValue(0, 0.5);

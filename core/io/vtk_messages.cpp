@@ -70,6 +70,10 @@ VtkMessages::VtkMessages() {
     vtkOutputWindow::SetInstance(window);
     // VTK 9 also logs every error through vtkLogger straight to stderr.
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    // VTK 9.1 creates its object-factory registry lazily on the first factory-made object
+    // (vtkPoints, readers, ...) without a lock: two threads making their first VTK objects at once
+    // each create one, and one leaks. Create it here, once, before any such object.
+    vtkObjectFactory::GetRegisteredFactories();
   });
   t_messages = ThreadMessages{};
 }

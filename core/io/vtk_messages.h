@@ -5,6 +5,9 @@
 // that prints nothing and appends every message to a per-thread buffer; each VtkMessages clears
 // that buffer, so `last_error()` sees only the messages of the VTK calls made since on this thread.
 //
+// The first VtkMessages also creates VTK's object-factory registry, which VTK 9.1 creates lazily
+// and without a lock: construct one before making any VTK object, so that threads never race there.
+//
 // Usage    VtkMessages messages; reader->Update(); if (messages.has_error()) ...
 // Cost     O(1). Thread-safe: installation is guarded, buffers are thread-local.
 // Caveats  Replaces vtkOutputWindow and turns vtkLogger's stderr output off for the whole process:
