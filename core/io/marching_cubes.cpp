@@ -47,7 +47,7 @@ Result<TriangleMesh> marching_cubes(const Mask& mask) {
       cz > std::numeric_limits<int>::max()) {
     return resource_exhausted("mask of " + describe(g) + " is too large for VTK's marching cubes");
   }
-  VtkMessages messages;  // before the first VTK object: see vtk_messages.h
+  VtkMessages messages;
   vtkNew<vtkImageData> image;
   image->SetDimensions(int(cx), int(cy), int(cz));
   image->SetOrigin(0, 0, 0);

@@ -19,6 +19,12 @@ struct ThreadMessages {
 
 thread_local ThreadMessages t_messages;
 
+// VTK 9.1 creates its object-factory registry lazily, on the first factory-made object (vtkPoints,
+// readers, ...), without a lock: two threads making their first VTK objects at once each create
+// one, and one leaks. Every program that links soiq's VTK adapters creates it here, at load time,
+// while only one thread exists, so no code path has to remember to do it first.
+[[maybe_unused]] const bool kVtkFactoryRegistryCreated = (vtkObjectFactory::GetRegisteredFactories(), true);
+
 // "ERROR: In /path/vtkSTLReader.cxx, line 123\nvtkSTLReader (0x55d): File x not found\n\n"
 // -> "File x not found"
 std::string strip_vtk_prefix(std::string_view text) {
@@ -70,10 +76,6 @@ VtkMessages::VtkMessages() {
     vtkOutputWindow::SetInstance(window);
     // VTK 9 also logs every error through vtkLogger straight to stderr.
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-    // VTK 9.1 creates its object-factory registry lazily on the first factory-made object
-    // (vtkPoints, readers, ...) without a lock: two threads making their first VTK objects at once
-    // each create one, and one leaks. Create it here, once, before any such object.
-    vtkObjectFactory::GetRegisteredFactories();
   });
   t_messages = ThreadMessages{};
 }

@@ -5,8 +5,8 @@
 // that prints nothing and appends every message to a per-thread buffer; each VtkMessages clears
 // that buffer, so `last_error()` sees only the messages of the VTK calls made since on this thread.
 //
-// The first VtkMessages also creates VTK's object-factory registry, which VTK 9.1 creates lazily
-// and without a lock: construct one before making any VTK object, so that threads never race there.
+// Linking this file also creates VTK's object-factory registry at program load (VTK 9.1 creates
+// it lazily and without a lock, so threads making their first VTK objects at once raced there).
 //
 // Usage    VtkMessages messages; reader->Update(); if (messages.has_error()) ...
 // Cost     O(1). Thread-safe: installation is guarded, buffers are thread-local.
