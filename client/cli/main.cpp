@@ -25,6 +25,7 @@
 #include "client/cli/remote_options.h"
 #include "client/cli/rm_command.h"
 #include "client/cli/show_command.h"
+#include "client/cli/structure_operand.h"
 #include "client/cli/upload_command.h"
 #include "client/cli/upload_image_command.h"
 
@@ -76,8 +77,8 @@ constexpr const char* kHelp =
     "  soiq features ID [--features LIST] [--region inside|shell:R|core:R]... [--image MODALITY|SERIES_UID]...\n"
     "               [--spacing S [--margin N] | --series UID | --series-modality M] [--interpolation nearest|linear]\n"
     "               [--format table|json|csv]\n"
-    "      convert and features run on soiqd when their operand is a structure id (all digits), offline\n"
-    "      when it is a file\n"
+    "      convert and features run on soiqd when their operand is a structure id (all digits, or id:N),\n"
+    "      offline when it is a file (a file named like an id is refused as ambiguous: write ./N or id:N)\n"
     "  soiq query [--patient GLOB] [--sex M|F|O] [--min-age Y] [--max-age Y] [--birth-date-from D] [--birth-date-to "
     "D]\n"
     "               [--study-date-from D] [--study-date-to D] [--modality M] [--description GLOB] [--name GLOB]\n"
@@ -150,14 +151,18 @@ int dispatch(int argc, char** argv) {
   const std::string command = argv[1];
   const int n = argc - 1;
   char** args = argv + 1;
-  if (command == "convert") {
-    return is_structure_id(first_operand(n, args, kConvertValueOptions)) ? run_remote_convert_command(n, args, *remote)
-                                                                         : run_convert_command(n, args);
-  }
-  if (command == "features") {
-    return is_structure_id(first_operand(n, args, kFeaturesValueOptions))
-               ? run_remote_features_command(n, args, *remote)
-               : run_features_command(n, args);
+  if (command == "convert" || command == "features") {
+    const bool convert = command == "convert";
+    const soiq::Result<OperandKind> kind =
+        structure_operand_kind(first_operand(n, args, convert ? kConvertValueOptions : kFeaturesValueOptions));
+    if (!kind.ok()) {
+      std::fprintf(stderr, "soiq %s: %s\n", command.c_str(), kind.status().message().c_str());
+      return exit_code(kind.status());
+    }
+    if (*kind == OperandKind::kStored) {
+      return convert ? run_remote_convert_command(n, args, *remote) : run_remote_features_command(n, args, *remote);
+    }
+    return convert ? run_convert_command(n, args) : run_features_command(n, args);
   }
   if (command == "compare") return run_compare_command(n, args);
   if (command == "mesh") return run_mesh_command(n, args);

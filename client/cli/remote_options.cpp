@@ -53,10 +53,11 @@ bool is_structure_id(const std::string& text) {
 }
 
 Result<int64_t> parse_structure_id(const std::string& text) {
-  if (!is_structure_id(text) || std::stoll(text) <= 0) {
+  const std::string digits = text.starts_with(kStructureIdPrefix) ? text.substr(kStructureIdPrefix.size()) : text;
+  if (!is_structure_id(digits) || std::stoll(digits) <= 0) {
     return invalid_argument("a structure id is a whole number > 0, got '" + text + "'");
   }
-  return int64_t(std::stoll(text));
+  return int64_t(std::stoll(digits));
 }
 
 std::string first_operand(int argc, char** argv, const std::vector<std::string>& value_options) {

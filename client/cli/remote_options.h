@@ -4,6 +4,8 @@
 // (before or after the command name), and the connection they describe.
 // $SOIQ_SERVER gives the server when --server is not given; the default is 127.0.0.1:50051.
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "client/soiq_client.h"
@@ -18,7 +20,9 @@ Result<client::ClientOptions> take_remote_options(int& argc, char** argv);
 // The client of `options`; errors as client::Client::connect.
 Result<client::Client> connect(const client::ClientOptions& options);
 
-// A structure id as the command line gives it: all digits, > 0.
+// A structure id as the command line gives it: all digits, > 0, optionally written `id:N` (which
+// `soiq convert` and `soiq features` need when a file N exists too; see structure_operand.h).
+inline constexpr std::string_view kStructureIdPrefix = "id:";
 bool is_structure_id(const std::string& text);
 Result<int64_t> parse_structure_id(const std::string& text);
 

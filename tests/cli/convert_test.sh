@@ -91,6 +91,15 @@ expect 5 "memory budget of 1.07 GB" -- env SOIQ_MEMORY_BUDGET=1G "$soiq" convert
 expect 5 "needs an estimated" -- env SOIQ_MEMORY_BUDGET=1G "$soiq" features "$tmp/slab.obj" --spacing 1
 expect 2 "SOIQ_MEMORY_BUDGET" -- env SOIQ_MEMORY_BUDGET=lots "$soiq" convert "$tmp/slab.obj" --spacing 1 -o "$tmp/x.nii.gz"
 
+# A file named like a structure id is ambiguous: refused naming both spellings, before any server
+# is asked (none runs here); ./N means the file.
+cp "$tmp/pet.stl" "$tmp/7"
+pushd "$tmp" >/dev/null || fail "cd $tmp"
+expect 2 "write id:7 for the stored structure or ./7 for the file" -- "$soiq" convert 7 --spacing 1 -o x.nii.gz
+expect 2 "both a structure id and a file" -- "$soiq" features 7 --spacing 1
+expect 2 "unknown mesh extension" -- "$soiq" convert ./7 --spacing 1 -o x.nii.gz
+popd >/dev/null || fail "cd back"
+
 # Stderr of a failure is one line.
 "$soiq" convert "$tmp/missing.stl" --spacing 1 -o "$tmp/x.nii.gz" 2>"$tmp/err"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "error output is not one line: $(cat "$tmp/err")"
