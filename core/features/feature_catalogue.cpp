@@ -6,7 +6,12 @@ namespace soiq {
 namespace {
 
 using F = FeatureFamily;
+using N = FeatureNeed;
 using V = std::vector<double>;
+
+constexpr FeatureNeeds kHull = N::kSurface | N::kConvexHull;
+constexpr FeatureNeeds kImageRegion = N::kImage | N::kRegion;
+constexpr FeatureNeeds kOwnGridInside = N::kImage | N::kImageOnGrid | N::kRegion | N::kInsideRegion;
 
 // The catalogue's own version: 2 since soiq's exact hull and one-pass area and volume. Each
 // definition's bump adds to it (feature_definitions_version).
@@ -14,108 +19,111 @@ constexpr int kCatalogueVersion = 2;
 
 const std::array kCatalogue = std::to_array<FeatureDef>({
     // Volume: of the voxels (volume_shape.h).
-    {"voxel_count", F::kVolume, "voxels", "voxels inside the structure", 1, false, 1,
+    {"voxel_count", F::kVolume, "voxels", "voxels inside the structure", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{double(s.volume->voxel_count)}; }},
-    {"voxel_volume_mm3", F::kVolume, "mm3", "voxel count x voxel volume (IBSI YEKZ)", 1, false, 1,
+    {"voxel_volume_mm3", F::kVolume, "mm3", "voxel count x voxel volume (IBSI YEKZ)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->voxel_volume_mm3}; }},
-    {"centroid_mm", F::kVolume, "mm", "mean of the voxel centres, LPS x y z", 3, false, 1,
+    {"centroid_mm", F::kVolume, "mm", "mean of the voxel centres, LPS x y z", 3, N::kVoxels, 1,
      [](const FeatureSources& s) {
        const Vec3& c = s.volume->centroid_mm;
        return V{c[0], c[1], c[2]};
      }},
-    {"bbox_mm", F::kVolume, "mm", "voxel centres' bounding box: min x y z, max x y z", 6, false, 1,
+    {"bbox_mm", F::kVolume, "mm", "voxel centres' bounding box: min x y z, max x y z", 6, N::kVoxels, 1,
      [](const FeatureSources& s) {
        const Vec3 &lo = s.volume->bbox_min_mm, &hi = s.volume->bbox_max_mm;
        return V{lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
      }},
     {"major_axis_length_mm", F::kVolume, "mm", "4 sqrt(largest eigenvalue) of the voxel covariance (IBSI TDIC)", 1,
-     false, 1, [](const FeatureSources& s) { return V{s.volume->major_axis_length_mm}; }},
-    {"minor_axis_length_mm", F::kVolume, "mm", "4 sqrt(second eigenvalue) (IBSI P9VJ)", 1, false, 1,
+     N::kVoxels, 1, [](const FeatureSources& s) { return V{s.volume->major_axis_length_mm}; }},
+    {"minor_axis_length_mm", F::kVolume, "mm", "4 sqrt(second eigenvalue) (IBSI P9VJ)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->minor_axis_length_mm}; }},
-    {"least_axis_length_mm", F::kVolume, "mm", "4 sqrt(smallest eigenvalue) (IBSI 7J51)", 1, false, 1,
+    {"least_axis_length_mm", F::kVolume, "mm", "4 sqrt(smallest eigenvalue) (IBSI 7J51)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->least_axis_length_mm}; }},
-    {"elongation", F::kVolume, "", "sqrt(minor / major eigenvalue) (IBSI Q3CK)", 1, false, 1,
+    {"elongation", F::kVolume, "", "sqrt(minor / major eigenvalue) (IBSI Q3CK)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->elongation}; }},
-    {"flatness", F::kVolume, "", "sqrt(least / major eigenvalue) (IBSI N17B)", 1, false, 1,
+    {"flatness", F::kVolume, "", "sqrt(least / major eigenvalue) (IBSI N17B)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->flatness}; }},
 
     // Surface: of the stored surface model, else of the mask's marching-cubes surface.
-    {"mesh_volume_mm3", F::kSurface, "mm3", "volume V enclosed by the surface (IBSI RNU0)", 1, false, 1,
+    {"mesh_volume_mm3", F::kSurface, "mm3", "volume V enclosed by the surface (IBSI RNU0)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->mesh_volume_mm3}; }},
-    {"surface_area_mm2", F::kSurface, "mm2", "area A of the surface (IBSI C0JK)", 1, false, 1,
+    {"surface_area_mm2", F::kSurface, "mm2", "area A of the surface (IBSI C0JK)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->surface_area_mm2}; }},
-    {"surface_volume_ratio", F::kSurface, "1/mm", "A / V (IBSI 2PR5)", 1, false, 1,
+    {"surface_volume_ratio", F::kSurface, "1/mm", "A / V (IBSI 2PR5)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->surface_volume_ratio}; }},
-    {"sphericity", F::kSurface, "", "(36 pi V^2)^(1/3) / A (IBSI QCFX)", 1, false, 1,
+    {"sphericity", F::kSurface, "", "(36 pi V^2)^(1/3) / A (IBSI QCFX)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->sphericity}; }},
-    {"compactness_1", F::kSurface, "", "V / (sqrt(pi) A^(3/2)) (IBSI SKGS)", 1, false, 1,
+    {"compactness_1", F::kSurface, "", "V / (sqrt(pi) A^(3/2)) (IBSI SKGS)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->compactness_1}; }},
-    {"compactness_2", F::kSurface, "", "36 pi V^2 / A^3 (IBSI BQWJ)", 1, false, 1,
+    {"compactness_2", F::kSurface, "", "36 pi V^2 / A^3 (IBSI BQWJ)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->compactness_2}; }},
-    {"spherical_disproportion", F::kSurface, "", "A / (36 pi V^2)^(1/3) (IBSI KRCK)", 1, false, 1,
+    {"spherical_disproportion", F::kSurface, "", "A / (36 pi V^2)^(1/3) (IBSI KRCK)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->spherical_disproportion}; }},
-    {"asphericity", F::kSurface, "", "(A^3 / (36 pi V^2))^(1/3) - 1 (IBSI 25C7)", 1, false, 1,
+    {"asphericity", F::kSurface, "", "(A^3 / (36 pi V^2))^(1/3) - 1 (IBSI 25C7)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->asphericity}; }},
-    {"maximum_3d_diameter_mm", F::kSurface, "mm", "largest distance between two surface vertices (IBSI L0JK)", 1, true,
+    {"maximum_3d_diameter_mm", F::kSurface, "mm", "largest distance between two surface vertices (IBSI L0JK)", 1, kHull,
      1, [](const FeatureSources& s) { return V{s.surface->maximum_3d_diameter_mm}; }},
     {"volume_density_aabb", F::kSurface, "", "V / volume of the vertices' box along the grid axes (IBSI PBX1)", 1,
-     false, 1, [](const FeatureSources& s) { return V{s.surface->volume_density_aabb}; }},
-    {"area_density_aabb", F::kSurface, "", "A / area of that box (IBSI R59B)", 1, false, 1,
+     N::kSurface, 1, [](const FeatureSources& s) { return V{s.surface->volume_density_aabb}; }},
+    {"area_density_aabb", F::kSurface, "", "A / area of that box (IBSI R59B)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->area_density_aabb}; }},
-    {"volume_density_convex_hull", F::kSurface, "", "V / convex hull volume (IBSI R3ER)", 1, true, 1,
+    {"volume_density_convex_hull", F::kSurface, "", "V / convex hull volume (IBSI R3ER)", 1, kHull, 1,
      [](const FeatureSources& s) { return V{s.surface->volume_density_convex_hull}; }},
-    {"area_density_convex_hull", F::kSurface, "", "A / convex hull area (IBSI 7T7F)", 1, true, 1,
+    {"area_density_convex_hull", F::kSurface, "", "A / convex hull area (IBSI 7T7F)", 1, kHull, 1,
      [](const FeatureSources& s) { return V{s.surface->area_density_convex_hull}; }},
 
     // 2D diameters: of the mask's marching-cubes surface, in the grid's planes.
-    {"maximum_2d_diameter_slice_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant k", 1, false, 1,
-     [](const FeatureSources& s) { return V{s.diameters_2d->slice_mm}; }},
-    {"maximum_2d_diameter_column_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant j", 1, false, 1,
-     [](const FeatureSources& s) { return V{s.diameters_2d->column_mm}; }},
-    {"maximum_2d_diameter_row_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant i", 1, false, 1,
+    {"maximum_2d_diameter_slice_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant k", 1, N::kVoxels,
+     1, [](const FeatureSources& s) { return V{s.diameters_2d->slice_mm}; }},
+    {"maximum_2d_diameter_column_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant j", 1, N::kVoxels,
+     1, [](const FeatureSources& s) { return V{s.diameters_2d->column_mm}; }},
+    {"maximum_2d_diameter_row_mm", F::kDiameter2d, "mm", "largest diameter in a plane of constant i", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.diameters_2d->row_mm}; }},
 
     // Intensity: per region and image (intensity_features.h).
-    {"mean", F::kIntensity, "image", "mean (IBSI Q4LE)", 1, false, 1,
+    {"mean", F::kIntensity, "image", "mean (IBSI Q4LE)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->mean}; }},
-    {"standard_deviation", F::kIntensity, "image", "square root of the variance", 1, false, 1,
+    {"standard_deviation", F::kIntensity, "image", "square root of the variance", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->standard_deviation}; }},
-    {"variance", F::kIntensity, "image", "variance, divisor N (IBSI ECT3)", 1, false, 1,
+    {"variance", F::kIntensity, "image", "variance, divisor N (IBSI ECT3)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->variance}; }},
-    {"skewness", F::kIntensity, "", "skewness (IBSI KE2A)", 1, false, 1,
+    {"skewness", F::kIntensity, "", "skewness (IBSI KE2A)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->skewness}; }},
-    {"excess_kurtosis", F::kIntensity, "", "kurtosis - 3 (IBSI IPH6)", 1, false, 1,
+    {"excess_kurtosis", F::kIntensity, "", "kurtosis - 3 (IBSI IPH6)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->excess_kurtosis}; }},
-    {"minimum", F::kIntensity, "image", "minimum (IBSI 1GSF)", 1, false, 1,
+    {"minimum", F::kIntensity, "image", "minimum (IBSI 1GSF)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->minimum}; }},
-    {"maximum", F::kIntensity, "image", "maximum (IBSI 84IY)", 1, false, 1,
+    {"maximum", F::kIntensity, "image", "maximum (IBSI 84IY)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->maximum}; }},
-    {"median", F::kIntensity, "image", "median (IBSI Y12H)", 1, false, 1,
+    {"median", F::kIntensity, "image", "median (IBSI Y12H)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->median}; }},
-    {"p10", F::kIntensity, "image", "10th percentile (IBSI QG58)", 1, false, 1,
+    {"p10", F::kIntensity, "image", "10th percentile (IBSI QG58)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->p10}; }},
-    {"p90", F::kIntensity, "image", "90th percentile (IBSI 8DWT)", 1, false, 1,
+    {"p90", F::kIntensity, "image", "90th percentile (IBSI 8DWT)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->p90}; }},
-    {"interquartile_range", F::kIntensity, "image", "p75 - p25 (IBSI SALO)", 1, false, 1,
+    {"interquartile_range", F::kIntensity, "image", "p75 - p25 (IBSI SALO)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->interquartile_range}; }},
-    {"range", F::kIntensity, "image", "maximum - minimum (IBSI 2OJQ)", 1, false, 1,
+    {"range", F::kIntensity, "image", "maximum - minimum (IBSI 2OJQ)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->range}; }},
-    {"mean_absolute_deviation", F::kIntensity, "image", "mean |x - mean| (IBSI 4FUA)", 1, false, 1,
+    {"mean_absolute_deviation", F::kIntensity, "image", "mean |x - mean| (IBSI 4FUA)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->mean_absolute_deviation}; }},
-    {"energy", F::kIntensity, "image^2", "sum of squares (IBSI N8CA)", 1, false, 1,
+    {"energy", F::kIntensity, "image^2", "sum of squares (IBSI N8CA)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->energy}; }},
-    {"root_mean_square", F::kIntensity, "image", "sqrt(mean of squares) (IBSI 5ZWQ)", 1, false, 1,
+    {"root_mean_square", F::kIntensity, "image", "sqrt(mean of squares) (IBSI 5ZWQ)", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{s.intensity->root_mean_square}; }},
-    {"voxel_count", F::kIntensity, "voxels", "samples of the region inside the image", 1, false, 1,
+    {"voxel_count", F::kIntensity, "voxels", "samples of the region inside the image", 1, kImageRegion, 1,
      [](const FeatureSources& s) { return V{double(s.intensity->voxel_count)}; }},
     {"centre_of_mass_shift_mm", F::kIntensity, "mm",
-     "distance between the intensity-weighted and the plain centroid (IBSI KLMA); inside, same grid only", 1, false, 1,
-     [](const FeatureSources& s) { return V{*s.centre_of_mass_shift_mm}; }},
+     "distance between the intensity-weighted and the plain centroid (IBSI KLMA); inside, same grid only", 1,
+     kOwnGridInside, 1, [](const FeatureSources& s) { return V{*s.centre_of_mass_shift_mm}; }},
 });
 
 }  // namespace
 
 std::span<const FeatureDef> feature_catalogue() { return kCatalogue; }
+
+// The table opens with it; tests/core/feature_catalogue_test.cpp checks that it needs voxels only.
+const FeatureDef& cheapest_feature() { return kCatalogue.front(); }
 
 std::string_view family_name(FeatureFamily family) {
   switch (family) {
@@ -131,18 +139,23 @@ std::string_view family_name(FeatureFamily family) {
   return "";
 }
 
-std::string_view feature_needs(const FeatureDef& f) {
-  switch (f.family) {
-    case FeatureFamily::kVolume:
-      return "voxels";
-    case FeatureFamily::kSurface:
-      return f.needs_hull ? "surface, convex hull" : "surface";
-    case FeatureFamily::kDiameter2d:
-      return "voxels";
-    case FeatureFamily::kIntensity:
-      return f.name == "centre_of_mass_shift_mm" ? "image on the structure's grid, inside region" : "image, region";
+std::string feature_needs(const FeatureDef& f) {
+  std::string words;
+  auto add = [&](std::string_view w) { words += (words.empty() ? "" : ", ") + std::string(w); };
+  if (f.needs.has(N::kVoxels)) add("voxels");
+  if (f.needs.has(N::kSurface)) add("surface");
+  if (f.needs.has(N::kConvexHull)) add("convex hull");
+  if (f.needs.has(N::kImageOnGrid)) {
+    add("image on the structure's grid");
+  } else if (f.needs.has(N::kImage)) {
+    add("image");
   }
-  return "";
+  if (f.needs.has(N::kInsideRegion)) {
+    add("inside region");
+  } else if (f.needs.has(N::kRegion)) {
+    add("region");
+  }
+  return words;
 }
 
 const FeatureDef* find_feature(FeatureFamily family, std::string_view name) {

@@ -14,10 +14,13 @@
 //   intensity   per region and image (intensity_features.h), and centre_of_mass_shift_mm for the
 //               inside region of an image on the structure's own grid.
 // voxel_count is the one name in two families: the structure's voxels (volume) and a region's
-// samples on an image (intensity); lookups are per family for that reason.
+// samples on an image (intensity); lookups are per family for that reason. Each entry's `needs`
+// says what computing it takes (the convex hull, an image on the structure's own grid, ...), so
+// that callers decide by them and never by a feature's name.
 //
 // Thread-safe (constant data). O(1) per lookup but known_feature_names (O(catalogue)).
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,13 +45,38 @@ struct FeatureSources {
   const double* centre_of_mass_shift_mm = nullptr;
 };
 
+// One thing computing a feature needs besides the structure (FeatureDef::needs).
+enum class FeatureNeed : uint8_t {
+  kVoxels = 1 << 0,        // the structure's voxels on its grid
+  kSurface = 1 << 1,       // a surface: the stored one, else the mask's marching-cubes surface
+  kConvexHull = 1 << 2,    // that surface's convex hull or its diameter (computed only when asked)
+  kImage = 1 << 3,         // an image in the structure's frame of reference
+  kImageOnGrid = 1 << 4,   // that image on the structure's own grid (comes with kImage)
+  kRegion = 1 << 5,        // a region of the structure: inside, shell or core
+  kInsideRegion = 1 << 6,  // the inside region only (comes with kRegion)
+};
+
+// A set of FeatureNeed, written in the table as FeatureNeed::kSurface | FeatureNeed::kConvexHull.
+class FeatureNeeds {
+ public:
+  constexpr FeatureNeeds(FeatureNeed need) : bits_(uint8_t(need)) {}  // implicit: a set of one
+  constexpr FeatureNeeds operator|(FeatureNeeds other) const { return FeatureNeeds(uint8_t(bits_ | other.bits_)); }
+  constexpr bool has(FeatureNeed need) const { return (bits_ & uint8_t(need)) != 0; }
+
+ private:
+  constexpr explicit FeatureNeeds(uint8_t bits) : bits_(bits) {}
+  uint8_t bits_ = 0;
+};
+
+constexpr FeatureNeeds operator|(FeatureNeed a, FeatureNeed b) { return FeatureNeeds(a) | b; }
+
 struct FeatureDef {
   std::string_view name;
   FeatureFamily family;
   std::string_view unit;  // "mm3", "mm", "1/mm", "voxels", "image" (the image's own unit), "" (none)
   std::string_view summary;
-  int components = 1;       // 3: centroid_mm, 6: bbox_mm
-  bool needs_hull = false;  // read from the convex hull or its diameter (computed only when asked)
+  int components = 1;  // values per structure (and region and image): 1, or an array (3 for a point)
+  FeatureNeeds needs = FeatureNeed::kVoxels;
   // Bumped when the definition changes, so that values cached under an older one are recomputed.
   int version = 1;
   std::vector<double> (*value)(const FeatureSources&) = nullptr;
@@ -56,12 +84,16 @@ struct FeatureDef {
 
 // "volume", "surface", "diameter_2d", "intensity".
 std::string_view family_name(FeatureFamily family);
-// What computing the feature needs, in words: "voxels", "surface", "surface, convex hull",
-// "image, region", "image on the structure's grid, inside region".
-std::string_view feature_needs(const FeatureDef& feature);
+// What computing the feature needs, in words from its needs: "voxels", "surface", "surface, convex
+// hull", "image, region", "image on the structure's grid, inside region".
+std::string feature_needs(const FeatureDef& feature);
 
 // Every feature, in report order: volume, surface, 2D diameters, intensity.
 std::span<const FeatureDef> feature_catalogue();
+
+// The feature that costs least beyond the structure's voxels (the voxel count): what to ask for
+// when a caller needs a computation but no particular value.
+const FeatureDef& cheapest_feature();
 
 // The feature of `family` named `name`, or nullptr.
 const FeatureDef* find_feature(FeatureFamily family, std::string_view name);

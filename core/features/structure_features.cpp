@@ -51,21 +51,29 @@ struct Ask {
       if (f.family == family && wanted(std::string(prefix) + std::string(f.name))) return true;
     return false;
   }
+  // Any feature of `family` wanted under `prefix` whose catalogue entry needs `need`.
+  bool any_wanted_needing(FeatureFamily family, FeatureNeed need, std::string_view prefix = "") const {
+    for (const FeatureDef& f : feature_catalogue())
+      if (f.family == family && f.needs.has(need) && wanted(std::string(prefix) + std::string(f.name))) return true;
+    return false;
+  }
   // The hull is computed only for a wanted feature that reads it.
   HullPart hull_part(std::string_view prefix) const {
-    for (const FeatureDef& f : feature_catalogue())
-      if (f.family == FeatureFamily::kSurface && f.needs_hull && wanted(std::string(prefix) + std::string(f.name)))
-        return HullPart::kCompute;
-    return HullPart::kSkip;
+    return any_wanted_needing(FeatureFamily::kSurface, FeatureNeed::kConvexHull, prefix) ? HullPart::kCompute
+                                                                                         : HullPart::kSkip;
   }
 };
 
-// The wanted features of `family`, read from `sources`, in catalogue order.
+// The wanted features of `family`, read from `sources`, in catalogue order. `inside_on_own_grid`:
+// the region is the inside one and the image shares the structure's grid; the features that need
+// that are left out elsewhere (their sources were not computed).
 void add_family(FeatureReport& report, FeatureFamily family, const FeatureSources& sources, const Ask& ask,
-                std::string_view prefix = "", const std::string& region = "", const std::string& image = "") {
+                std::string_view prefix = "", const std::string& region = "", const std::string& image = "",
+                bool inside_on_own_grid = true) {
   for (const FeatureDef& f : feature_catalogue()) {
     if (f.family != family) continue;
-    if (f.name == "centre_of_mass_shift_mm" && sources.centre_of_mass_shift_mm == nullptr) continue;
+    if (!inside_on_own_grid && (f.needs.has(FeatureNeed::kImageOnGrid) || f.needs.has(FeatureNeed::kInsideRegion)))
+      continue;
     const std::string name = std::string(prefix) + std::string(f.name);
     if (ask.wanted(name)) report.features.push_back({name, f.value(sources), region, image});
   }
@@ -150,14 +158,15 @@ Status region_section(const Ask& ask, const RegionSpec& spec, FeatureReport& rep
     }));
     FeatureSources sources;
     sources.intensity = &f;
+    const bool inside_on_own_grid =
+        spec.kind == RegionKind::kInside && check_same_grid(img.image->geometry, ask.input.volume.geometry).ok();
     double shift = 0;
-    if (spec.kind == RegionKind::kInside && ask.wanted("centre_of_mass_shift_mm") &&
-        check_same_grid(img.image->geometry, ask.input.volume.geometry).ok()) {
+    if (inside_on_own_grid && ask.any_wanted_needing(FeatureFamily::kIntensity, FeatureNeed::kImageOnGrid)) {
       SOIQ_ASSIGN_OR_RETURN(shift, timer.run("centre of mass shift " + img.name,
                                              [&] { return centre_of_mass_shift_mm(ask.input.volume, *img.image); }));
       sources.centre_of_mass_shift_mm = &shift;
     }
-    add_family(report, FeatureFamily::kIntensity, sources, ask, "", rname, img.name);
+    add_family(report, FeatureFamily::kIntensity, sources, ask, "", rname, img.name, inside_on_own_grid);
   }
   return ok_status();
 }

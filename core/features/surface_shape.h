@@ -61,7 +61,8 @@ struct SurfaceShape {
 // Whether the convex hull and the diameter are computed (maximum_3d_diameter_mm,
 // convex_hull_volume_mm3/area_mm2, volume/area_density_convex_hull). They cost ~100x the rest on a
 // near-convex surface of 10k-100k triangles, so a caller that needs none of them skips them
-// (feature_catalogue.h's needs_hull); those fields are then NaN and nothing else changes, bit for bit.
+// (feature_catalogue.h: FeatureNeed::kConvexHull); those fields are then NaN and nothing else
+// changes, bit for bit.
 enum class HullPart { kCompute, kSkip };
 
 Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes = identity3(),

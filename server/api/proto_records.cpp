@@ -114,6 +114,27 @@ v1::ImportDicomResponse to_proto(const DicomImportResult& r) {
   return out;
 }
 
+v1::PacsPullProgress to_proto(const PullProgress& p) {
+  v1::PacsPullProgress out;
+  out.set_study(p.study);
+  out.set_studies(p.studies);
+  out.set_received(p.received);
+  out.set_remaining(p.remaining);
+  return out;
+}
+
+v1::FeatureInfo to_proto(const FeatureDef& f) {
+  v1::FeatureInfo out;
+  out.set_name(std::string(f.name));
+  out.set_family(std::string(family_name(f.family)));
+  out.set_unit(std::string(f.unit));
+  out.set_needs(feature_needs(f));
+  out.set_summary(std::string(f.summary));
+  out.set_version(f.version);
+  out.set_components(f.components);
+  return out;
+}
+
 Result<db::PatientRecord> from_proto(const v1::Patient& p) {
   if (p.patient_id().empty()) return invalid_argument("patient.patient_id is required");
   SOIQ_RETURN_IF_ERROR(check_sex(p.sex(), "patient.sex"));

@@ -4,8 +4,10 @@
 
 #include "core/base/image_geometry.h"
 #include "core/base/status.h"
+#include "core/features/feature_catalogue.h"
 #include "db/store.h"
 #include "server/app/dicom_import.h"
+#include "server/app/pacs_pull_studies.h"
 #include "soiq/v1/soiq.pb.h"
 
 namespace soiq::server {
@@ -17,6 +19,9 @@ v1::Structure to_proto(const db::StructureRecord& r);
 v1::ImageGeometry to_proto(const ImageGeometry& g);
 // ImportDicom's reply (PacsPull's last event too); bytes_received is the handler's to set.
 v1::ImportDicomResponse to_proto(const DicomImportResult& r);
+v1::PacsPullProgress to_proto(const PullProgress& p);
+// One catalogue entry as GetServerInfo lists it.
+v1::FeatureInfo to_proto(const FeatureDef& f);
 
 // Validates what a client sent: DICOM-like sex (M, F, O or empty), dates (YYYYMMDD or empty),
 // laterality (L, R or empty), non-empty ids. INVALID_ARGUMENT naming the field otherwise.

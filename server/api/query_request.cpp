@@ -15,7 +15,13 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
   return std::find(list.begin(), list.end(), s) != list.end();
 }
 
-bool is_array_feature(const std::string& name) { return name == "centroid_mm" || name == "bbox_mm"; }
+// A feature of several values (a point, a box) can be selected, but not compared or ordered by.
+bool is_array_feature(const std::string& name) {
+  const FeatureDef* f = find_shape_feature(name);
+  if (f == nullptr) f = find_intensity_feature(name);
+  if (f == nullptr) f = mask_feature(name);
+  return f != nullptr && f->components > 1;
+}
 
 Result<db::Stage1Filter> parse_stage1(const v1::Stage1Filter& s) {
   db::Stage1Filter f;

@@ -6,6 +6,7 @@
 
 #include "core/features/feature_catalogue.h"
 #include "db/validate_records.h"
+#include "server/api/proto_records.h"
 #include "server/api/rpc_handling.h"
 
 namespace soiq::server {
@@ -39,16 +40,7 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     SOIQ_ASSIGN_OR_RETURN(db::Counts c, store_.counts());
     response->set_version(SOIQ_VERSION);
     response->set_feature_definition_version(feature_definitions_version());
-    for (const FeatureDef& f : feature_catalogue()) {
-      v1::FeatureInfo* info = response->add_features();
-      info->set_name(std::string(f.name));
-      info->set_family(std::string(family_name(f.family)));
-      info->set_unit(std::string(f.unit));
-      info->set_needs(std::string(feature_needs(f)));
-      info->set_summary(std::string(f.summary));
-      info->set_version(f.version);
-      info->set_components(f.components);
-    }
+    for (const FeatureDef& f : feature_catalogue()) *response->add_features() = to_proto(f);
     response->set_max_upload_bytes(config_.max_upload_bytes);
     response->set_max_grid_voxels(config_.max_grid_voxels);
     response->set_max_concurrent_conversions(config_.workers);

@@ -39,6 +39,17 @@ Status write_runs(const RunLengthVolume& volume, int64_t ny, grpc::ServerWriter<
   return ok_status();
 }
 
+// Convert's first message: the grid, the voxels, the time taken and the surface's defects.
+v1::ConvertSummary summary_of(const StructureConversion& c, double milliseconds) {
+  v1::ConvertSummary summary;
+  *summary.mutable_geometry() = to_proto(c.grid.geometry);
+  summary.set_voxel_count(voxel_count(c.voxelization.volume));
+  summary.set_volume_mm3(double(summary.voxel_count()) * c.grid.geometry.voxel_volume_mm3());
+  summary.set_milliseconds(milliseconds);
+  summary.set_defects(c.structure.robust ? describe(c.voxelization.defects) : "closed (checked at upload)");
+  return summary;
+}
+
 // A FeaturesRequest as the app's FeatureAsk; images without names ask every shape and intensity
 // feature.
 Result<FeatureAsk> ask_of(const v1::FeaturesRequest& request) {
@@ -77,12 +88,7 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
                           !runs, [&] { return stop_status(*ctx); }));
     const RunLengthVolume& volume = c.voxelization.volume;
     v1::ConvertResponse first;
-    v1::ConvertSummary* summary = first.mutable_summary();
-    *summary->mutable_geometry() = to_proto(c.grid.geometry);
-    summary->set_voxel_count(voxel_count(volume));
-    summary->set_volume_mm3(double(summary->voxel_count()) * c.grid.geometry.voxel_volume_mm3());
-    summary->set_milliseconds(ms_since(start));
-    summary->set_defects(c.structure.robust ? describe(c.voxelization.defects) : "closed (checked at upload)");
+    *first.mutable_summary() = summary_of(c, ms_since(start));
     if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
     if (runs) return write_runs(volume, c.grid.geometry.dims[1], *writer);
     SOIQ_ASSIGN_OR_RETURN(const std::string bytes, mask_nifti_bytes(volume, config_.max_grid_voxels));

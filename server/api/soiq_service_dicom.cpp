@@ -91,10 +91,7 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     bool client_gone = false;
     auto progress = [&](const PullProgress& p) {
       v1::PacsPullEvent e;
-      e.mutable_progress()->set_study(p.study);
-      e.mutable_progress()->set_studies(p.studies);
-      e.mutable_progress()->set_received(p.received);
-      e.mutable_progress()->set_remaining(p.remaining);
+      *e.mutable_progress() = to_proto(p);
       client_gone = ctx->IsCancelled() || !writer->Write(e);
       return !client_gone;
     };

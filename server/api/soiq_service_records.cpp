@@ -3,7 +3,7 @@
 
 #include "server/api/proto_records.h"
 #include "server/api/rpc_handling.h"
-#include "server/app/uploaded_files.h"
+#include "server/app/stored_surface_bytes.h"
 
 namespace soiq::server {
 namespace {
@@ -86,10 +86,9 @@ grpc::Status SoiqService::DownloadSurface(grpc::ServerContext* ctx, const v1::Do
                                           grpc::ServerWriter<v1::DataChunk>* writer) {
   return handle(__func__, *ctx, [&]() -> Status {
     SOIQ_RETURN_IF_ERROR(check_enum(request->coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
-    SOIQ_ASSIGN_OR_RETURN(auto s, store_.get_structure(request->id()));
-    SOIQ_ASSIGN_OR_RETURN(auto mesh, features_.surface(s.surface.sha256));
-    SOIQ_ASSIGN_OR_RETURN(std::string bytes,
-                          surface_bytes(*mesh, request->format(), request->coordinates() == v1::RAS));
+    SOIQ_ASSIGN_OR_RETURN(
+        const std::string bytes,
+        stored_surface_bytes(store_, features_, request->id(), request->format(), request->coordinates() == v1::RAS));
     for (size_t at = 0; at < bytes.size() || at == 0; at += kChunkBytes) {
       v1::DataChunk chunk;
       chunk.set_data(bytes.substr(at, kChunkBytes));

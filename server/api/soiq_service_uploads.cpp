@@ -1,14 +1,13 @@
 // SoiqService's uploads: a surface, an image series, DICOM files. Each reads its client stream up to
-// the upload limit, parses from memory, and stores in one transaction.
-#include <optional>
-
-#include "db/image_blob.h"
-#include "db/surface_blob.h"
+// the upload limit, checks the header's fields, and hands the bytes to its app engine
+// (server/app/upload_surface.h, upload_image.h, dicom_import.h), which parses from memory and
+// stores in one transaction.
 #include "server/api/proto_records.h"
 #include "server/api/received_dicom_files.h"
 #include "server/api/rpc_handling.h"
 #include "server/app/dicom_import.h"
-#include "server/app/uploaded_files.h"
+#include "server/app/upload_image.h"
+#include "server/app/upload_surface.h"
 #include "server/util/temp_dir.h"
 
 namespace soiq::server {
@@ -33,6 +32,34 @@ Status read_upload(grpc::ServerReader<Request>* reader, int64_t max_bytes, Heade
   return ok_status();
 }
 
+// The header's fields, checked in the order a client fixes them: patient, study, then the rest.
+Result<SurfaceUpload> surface_upload_of(const v1::UploadSurfaceHeader& h) {
+  SurfaceUpload u;
+  SOIQ_ASSIGN_OR_RETURN(u.patient, from_proto(h.patient()));
+  SOIQ_ASSIGN_OR_RETURN(u.study, from_proto(h.study(), u.patient.patient_id));
+  if (h.structure_name().empty()) return invalid_argument("structure_name is required");
+  SOIQ_RETURN_IF_ERROR(check_laterality(h.laterality()));
+  SOIQ_RETURN_IF_ERROR(check_enum(h.coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
+  u.structure_name = h.structure_name();
+  u.laterality = h.laterality();
+  u.format = h.format();
+  u.ras = h.coordinates() == v1::RAS;
+  u.robust = h.robust();
+  return u;
+}
+
+Result<ImageUpload> image_upload_of(const v1::UploadImageHeader& h) {
+  ImageUpload u;
+  SOIQ_ASSIGN_OR_RETURN(u.patient, from_proto(h.patient()));
+  SOIQ_ASSIGN_OR_RETURN(u.study, from_proto(h.study(), u.patient.patient_id));
+  if (h.series_uid().empty()) return invalid_argument("series_uid is required");
+  if (h.modality().empty()) return invalid_argument("modality is required (e.g. CT, MR, PT)");
+  u.series_uid = h.series_uid();
+  u.modality = h.modality();
+  u.format = h.format();
+  return u;
+}
+
 }  // namespace
 
 grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerReader<v1::UploadSurfaceRequest>* reader,
@@ -41,24 +68,11 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
     v1::UploadSurfaceHeader h;
     std::string bytes;
     SOIQ_RETURN_IF_ERROR(read_upload(reader, config_.max_upload_bytes, h, bytes, "surface"));
-    db::NewStructure s;
-    SOIQ_ASSIGN_OR_RETURN(s.patient, from_proto(h.patient()));
-    SOIQ_ASSIGN_OR_RETURN(s.study, from_proto(h.study(), s.patient.patient_id));
-    if (h.structure_name().empty()) return invalid_argument("structure_name is required");
-    SOIQ_RETURN_IF_ERROR(check_laterality(h.laterality()));
-    SOIQ_RETURN_IF_ERROR(check_enum(h.coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
-    s.name = h.structure_name();
-    s.laterality = h.laterality();
-    s.robust = h.robust();
-    SOIQ_ASSIGN_OR_RETURN(ParsedSurface parsed,
-                          parse_surface(bytes, h.format(), h.coordinates() == v1::RAS, h.robust(), s.name));
-    SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(parsed.mesh));
-    s.surface = encoded.info;
-    s.surface_blob = std::move(encoded.blob);
-    SOIQ_ASSIGN_OR_RETURN(db::AddedStructure added, store_.add_structure(std::move(s)));
-    *response->mutable_structure() = to_proto(added.structure);
-    response->set_surface_already_stored(added.surface_already_stored);
-    response->set_defects(describe(parsed.defects));
+    SOIQ_ASSIGN_OR_RETURN(const SurfaceUpload upload, surface_upload_of(h));
+    SOIQ_ASSIGN_OR_RETURN(const UploadedSurface stored, upload_surface(store_, upload, bytes));
+    *response->mutable_structure() = to_proto(stored.added.structure);
+    response->set_surface_already_stored(stored.added.surface_already_stored);
+    response->set_defects(describe(stored.defects));
     return ok_status();
   });
 }
@@ -69,37 +83,11 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
     v1::UploadImageHeader h;
     std::string bytes;
     SOIQ_RETURN_IF_ERROR(read_upload(reader, config_.max_upload_bytes, h, bytes, "image"));
-    db::NewSeries s;
-    SOIQ_ASSIGN_OR_RETURN(s.patient, from_proto(h.patient()));
-    SOIQ_ASSIGN_OR_RETURN(s.study, from_proto(h.study(), s.patient.patient_id));
-    if (h.series_uid().empty()) return invalid_argument("series_uid is required");
-    if (h.modality().empty()) return invalid_argument("modality is required (e.g. CT, MR, PT)");
-    // The decoded image and its compressed blob are admitted against the memory budget as soon as
-    // the header tells their size, before a voxel is decoded.
-    std::optional<MemoryBudget::Reservation> held;
-    ImageDecodeLimits limits;
-    limits.max_voxels = config_.max_grid_voxels;
-    limits.before_decoding = [&](const ImageGeometry& g, int64_t decode_bytes) -> Status {
-      const auto& d = g.dims;
-      SOIQ_ASSIGN_OR_RETURN(MemoryBudget::Reservation r,
-                            budget_.reserve(decode_bytes + g.voxel_count() * int64_t(sizeof(float)),
-                                            "image '" + h.series_uid() + "' of " + std::to_string(d[0]) + "x" +
-                                                std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels",
-                                            [&] { return stop_status(*ctx); }));
-      held = std::move(r);
-      return ok_status();
-    };
-    SOIQ_ASSIGN_OR_RETURN(Image image, parse_image(bytes, h.format(), h.series_uid(), limits));
-    SOIQ_ASSIGN_OR_RETURN(db::EncodedImage encoded, db::encode_image(image));
-    s.series.series_uid = h.series_uid();
-    s.series.study_uid = s.study.study_uid;
-    s.series.modality = h.modality();
-    s.series.geometry = image.geometry;
-    s.series.sha256 = encoded.sha256;
-    s.image_blob = std::move(encoded.blob);
-    SOIQ_ASSIGN_OR_RETURN(bool replaced, store_.put_series(s));
-    *response->mutable_series() = to_proto(s.series);
-    response->set_replaced(replaced);
+    SOIQ_ASSIGN_OR_RETURN(const ImageUpload upload, image_upload_of(h));
+    SOIQ_ASSIGN_OR_RETURN(const UploadedImage stored, upload_image(store_, budget_, config_.max_grid_voxels, upload,
+                                                                   bytes, [&] { return stop_status(*ctx); }));
+    *response->mutable_series() = to_proto(stored.series);
+    response->set_replaced(stored.replaced);
     return ok_status();
   });
 }

@@ -11,6 +11,19 @@
 #include "db/surface_blob.h"
 
 namespace soiq::server {
+namespace {
+
+// The names of the features that need an image on the structure's own grid: the one reason a
+// planned value can be missing from a report.
+std::string needing_own_grid() {
+  std::string names;
+  for (const FeatureDef& f : feature_catalogue())
+    if (f.needs.has(FeatureNeed::kImageOnGrid)) names += (names.empty() ? "" : ", ") + std::string(f.name);
+  return names;
+}
+
+}  // namespace
+
 std::string feature_entry(const std::string& name, const std::string& region, const std::string& image_sha,
                           Interpolation interpolation) {
   if (region.empty()) return name;
@@ -183,7 +196,7 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   FeatureRequest request;
   request.names = ask.names;
   // Empty names ask structure_features for everything: ask for a cheap one instead.
-  if (request.names.empty()) request.names.push_back("voxel_count");
+  if (request.names.empty()) request.names.emplace_back(cheapest_feature().name);
   const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
     return find_feature(FeatureFamily::kSurface, n) != nullptr || mask_feature(n) != nullptr;
   });
@@ -214,8 +227,8 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
     if (!values.count(w.entry))
       return failed_precondition("structure " + std::to_string(plan.structure.id) + ": feature " + w.name +
                                  (w.region.empty() ? "" : " on " + w.region + " of " + w.image) +
-                                 " is not available here (centre_of_mass_shift_mm needs an image on the "
-                                 "structure's own grid)");
+                                 " is not available here (" + needing_own_grid() +
+                                 " needs an image on the structure's own grid)");
   }
   SOIQ_RETURN_IF_ERROR(store_.put_cached_features(plan.structure.surface.sha256, entries));
   return values;

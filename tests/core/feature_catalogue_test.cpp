@@ -46,9 +46,37 @@ TEST(FeatureCatalogue, EveryFeatureReadsItsRecordWithTheDeclaredNumberOfValues) 
     EXPECT_FALSE(f.summary.empty()) << f.name;
     EXPECT_GE(f.version, 1) << f.name;
     EXPECT_FALSE(feature_needs(f).empty()) << f.name;
-    EXPECT_TRUE(f.family == FeatureFamily::kSurface || !f.needs_hull) << f.name << ": only surfaces have a hull";
+    EXPECT_TRUE(f.family == FeatureFamily::kSurface || !f.needs.has(FeatureNeed::kConvexHull))
+        << f.name << ": only surfaces have a hull";
   }
   EXPECT_GE(feature_definitions_version(), 2);
+}
+
+TEST(FeatureCatalogue, NeedsFollowTheFamilyAndRefinementsComeWithWhatTheyRefine) {
+  for (const FeatureDef& f : feature_catalogue()) {
+    const bool intensity = f.family == FeatureFamily::kIntensity;
+    EXPECT_EQ(f.needs.has(FeatureNeed::kImage), intensity) << f.name;
+    EXPECT_EQ(f.needs.has(FeatureNeed::kRegion), intensity) << f.name;
+    EXPECT_EQ(f.needs.has(FeatureNeed::kSurface), f.family == FeatureFamily::kSurface) << f.name;
+    EXPECT_TRUE(!f.needs.has(FeatureNeed::kImageOnGrid) || f.needs.has(FeatureNeed::kImage)) << f.name;
+    EXPECT_TRUE(!f.needs.has(FeatureNeed::kInsideRegion) || f.needs.has(FeatureNeed::kRegion)) << f.name;
+  }
+}
+
+TEST(FeatureCatalogue, NeedsReadAsWords) {
+  EXPECT_EQ(feature_needs(*find_shape_feature("centroid_mm")), "voxels");
+  EXPECT_EQ(feature_needs(*find_shape_feature("sphericity")), "surface");
+  EXPECT_EQ(feature_needs(*find_shape_feature("maximum_3d_diameter_mm")), "surface, convex hull");
+  EXPECT_EQ(feature_needs(*find_intensity_feature("mean")), "image, region");
+  EXPECT_EQ(feature_needs(*find_intensity_feature("centre_of_mass_shift_mm")),
+            "image on the structure's grid, inside region");
+}
+
+TEST(FeatureCatalogue, TheCheapestFeatureNeedsOnlyTheVoxels) {
+  const FeatureDef& f = cheapest_feature();
+  EXPECT_EQ(f.family, FeatureFamily::kVolume);
+  EXPECT_EQ(feature_needs(f), "voxels");
+  EXPECT_EQ(f.components, 1);
 }
 
 TEST(FeatureCatalogue, NamesAreCheckedInOnePlace) {
