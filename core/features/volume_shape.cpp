@@ -28,23 +28,20 @@ struct IndexMoments {
   Int128 ss[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
-}  // namespace
+// One sweep over the runs: the moments of the inside voxel centres' indices and their LPS bounding
+// box.
+struct Sweep {
+  IndexMoments moments;
+  Vec3 bbox_min_mm, bbox_max_mm;
+};
 
-Result<VolumeShape> volume_shape(const RunLengthVolume& volume, CovarianceDivisor divisor) {
+Sweep sweep_runs(const RunLengthVolume& volume) {
   const ImageGeometry& g = volume.geometry;
-  SOIQ_RETURN_IF_ERROR(validate_geometry(g));
-  const int64_t lines = volume.line_count();
-  if (int64_t(volume.line_start.size()) != lines + 1 || volume.line_start.back() != int64_t(volume.runs.size())) {
-    return invalid_argument("volume has " + std::to_string(volume.line_start.size()) + " line starts but its grid " +
-                            describe(g) + " needs " + std::to_string(lines + 1));
-  }
-
-  IndexMoments m;
-  VolumeShape out;
+  Sweep out;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   out.bbox_min_mm = {kInf, kInf, kInf};
   out.bbox_max_mm = {-kInf, -kInf, -kInf};
-  const int64_t ny = g.dims[1];
+  const int64_t ny = g.dims[1], lines = volume.line_count();
   // Sums per line in plain integers, then into the 128-bit totals once per line with the line's j
   // and k: 128-bit accumulators kept in memory stall on every add (a 16-byte load of two 8-byte
   // stores cannot be forwarded), which made this loop several times slower per run.
@@ -77,11 +74,30 @@ Result<VolumeShape> volume_shape(const RunLengthVolume& volume, CovarianceDiviso
       }
     }
   }
+  IndexMoments& m = out.moments;
   m.n = n_total;
   m.s[0] = s0, m.s[1] = s1, m.s[2] = s2;
   m.ss[0][0] = s00, m.ss[1][1] = s11, m.ss[2][2] = s22, m.ss[0][1] = s01, m.ss[0][2] = s02, m.ss[1][2] = s12;
+  return out;
+}
+
+}  // namespace
+
+Result<VolumeShape> volume_shape(const RunLengthVolume& volume, CovarianceDivisor divisor) {
+  const ImageGeometry& g = volume.geometry;
+  SOIQ_RETURN_IF_ERROR(validate_geometry(g));
+  const int64_t lines = volume.line_count();
+  if (int64_t(volume.line_start.size()) != lines + 1 || volume.line_start.back() != int64_t(volume.runs.size())) {
+    return invalid_argument("volume has " + std::to_string(volume.line_start.size()) + " line starts but its grid " +
+                            describe(g) + " needs " + std::to_string(lines + 1));
+  }
+  const Sweep sweep = sweep_runs(volume);
+  const IndexMoments& m = sweep.moments;
   if (m.n == 0) return invalid_argument("volume on " + describe(g) + " has no inside voxel; shape is undefined");
 
+  VolumeShape out;
+  out.bbox_min_mm = sweep.bbox_min_mm;
+  out.bbox_max_mm = sweep.bbox_max_mm;
   out.voxel_count = m.n;
   out.voxel_volume_mm3 = double(m.n) * g.voxel_volume_mm3();
   const double nd = double(m.n);

@@ -15,6 +15,31 @@
 #include "core/io/vtk_messages.h"
 
 namespace soiq {
+namespace {
+
+// Index bounds [lo, hi] of the nonzero voxels; hi[0] < 0 when there is none.
+struct VoxelBox {
+  int64_t lo[3], hi[3];
+};
+
+VoxelBox nonzero_box(const Mask& mask) {
+  const int64_t nx = mask.geometry.dims[0], ny = mask.geometry.dims[1], nz = mask.geometry.dims[2];
+  VoxelBox box{{nx, ny, nz}, {-1, -1, -1}};
+  for (int64_t k = 0; k < nz; ++k) {
+    for (int64_t j = 0; j < ny; ++j) {
+      const uint8_t* row = mask.voxels.data() + nx * (j + ny * k);
+      for (int64_t i = 0; i < nx; ++i) {
+        if (row[i] == 0) continue;
+        box.lo[0] = std::min(box.lo[0], i), box.hi[0] = std::max(box.hi[0], i);
+        box.lo[1] = std::min(box.lo[1], j), box.hi[1] = std::max(box.hi[1], j);
+        box.lo[2] = std::min(box.lo[2], k), box.hi[2] = std::max(box.hi[2], k);
+      }
+    }
+  }
+  return box;
+}
+
+}  // namespace
 
 Result<TriangleMesh> marching_cubes(const Mask& mask) {
   const ImageGeometry& g = mask.geometry;
@@ -24,19 +49,10 @@ Result<TriangleMesh> marching_cubes(const Mask& mask) {
                             describe(g));
   }
   // Bounding box of the inside voxels: marching cubes only needs that part of the grid.
-  const int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
-  int64_t lo[3] = {nx, ny, nz}, hi[3] = {-1, -1, -1};
-  for (int64_t k = 0; k < nz; ++k) {
-    for (int64_t j = 0; j < ny; ++j) {
-      const uint8_t* row = mask.voxels.data() + nx * (j + ny * k);
-      for (int64_t i = 0; i < nx; ++i) {
-        if (row[i] == 0) continue;
-        lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
-        lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
-        lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
-      }
-    }
-  }
+  const int64_t nx = g.dims[0], ny = g.dims[1];
+  const VoxelBox box = nonzero_box(mask);
+  const int64_t* lo = box.lo;
+  const int64_t* hi = box.hi;
   TriangleMesh mesh;
   if (hi[0] < 0) return mesh;  // empty mask: empty surface
 

@@ -8,85 +8,19 @@
 
 #include "db/age_years.h"
 #include "db/sqlite/sqlite_store.h"
+#include "tests/db/stage1_oracle.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
 namespace {
 
 using testing::contains;
+using testing::glob_match;
+using testing::matches;
 using testing::new_structure;
 using testing::open_store;
+using testing::Row;
 using testing::TempDir;
-
-// SQLite's GLOB, written independently: * any run, ? one byte, [...] a set with ranges and ^ for
-// negation, a ']' first in the set is literal. (ASCII data only, so bytes are characters.)
-bool glob_match(const char* p, const char* s) {
-  for (; *p != '\0'; ++p, ++s) {
-    if (*p == '*') {
-      while (p[1] == '*') ++p;
-      for (const char* t = s;; ++t) {
-        if (glob_match(p + 1, t)) return true;
-        if (*t == '\0') return false;
-      }
-    }
-    if (*s == '\0') return false;
-    if (*p == '?') continue;
-    if (*p == '[') {
-      const char* q = p + 1;
-      const bool negate = *q == '^';
-      if (negate) ++q;
-      bool found = false;
-      bool first = true;
-      for (; *q != '\0' && (first || *q != ']'); ++q, first = false) {
-        if (q[1] == '-' && q[2] != ']' && q[2] != '\0') {
-          found = found || (*s >= q[0] && *s <= q[2]);
-          q += 2;
-        } else {
-          found = found || *s == *q;
-        }
-      }
-      if (*q != ']' || found == negate) return false;
-      p = q;
-      continue;
-    }
-    if (*p != *s) return false;
-  }
-  return *s == '\0';
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-struct Row {
-  int64_t id;
-  PatientRecord patient;
-  StudyRecord study;  // age_years as the store should have it
-  std::set<std::string> series_modalities;
-  std::string name, laterality;
-};
-
-bool matches(const Row& r, const Stage1Filter& f) {
-  const auto in_range = [](const std::string& v, const std::string& from, const std::string& to) {
-    if (from.empty() && to.empty()) return true;
-    return !v.empty() && (from.empty() || v >= from) && (to.empty() || v <= to);
-  };
-  if (!f.patient_id_glob.empty() && !glob_match(f.patient_id_glob.c_str(), r.patient.patient_id.c_str())) return false;
-  if (!f.sex.empty() && r.patient.sex != f.sex) return false;
-  if (f.min_age_years && !(r.study.age_years && *r.study.age_years >= *f.min_age_years)) return false;
-  if (f.max_age_years && !(r.study.age_years && *r.study.age_years <= *f.max_age_years)) return false;
-  if (!in_range(r.patient.birth_date, f.birth_date_from, f.birth_date_to)) return false;
-  if (!in_range(r.study.study_date, f.study_date_from, f.study_date_to)) return false;
-  if (!f.modality.empty() && r.study.modality != f.modality && !r.series_modalities.count(f.modality)) return false;
-  if (!f.study_description_glob.empty() && !glob_match(f.study_description_glob.c_str(), r.study.description.c_str())) {
-    return false;
-  }
-  if (!f.structure_name_glob.empty() && !glob_match(lower(f.structure_name_glob).c_str(), lower(r.name).c_str())) {
-    return false;
-  }
-  return f.laterality.empty() || r.laterality == f.laterality;
-}
 
 std::string random_date(std::mt19937_64& rng, int from_year, int to_year) {
   char buf[16];
@@ -371,60 +305,6 @@ TEST_F(Stage1, TokenOfAnotherListIsInvalidArgument) {
   EXPECT_EQ(wrong.status().code(), StatusCode::kInvalidArgument);
   auto garbage = store_->list_patients(PatientFilter{}, PageRequest{2, "not-a-token"});
   EXPECT_EQ(garbage.status().code(), StatusCode::kInvalidArgument);
-}
-
-}  // namespace
-}  // namespace soiq::db
-
-namespace soiq::db {
-namespace {
-
-std::vector<int64_t> stage1_ids(SqliteStore& store, const Stage1Filter& f) {
-  auto got = store.stage1(f, 1000);
-  EXPECT_TRUE(got.ok()) << got.status().to_string();
-  std::vector<int64_t> ids;
-  if (got.ok()) {
-    for (const Candidate& c : *got) ids.push_back(c.structure.id);
-  }
-  return ids;
-}
-
-TEST(Stage1Maintenance, LaterPatientStudyAndSeriesChangesAndDeletesAreSeen) {
-  TempDir dir;
-  auto store = open_store(dir.file("m.db"));
-  const int64_t a = store->add_structure(new_structure("P1", "S1", "Hippocampus"))->structure.id;
-  const int64_t b = store->add_structure(new_structure("P1", "S2", "Amygdala"))->structure.id;
-  Stage1Filter female;
-  female.sex = "F";
-  EXPECT_TRUE(stage1_ids(*store, female).empty());
-  NewStructure update = new_structure("P1", "S3", "Insula");
-  update.patient.sex = "F";
-  update.patient.birth_date = "19500101";
-  const int64_t c = store->add_structure(update)->structure.id;
-  EXPECT_EQ(stage1_ids(*store, female), (std::vector<int64_t>{a, b, c}));
-
-  NewStructure dated = new_structure("P1", "S1", "Thalamus");
-  dated.study.study_date = "20100101";  // S1's date, so S1's computed age, changes
-  const int64_t d = store->add_structure(dated)->structure.id;
-  Stage1Filter sixty;
-  sixty.min_age_years = 60.0;
-  EXPECT_EQ(stage1_ids(*store, sixty), (std::vector<int64_t>{a, d}));
-
-  Stage1Filter pet;
-  pet.modality = "PT";
-  EXPECT_TRUE(stage1_ids(*store, pet).empty());
-  NewSeries series = testing::new_series("P1", "S2", "SE1", 1.0f);
-  series.series.modality = "PT";
-  ASSERT_TRUE(store->put_series(series).ok());
-  EXPECT_EQ(stage1_ids(*store, pet), (std::vector<int64_t>{b}));
-  series.series.modality = "CT";  // replaced: no longer PT
-  ASSERT_TRUE(store->put_series(series).ok());
-  EXPECT_TRUE(stage1_ids(*store, pet).empty());
-
-  ASSERT_TRUE(store->delete_structure(a).ok());
-  EXPECT_EQ(stage1_ids(*store, female), (std::vector<int64_t>{b, c, d}));
-  ASSERT_TRUE(store->delete_patient("P1").ok());
-  EXPECT_TRUE(stage1_ids(*store, Stage1Filter{}).empty());
 }
 
 }  // namespace
