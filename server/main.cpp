@@ -20,6 +20,7 @@
 #include "db/sqlite/sqlite_store.h"
 #include "server/api/soiq_service.h"
 #include "server/app/server_config.h"
+#include "server/util/listen_check.h"
 #include "server/util/log.h"
 
 namespace {
@@ -115,12 +116,16 @@ int main(int argc, char** argv) {
   grpc::ServerBuilder builder;
   int port = 0;
   builder.AddListeningPort(c.listen, *creds, &port);
+  // gRPC sets SO_REUSEPORT on Linux by default: a second soiqd on the same port would then start
+  // without a word and share the calls with the first, each answering from its own store.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.RegisterService(&service);
   builder.SetMaxReceiveMessageSize(8 << 20);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
-  if (!server || port == 0)
-    return fail(soiq::Status(soiq::StatusCode::kUnavailable,
-                             "cannot listen on " + c.listen + " (address in use or not local?)"));
+  if (!server || port == 0) {
+    const std::string why = soiq::server::why_cannot_listen(c.listen);
+    return fail(soiq::Status(soiq::StatusCode::kUnavailable, why.empty() ? "cannot listen on " + c.listen : why));
+  }
   if (!c.port_file.empty()) {
     const Status s = write_port_file(c.port_file, port);
     if (!s.ok()) return fail(s);

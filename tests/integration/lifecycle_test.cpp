@@ -152,6 +152,22 @@ TEST_F(ServiceTest, BadServerConfigurationIsRefusedAtStart) {
   }
 }
 
+// gRPC would let a second server share the port (SO_REUSEPORT) and the calls would alternate between
+// two stores; soiqd refuses at once instead, and the first one never notices.
+TEST_F(ServiceTest, ASecondSoiqdOnATakenPortRefusesToStartAndTheFirstKeepsServing) {
+  ASSERT_TRUE(upload(uv_sphere({0, 0, 0}, 10, 16, 32), "P1", "1.2.3", "ball").ok());
+  const std::string address = "127.0.0.1:" + std::to_string(server_->port());
+  SoiqdProcess second(dir_.file("second.db"), {"--listen", address});
+  EXPECT_FALSE(second.running());
+  EXPECT_NE(second.log().find(address + " is already in use: is another soiqd running?"), std::string::npos)
+      << second.log();
+  for (int i = 0; i < 8; ++i) {  // every call reaches the first server and its one structure
+    Result<v1::ServerInfo> info = client_->server_info();
+    ASSERT_TRUE(info.ok()) << info.status().to_string();
+    EXPECT_EQ(info->structures(), 1);
+  }
+}
+
 }  // namespace
 }  // namespace soiq::testing
 
