@@ -9,6 +9,7 @@
 
 #include "client/grpc_status.h"
 #include "client/read_token_file.h"
+#include "client/server_target.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace soiq::client {
@@ -51,16 +52,18 @@ Result<Client> Client::connect(ClientOptions options) {
   if (!options.token_file.empty()) {
     SOIQ_ASSIGN_OR_RETURN(token, read_token_file(options.token_file));
   }
+  SOIQ_ASSIGN_OR_RETURN(const ServerTarget target, server_target(options.address));
+  options.address = target.shown;  // what messages name: "127.0.0.1:50051", never "127.0.0.1:0"
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
-  if (!options.tls_ca_file.empty()) {
-    grpc::SslCredentialsOptions ssl;
-    SOIQ_ASSIGN_OR_RETURN(ssl.pem_root_certs, read_pem(options.tls_ca_file));
+  if (!options.tls_ca_file.empty() || target.tls) {
+    grpc::SslCredentialsOptions ssl;  // no roots given: gRPC's default roots (the system's)
+    if (!options.tls_ca_file.empty()) SOIQ_ASSIGN_OR_RETURN(ssl.pem_root_certs, read_pem(options.tls_ca_file));
     credentials = grpc::SslCredentials(ssl);
   }
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(options.max_receive_message_bytes);
   args.SetMaxSendMessageSize(options.max_send_message_bytes);
-  auto channel = grpc::CreateCustomChannel(options.address, credentials, args);
+  auto channel = grpc::CreateCustomChannel(target.grpc_target, credentials, args);
   return Client(std::move(options), std::move(token), std::move(channel));
 }
 

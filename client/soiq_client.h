@@ -3,9 +3,11 @@
 // each returning a soiq::Result with the API's messages as values; gRPC's status is mapped once
 // (grpc_status.h), so callers see soiq's one error model and never a gRPC type.
 //
-// Connection: `address` (empty: $SOIQ_SERVER, else 127.0.0.1:50051); with `token_file`, every call
+// Connection: `address` (empty: $SOIQ_SERVER, else 127.0.0.1:50051) in any form server_target.h
+// takes (HOST, HOST:PORT, http(s)://HOST:PORT, unix:PATH, ...); with `token_file`, every call
 // carries "authorization: Bearer <token>"; with `tls_ca_file` (PEM) the channel is TLS and the
-// server's certificate is verified against it, otherwise plaintext. connect() reads the files and
+// server's certificate is verified against it; with an https:// address and no `tls_ca_file`,
+// against the system's roots; otherwise plaintext. connect() reads the files and
 // builds the channel; it does not wait for the server: an unreachable one shows as UNAVAILABLE on
 // the first call ("cannot reach soiqd at ADDR: ...").
 // Deadlines: `deadline` for unary calls, `stream_deadline` for uploads, downloads, convert and
@@ -34,7 +36,7 @@ namespace soiq::client {
 inline constexpr const char* kDefaultAddress = "127.0.0.1:50051";
 
 struct ClientOptions {
-  std::string address;      // HOST:PORT; empty: $SOIQ_SERVER, else kDefaultAddress
+  std::string address;      // server_target.h forms; empty: $SOIQ_SERVER, else kDefaultAddress
   std::string token_file;   // bearer token; empty: none
   std::string tls_ca_file;  // PEM roots for TLS; empty: plaintext
   std::chrono::milliseconds deadline{30'000};

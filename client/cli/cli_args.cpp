@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <system_error>
 #include <vector>
 
 namespace soiq::cli {
@@ -48,6 +51,19 @@ bool is_mesh_path(const std::string& path) {
     if (ends_with(path, ext)) return true;
   }
   return false;
+}
+
+Status make_output_folder(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) return ok_status();
+  std::error_code ec;
+  if (std::filesystem::is_directory(folder, ec)) return ok_status();
+  std::filesystem::create_directories(folder, ec);
+  if (ec || !std::filesystem::is_directory(folder)) {
+    return invalid_argument("cannot make the output folder '" + folder.string() + "' for '" + path +
+                            "': " + (ec ? ec.message() : std::string("a file is in the way")));
+  }
+  return ok_status();
 }
 
 }  // namespace soiq::cli

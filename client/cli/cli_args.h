@@ -22,6 +22,11 @@ Result<Vec3> parse_spacing(const std::string& text);
 // True when `path` ends with one of the mesh extensions soiq reads (.stl .obj .ply .vtk .vtp).
 bool is_mesh_path(const std::string& path);
 
+// Creates the folder an -o output goes into when it does not exist yet (as `mkdir -p`), so every
+// command treats a new output folder alike; INVALID_ARGUMENT naming the folder when it cannot be
+// made (a file is in the way, no permission). Called before any work, so a refusal costs nothing.
+Status make_output_folder(const std::string& path);
+
 // True when `path` ends with `suffix`.
 bool ends_with(const std::string& path, const std::string& suffix);
 

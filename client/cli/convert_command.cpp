@@ -48,6 +48,7 @@ Result<ConvertArgs> parse(int argc, char** argv) {
 }
 
 Status convert(const ConvertArgs& a) {
+  SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const MeshOnGrid m, convert_mesh_file(a.mesh, a.grid));
   SOIQ_ASSIGN_OR_RETURN(const Mask mask, to_mask(m.voxels.volume));
   SOIQ_RETURN_IF_ERROR(write_mask(mask, a.out));

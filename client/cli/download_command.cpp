@@ -44,6 +44,7 @@ Result<DownloadArgs> parse(int argc, char** argv) {
 }
 
 Status download(const DownloadArgs& a, const client::ClientOptions& remote) {
+  SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   SOIQ_ASSIGN_OR_RETURN(const int64_t bytes, c.download_surface(a.request, a.out));
   std::printf("%lld bytes -> %s\n", (long long)bytes, a.out.c_str());

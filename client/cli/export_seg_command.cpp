@@ -38,6 +38,7 @@ Result<ExportSegArgs> parse(int argc, char** argv) {
 }
 
 Status export_seg(const ExportSegArgs& a, const client::ClientOptions& remote) {
+  SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   SOIQ_ASSIGN_OR_RETURN(const v1::SegInfo info, c.export_seg(a.request, a.out));
   std::printf("DICOM SEG %s: %d segment%s, %lld frames, %lld bytes, on series %s -> %s\n",

@@ -66,6 +66,7 @@ Result<MeshArgs> parse_args(int argc, char** argv) {
 }  // namespace
 
 Status mesh(const MeshArgs& args) {
+  SOIQ_RETURN_IF_ERROR(make_output_folder(args.out_path));
   SOIQ_ASSIGN_OR_RETURN(const Image image, read_image(args.mask_path));
   SOIQ_ASSIGN_OR_RETURN(const TriangleMesh surface, marching_cubes(mask_from_image(image, args.label)));
   if (surface.triangles.empty()) {

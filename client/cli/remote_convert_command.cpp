@@ -58,6 +58,7 @@ Result<RemoteConvertArgs> parse(int argc, char** argv) {
 }
 
 Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) {
+  SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   // soiqd sends .nii.gz; any other format goes through a temporary file beside the output.
   const bool direct = ends_with(a.out, ".nii.gz");

@@ -20,6 +20,8 @@ Result<RmArgs> parse(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg.size() > 1 && arg[0] == '-') return invalid_argument("unknown option '" + arg + "'");
     if (a.kind.empty()) {
+      // A bare id is not taken for a structure here as `soiq show` takes it: a delete says what it deletes.
+      if (is_structure_id(arg)) return invalid_argument("rm what? write 'soiq rm structure " + arg + "' (or patient)");
       if (arg != "structure" && arg != "patient") {
         return invalid_argument("rm what? structure ID or patient ID, got '" + arg + "'");
       }

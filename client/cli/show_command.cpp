@@ -26,6 +26,9 @@ Result<ShowArgs> parse(int argc, char** argv) {
       SOIQ_ASSIGN_OR_RETURN(a.json, parse_text_or_json(argv[++i]));
     } else if (arg.size() > 1 && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
+    } else if (a.kind.empty() && (is_structure_id(arg) || arg.starts_with(kStructureIdPrefix))) {
+      a.kind = "structure";  // `soiq show 121`: a bare id is a structure, as in the rest of the CLI
+      a.key = arg;
     } else if (a.kind.empty()) {
       if (arg != "patient" && arg != "study" && arg != "structure") {
         return invalid_argument("show what? patient ID, study UID or structure ID, got '" + arg + "'");

@@ -47,7 +47,12 @@ expect_exit 2 "unknown mesh extension" mesh "$data/pyradiomics/brain1_label.nrrd
 expect_exit 2 "no voxels with label 99" mesh "$data/pyradiomics/brain1_label.nrrd" -o "$out/x.stl" --label 99
 expect_exit 2 "missing -o" mesh "$data/pyradiomics/brain1_label.nrrd"
 expect_exit 2 "--label needs an integer" mesh "$data/pyradiomics/brain1_label.nrrd" -o "$out/x.stl" --label abc
-expect_exit 3 "directory does not exist" mesh "$data/pyradiomics/brain1_label.nrrd" -o "$out/none/x.stl"
+# An output folder that does not exist yet is made, as by every command with -o; one that cannot
+# be made (a file is in the way) is named.
+"$soiq" mesh "$data/pyradiomics/brain1_label.nrrd" -o "$out/new/deeper/x.stl" >/dev/null || fail "-o into a new folder"
+[ -s "$out/new/deeper/x.stl" ] || fail "-o into a new folder wrote nothing"
+: >"$out/plainfile"
+expect_exit 2 "cannot make the output folder '$out/plainfile/sub'" mesh "$data/pyradiomics/brain1_label.nrrd" -o "$out/plainfile/sub/x.stl"
 printf 'NRRD0004\ntype: uint8\n\n' >"$out/bad.nrrd"
 expect_exit 2 "no 'dimension' field" mesh "$out/bad.nrrd" -o "$out/x.stl"
 

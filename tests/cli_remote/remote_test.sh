@@ -31,6 +31,14 @@ id2=$(sed -n 's/^structure \([0-9]*\):.*/\1/p' "$tmp/up2")
 "$soiq" upload-image "$phantom/phantom.nii.gz" "${record[@]}" --series 1.2.3.1 >"$tmp/img" || fail "upload-image"
 grep -q "^series 1.2.3.1: CT" "$tmp/img" || fail "upload-image output: $(cat "$tmp/img")"
 
+# The address as people write it: a URL copied from a config, the bare host with the default port
+# (nothing listens on 50051 here unless a soiqd does, so only the form is checked there).
+"$soiq" info --server "http://$server/" >/dev/null || fail "info --server http://$server/"
+expect 2 "scheme 'grpc://'" -- "$soiq" info --server "grpc://$server"
+expect 2 "not a number in 1..65535" -- "$soiq" info --server 127.0.0.1:http
+SOIQ_SERVER= "$soiq" info --server 127.0.0.1 --timeout 0.5 2>"$tmp/err" >/dev/null
+grep -q "127.0.0.1:0" "$tmp/err" && fail "a bare host is shown with port 0: $(cat "$tmp/err")"
+
 # Listing and showing.
 "$soiq" ls | grep -q "^P1 " || fail "ls patients lacks P1"
 [ "$("$soiq" ls structures --patient P1 --format csv | wc -l)" -eq 3 ] || fail "ls structures: not header + 2 rows"
@@ -39,6 +47,8 @@ grep -q "\"id\": $id2," "$tmp/ls.json" || fail "ls json lacks structure $id2: $(
 grep -q "\"id\": $id," "$tmp/ls.json" && fail "ls --laterality R lists the L structure"
 "$soiq" ls studies --patient P1 | grep -q "^1.2.3 " || fail "ls studies"
 "$soiq" show structure "$id" | grep -q "^name  *phantom" || fail "show structure"
+"$soiq" show "$id" | grep -q "^name  *phantom" || fail "show ID (a bare id is a structure)"
+expect 2 "soiq rm structure $id" -- "$soiq" rm "$id"
 "$soiq" show study 1.2.3 | grep -q "^series  *1.2.3.1 CT" || fail "show study lacks its series"
 "$soiq" show patient P1 --format json | grep -q '"patient_id":"P1"' || fail "show patient --format json"
 
@@ -58,6 +68,7 @@ within mean "$(awk -F, '$3 == "mean" { print $4 }' "$tmp/f.csv")" 2.15 0.005
 [ -s "$tmp/fine.nrrd" ] || fail "no nrrd written"
 "$soiq" download "$id" -o "$tmp/down.vtp" | grep -q "bytes ->" || fail "download"
 "$soiq" features "$tmp/down.vtp" --features mesh_volume_mm3 --format csv >/dev/null || fail "downloaded mesh unreadable"
+"$soiq" download "$id" -o "$tmp/new/folder/down.stl" >/dev/null && [ -s "$tmp/new/folder/down.stl" ] || fail "download into a new folder"
 
 # The two-stage query: rows on stdout, the summary on stderr.
 "$soiq" query --patient 'P*' --sex F --name phantom --where 'voxel_volume_mm3 > 0' --select 'mean[inside,CT]' \
