@@ -88,7 +88,7 @@ class WorkDir {
 };
 
 Status check_meshes(const CohortPatient& p, const QueryCohortSize& size, int64_t& min_t, int64_t& max_t) {
-  for (const CohortStructure& s : matched_structures(p, size)) {
+  for (const cohort::SyntheticStructure& s : matched_structures(p, size)) {
     const MeshDefects d = mesh_defects(s.surface);
     if (!d.closed() || d.degenerate_triangles || d.nonmanifold_edges || signed_volume_mm3(s.surface) <= 0)
       return internal_error("cohort mesh " + s.name + "_" + s.laterality + " has defects: " + describe(d));

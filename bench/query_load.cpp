@@ -24,7 +24,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 struct PreparedPatient {
   const CohortPatient* patient = nullptr;
   std::string image_path;
-  std::vector<std::pair<CohortStructure, std::string>> surfaces;  // mesh freed, name kept; path
+  std::vector<std::pair<cohort::SyntheticStructure, std::string>> surfaces;  // mesh freed, name kept; path
   int64_t triangles = 0;
 };
 
@@ -50,10 +50,10 @@ v1::Study to_proto(const db::StudyRecord& s) {
 Result<PreparedPatient> prepare(const CohortPatient& p, const QueryCohortSize& size, const std::string& dir) {
   PreparedPatient out;
   out.patient = &p;
-  out.image_path = dir + "/" + p.patient.patient_id + ".nii";
+  out.image_path = dir + "/" + p.person.patient_id + ".nii";
   SOIQ_RETURN_IF_ERROR(write_image(matched_image(p, size), out.image_path));
-  for (CohortStructure& s : matched_structures(p, size)) {
-    const std::string path = dir + "/" + p.patient.patient_id + "_" + s.name + "_" + s.laterality + ".ply";
+  for (cohort::SyntheticStructure& s : matched_structures(p, size)) {
+    const std::string path = dir + "/" + p.person.patient_id + "_" + s.name + "_" + s.laterality + ".ply";
     SOIQ_RETURN_IF_ERROR(write_mesh(s.surface, path));
     out.triangles += int64_t(s.surface.triangles.size());
     s.surface = {};
@@ -100,15 +100,15 @@ Result<LoadFigures> load_background(const std::string& db_path, const std::vecto
     if (p.matched) continue;
     const BackgroundStructure b = background_structure(p, size);
     db::NewStructure s;
-    s.patient = p.patient;
-    s.study = p.study;
+    s.patient = patient_record(p);
+    s.study = study_record(p);
     s.name = b.name;
     s.laterality = b.laterality;
     s.surface = blobs[size_t(b.blob)].info;
     s.surface_blob = blobs[size_t(b.blob)].blob;
     Result<db::AddedStructure> added = store->add_structure(s);
     if (!added.ok())
-      return Status(added.status().code(), "patient " + p.patient.patient_id + ": " + added.status().message());
+      return Status(added.status().code(), "patient " + p.person.patient_id + ": " + added.status().message());
     ++f.patients;
     ++f.structures;
   }
@@ -137,9 +137,9 @@ Result<LoadFigures> upload_matched(const std::string& address, const std::string
   SOIQ_RETURN_IF_ERROR(parallel(prepared.size(), threads, [&](size_t i) -> Status {
     const PreparedPatient& p = prepared[i];
     v1::UploadImageHeader h;
-    *h.mutable_patient() = to_proto(p.patient->patient);
-    *h.mutable_study() = to_proto(p.patient->study);
-    h.set_series_uid(p.patient->study.study_uid + ".1");
+    *h.mutable_patient() = to_proto(patient_record(*p.patient));
+    *h.mutable_study() = to_proto(study_record(*p.patient));
+    h.set_series_uid(p.patient->person.series_uid);
     h.set_modality("MR");
     SOIQ_RETURN_IF_ERROR(c.upload_image(h, p.image_path).status());
     std::lock_guard lock(mutex);
@@ -153,8 +153,8 @@ Result<LoadFigures> upload_matched(const std::string& address, const std::string
     const PreparedPatient& p = prepared[i];
     for (const auto& [s, path] : p.surfaces) {
       v1::UploadSurfaceHeader h;
-      *h.mutable_patient() = to_proto(p.patient->patient);
-      *h.mutable_study() = to_proto(p.patient->study);
+      *h.mutable_patient() = to_proto(patient_record(*p.patient));
+      *h.mutable_study() = to_proto(study_record(*p.patient));
       h.set_structure_name(s.name);
       h.set_laterality(s.laterality);
       Result<v1::UploadSurfaceResponse> r = c.upload_surface(h, path);

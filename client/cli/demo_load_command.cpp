@@ -54,29 +54,33 @@ class TempDir {
   std::string path_;
 };
 
-Status load_patient(const client::Client& c, const SyntheticPatient& p, const std::string& dir) {
+Status load_patient(const client::Client& c, const cohort::CohortConfig& config, const cohort::SyntheticPatient& p,
+                    const std::string& dir, size_t& structures) {
+  const cohort::Demographics& d = p.demographics;
   soiq::v1::Patient patient;
   patient.set_patient_id(p.patient_id);
-  patient.set_sex(p.sex);
-  patient.set_birth_date(p.birth_date);
+  patient.set_sex(d.sex);
+  patient.set_birth_date(d.birth_date);
   soiq::v1::Study study;
   study.set_study_uid(p.study_uid);
   study.set_patient_id(p.patient_id);
-  study.set_study_date(p.study_date);
-  study.set_description(p.study_description);
-  study.set_modality(p.modality);
+  study.set_study_date(d.study_date);
+  study.set_description(d.study_description);
+  study.set_modality(d.modality);
 
   soiq::v1::UploadImageHeader image;
   *image.mutable_patient() = patient;
   *image.mutable_study() = study;
   image.set_series_uid(p.series_uid);
-  image.set_modality(p.modality);
+  image.set_modality(d.modality);
   const std::string image_path = dir + "/" + p.patient_id + ".nii.gz";
-  SOIQ_RETURN_IF_ERROR(write_image(p.image, image_path));
+  const Image mr = cohort::synthetic_image(config, p);
+  SOIQ_RETURN_IF_ERROR(write_image(mr, image_path));
   SOIQ_RETURN_IF_ERROR(c.upload_image(image, image_path).status());
 
   int64_t first = 0, last = 0;
-  for (const SyntheticStructure& s : p.structures) {
+  const std::vector<cohort::SyntheticStructure> meshes = cohort::synthetic_structures(config.structures, p);
+  for (const cohort::SyntheticStructure& s : meshes) {
     soiq::v1::UploadSurfaceHeader header;
     *header.mutable_patient() = patient;
     *header.mutable_study() = study;
@@ -88,10 +92,11 @@ Status load_patient(const client::Client& c, const SyntheticPatient& p, const st
     last = r.structure().id();
     if (first == 0) first = last;
   }
+  structures += meshes.size();
   std::printf("%s  %s  born %s  MR %s: image %lldx%lldx%lld, %zu structures (ids %lld-%lld)\n", p.patient_id.c_str(),
-              p.sex.c_str(), p.birth_date.c_str(), p.study_date.c_str(), (long long)p.image.geometry.dims[0],
-              (long long)p.image.geometry.dims[1], (long long)p.image.geometry.dims[2], p.structures.size(),
-              (long long)first, (long long)last);
+              d.sex.c_str(), d.birth_date.c_str(), d.study_date.c_str(), (long long)mr.geometry.dims[0],
+              (long long)mr.geometry.dims[1], (long long)mr.geometry.dims[2], meshes.size(), (long long)first,
+              (long long)last);
   std::fflush(stdout);
   return ok_status();
 }
@@ -103,15 +108,15 @@ Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
   const TempDir dir;
   if (dir.path().empty()) return internal_error("cannot create a temporary folder for the demo files");
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<SyntheticPatient> cohort = synthetic_cohort(a.patients, uint64_t(a.seed));
+  // Meshes and images are made one patient at a time, as they are sent.
+  const cohort::CohortConfig config = cohort::demo_cohort_config();
+  const std::vector<cohort::SyntheticPatient> people = cohort::synthetic_patients(config, a.patients, uint64_t(a.seed));
   size_t structures = 0;
-  for (const SyntheticPatient& p : cohort) {
-    SOIQ_RETURN_IF_ERROR(load_patient(c, p, dir.path()));
-    structures += p.structures.size();
-  }
+  for (const cohort::SyntheticPatient& p : people)
+    SOIQ_RETURN_IF_ERROR(load_patient(c, config, p, dir.path(), structures));
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("\nloaded %zu patients, %zu MR images, %zu structures into soiqd at %s in %.1f s\n", cohort.size(),
-              cohort.size(), structures, c.address().c_str(), s);
+  std::printf("\nloaded %zu patients, %zu MR images, %zu structures into soiqd at %s in %.1f s\n", people.size(),
+              people.size(), structures, c.address().c_str(), s);
   std::printf(
       "try:\n"
       "  soiq ls structures --name hippocampus\n"

@@ -1,13 +1,15 @@
 #pragma once
-// A small synthetic cohort for the integration tests: patients with demographics, one MR study
-// each with a smooth synthetic image, and bilateral spheres of patient-dependent radii. Every file
+// The integration tests' cohort: a configuration of the synthetic-cohort generator
+// (client/cohort/synthetic_cohort.h), uploaded to a real soiqd. Patients "C01", "C02", ... with
+// the generator's demographics (seed kCohortSeed), one MR study each with its blob image, and
+// hippocampus and amygdala on both sides (deformed ellipsoids of about 1,600 triangles). Every file
 // that is uploaded is also kept, so tests can recompute offline exactly what the server saw.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/base/image.h"
-#include "core/base/triangle_mesh.h"
+#include "client/cohort/synthetic_cohort.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {
@@ -15,21 +17,21 @@ namespace soiq::testing {
 struct CohortStructure {
   int64_t id = 0;
   std::string patient, study, name, laterality, sex;
-  double age = 0;
-  std::string mesh_path;  // the uploaded file
+  double age = 0;          // completed years at the study, as uploaded
+  std::string mesh_path;   // the uploaded files
+  std::string image_path;  // its study's MR image
 };
 
 struct Cohort {
-  std::vector<CohortStructure> structures;
-  std::vector<std::string> image_paths;  // one per study, index = patient index
+  std::vector<CohortStructure> structures;  // per patient: hippocampus L, R, amygdala L, R
 };
 
-// The image every study gets: 64 x 64 x 48 voxels of 2 mm around the origin, values
-// 100 + x + 0.5 y + z^2 / 20 + 10 * patient (so inside and shell means differ, and differ by patient).
-Image cohort_image(int patient);
+constexpr uint64_t kCohortSeed = 4;
 
-// Uploads `patients` patients (ids "C00", "C01", ...; sex F for even, M for odd; age 30 + 3 i) with
-// spheres "Hippocampus" L/R and "Amygdala" L/R. Fails the test on any upload error.
+cohort::CohortConfig test_cohort_config();
+
+// Uploads the first `patients` patients of the cohort, each image then its surfaces, with the age
+// at the study given explicitly. Fails the test on any upload error.
 Cohort load_cohort(ServiceTest& t, client::Client& c, TempDir& dir, int patients);
 
 }  // namespace soiq::testing

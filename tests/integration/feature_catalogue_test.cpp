@@ -85,7 +85,7 @@ TEST_F(FeatureCatalogueTest, EveryFeatureIsTheSameFromTheServerTheLibraryAndTheC
   Cohort cohort = load_cohort(*this, *client_, dir_, 1);
   ASSERT_FALSE(cohort.structures.empty());
   const CohortStructure& s = cohort.structures.front();
-  const std::string image_path = cohort.image_paths.front();
+  const std::string image_path = s.image_path;
   const std::vector<std::string> names = every_name();
 
   // The server, on the grid of the study's MR series: the image shares the structure's grid, so
