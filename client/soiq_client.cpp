@@ -57,7 +57,9 @@ Result<Client> Client::connect(ClientOptions options) {
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (!options.tls_ca_file.empty() || target.tls) {
     grpc::SslCredentialsOptions ssl;  // no roots given: gRPC's default roots (the system's)
-    if (!options.tls_ca_file.empty()) SOIQ_ASSIGN_OR_RETURN(ssl.pem_root_certs, read_pem(options.tls_ca_file));
+    if (!options.tls_ca_file.empty()) {
+      SOIQ_ASSIGN_OR_RETURN(ssl.pem_root_certs, read_pem(options.tls_ca_file));
+    }
     credentials = grpc::SslCredentials(ssl);
   }
   grpc::ChannelArguments args;
