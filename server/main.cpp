@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "db/sqlite/sqlite_store.h"
+#include "server/api/grpc_log.h"
 #include "server/api/soiq_service.h"
 #include "server/app/server_config.h"
 #include "server/util/listen_check.h"
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   const soiq::server::ServerConfig& c = *config;
+  soiq::server::route_grpc_log();
 
   // Signals are taken by a dedicated thread (sigwait), so block them before any thread starts.
   sigset_t signals;
@@ -121,7 +123,12 @@ int main(int argc, char** argv) {
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.RegisterService(&service);
   builder.SetMaxReceiveMessageSize(8 << 20);
-  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  std::unique_ptr<grpc::Server> server;
+  {
+    // A port that cannot be bound is reported below in soiqd's words, not in gRPC's.
+    soiq::server::GrpcLogSilenced quiet;
+    server = builder.BuildAndStart();
+  }
   if (!server || port == 0) {
     const std::string why = soiq::server::why_cannot_listen(c.listen);
     return fail(soiq::Status(soiq::StatusCode::kUnavailable, why.empty() ? "cannot listen on " + c.listen : why));
