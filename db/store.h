@@ -192,6 +192,7 @@ struct CachedFeature {
 
 struct Counts {
   int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
+  std::vector<std::string> series_modalities;  // every modality a stored series has, sorted
 };
 
 // Which blob get_blob reads: an image series' pixels (by series uid) or a surface (by sha256).

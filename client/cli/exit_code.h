@@ -3,13 +3,16 @@
 // README repeats the table):
 //   0 OK; 2 INVALID_ARGUMENT (and usage errors); 3 NOT_FOUND; 4 ALREADY_EXISTS or
 //   FAILED_PRECONDITION; 5 RESOURCE_EXHAUSTED; 6 UNAVAILABLE, DEADLINE_EXCEEDED or CANCELLED;
-//   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code.
+//   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code; 8 a partial query answer (kExitPartial).
 
 #include "core/base/status.h"
 
 namespace soiq::cli {
 
 inline constexpr int kExitUsage = 2;  // a malformed command line, as for INVALID_ARGUMENT
+// `soiq query` answered, but stage 2 skipped some candidates (the summary says how many and why):
+// the rows are those of the candidates it could answer for.
+inline constexpr int kExitPartial = 8;
 
 int exit_code(const soiq::Status& status);
 

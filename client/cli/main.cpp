@@ -107,7 +107,8 @@ constexpr const char* kHelp =
     "\n"
     "Exit codes: 0 ok, 1 other, 2 invalid argument or usage, 3 not found, 4 already exists or failed\n"
     "precondition, 5 resource exhausted, 6 unavailable, deadline or cancelled, 7 unauthenticated or\n"
-    "permission denied. Errors are one line on stderr.\n";
+    "permission denied, 8 partial query answer (some candidates skipped; the summary says why). Errors are\n"
+    "one line on stderr.\n";
 
 // Options of convert and features that take a value: the operand is the first other argument.
 const std::vector<std::string> kConvertValueOptions = {"-o",       "--output",  "--reference", "--spacing",

@@ -35,17 +35,26 @@ std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, const std::vector<siz
   return cells;
 }
 
+// The summary line, then one line per reason candidates were skipped (stage 2 could not answer for
+// them), so a short or empty table never looks like "nothing matched" when it is not.
 void print_summary(const soiq::v1::QuerySummary& s) {
   std::fprintf(stderr,
-               "%lld candidates, %lld computed, %lld cache hits, %lld matched, %lld returned, %lld failed; "
+               "%lld candidates, %lld computed, %lld cache hits, %lld matched, %lld returned, %lld skipped; "
                "stage 1 %.1f ms, stage 2 %.1f ms, total %.1f ms\n",
                (long long)s.stage1_candidates(), (long long)s.computed(), (long long)s.cache_hits(),
                (long long)s.matched(), (long long)s.returned(), (long long)s.failed(), s.stage1_ms(), s.stage2_ms(),
                s.total_ms());
-  for (const std::string& f : s.failures()) std::fprintf(stderr, "  %s\n", f.c_str());
+  for (const soiq::v1::QuerySkip& k : s.skipped()) {
+    std::string ids;
+    for (const int64_t id : k.structure_ids()) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+    if (k.count() > k.structure_ids_size()) ids += ", ...";
+    std::fprintf(stderr, "  %lld skipped: %s (structure%s %s)\n", (long long)k.count(), k.reason().c_str(),
+                 k.count() == 1 ? "" : "s", ids.c_str());
+  }
 }
 
-Status query(const QueryArgs& a, const client::ClientOptions& remote) {
+// The number of candidates skipped: a partial answer when > 0.
+Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   const std::vector<std::string> features = query_feature_columns(a.request);
   const std::vector<size_t> shown = distinct_columns(features);
@@ -71,13 +80,18 @@ Status query(const QueryArgs& a, const client::ClientOptions& remote) {
   if (!summary.ok()) return summary.status();
   out.end();
   print_summary(*summary);
-  return ok_status();
+  return summary->failed();
 }
 
 }  // namespace
 
 int run_query_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("query", parse_query_args(argc, argv), [&](const QueryArgs& a) { return query(a, remote); });
+  int64_t skipped = 0;
+  const int code = run_command("query", parse_query_args(argc, argv), [&](const QueryArgs& a) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(skipped, query(a, remote));
+    return ok_status();
+  });
+  return code == 0 && skipped > 0 ? kExitPartial : code;
 }
 
 }  // namespace soiq::cli

@@ -80,6 +80,9 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("patients", std::to_string(i.patients()));
   line("studies", std::to_string(i.studies()));
   line("series", std::to_string(i.series()));
+  std::string modalities;
+  for (const std::string& m : i.series_modalities()) modalities += (modalities.empty() ? "" : " ") + m;
+  line("series_modalities", modalities.empty() ? "none" : modalities);
   line("structures", std::to_string(i.structures()));
   line("surfaces", std::to_string(i.surfaces()));
   line("cached_features", std::to_string(i.cached_features()));

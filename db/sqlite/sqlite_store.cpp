@@ -70,6 +70,15 @@ constexpr char kCountsSql[] = R"sql(
          (SELECT count(*) FROM surfaces),
          (SELECT count(*) FROM feature_cache))sql";
 
+// The distinct modalities of the series, by a skip-scan over the series_modality index: one index
+// seek per distinct value, not a pass over every series.
+constexpr char kSeriesModalitiesSql[] = R"sql(
+  WITH RECURSIVE m(modality) AS (
+    SELECT min(modality) FROM series
+    UNION ALL
+    SELECT (SELECT min(modality) FROM series WHERE modality > m.modality) FROM m WHERE m.modality IS NOT NULL)
+  SELECT modality FROM m WHERE modality IS NOT NULL)sql";
+
 }  // namespace
 
 Result<Counts> SqliteStore::counts() {
@@ -78,7 +87,13 @@ Result<Counts> SqliteStore::counts() {
     SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(kCountsSql));
     SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
     if (!row) return internal_error("count query returned no row");
-    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5)};
+    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5), {}};
+    SOIQ_ASSIGN_OR_RETURN(Statement modalities, c.prepare(kSeriesModalitiesSql));
+    for (;;) {
+      SOIQ_ASSIGN_OR_RETURN(const bool more, modalities.step());
+      if (!more) break;
+      n.series_modalities.push_back(modalities.text(0));
+    }
     return ok_status();
   }));
   return n;

@@ -1,5 +1,7 @@
 #include "server/api/grid_spec.h"
 
+#include "server/app/modality_names.h"
+
 namespace soiq::server {
 
 Result<GridChoice> grid_choice(const v1::GridSpec& spec) {
@@ -22,7 +24,7 @@ Result<GridChoice> grid_choice(const v1::GridSpec& spec) {
     case v1::GridSpec::TARGET_NOT_SET:
       if (!spec.series_modality().empty()) {
         c.kind = GridChoice::Kind::kSeriesModality;
-        c.series = spec.series_modality();
+        c.series = dicom_modality(spec.series_modality());
       }
       return c;
   }

@@ -7,6 +7,7 @@
 #include "core/regions/regions.h"
 #include "server/api/grid_spec.h"
 #include "server/api/proto_records.h"
+#include "server/app/modality_names.h"
 
 namespace soiq::server {
 namespace {
@@ -42,7 +43,7 @@ Result<db::Stage1Filter> parse_stage1(const v1::Stage1Filter& s) {
   f.birth_date_to = s.birth_date_to();
   f.study_date_from = s.study_date_from();
   f.study_date_to = s.study_date_to();
-  f.modality = s.modality();
+  f.modality = dicom_modality(s.modality());
   f.study_description_glob = s.study_description_glob();
   f.structure_name_glob = s.structure_name_glob();
   f.laterality = s.laterality();
@@ -62,7 +63,7 @@ Result<QueryFeature> parse_ref(const v1::FeatureRef& r, const char* field) {
       return invalid_argument(std::string(field) + ": intensity feature '" + p.name +
                               "' needs an image (a modality of the study such as PT, or a series uid)");
     SOIQ_ASSIGN_OR_RETURN(p.region, parse_region(r.region().empty() ? "inside" : r.region()));
-    p.image = r.image();
+    p.image = dicom_modality(r.image());
   } else if (!r.image().empty() || !r.region().empty()) {
     return invalid_argument(std::string(field) + ": shape feature '" + p.name + "' takes no region or image");
   }
@@ -177,6 +178,12 @@ v1::QueryEvent to_event(const QuerySummary& s) {
   out->set_returned(s.returned);
   out->set_failed(s.failed);
   for (const std::string& f : s.failures) out->add_failures(f);
+  for (const QuerySkip& k : s.skipped) {
+    v1::QuerySkip* skip = out->add_skipped();
+    skip->set_reason(k.reason);
+    skip->set_count(k.count);
+    for (int64_t id : k.structure_ids) skip->add_structure_ids(id);
+  }
   out->set_stage1_ms(s.stage1_ms);
   out->set_stage2_ms(s.stage2_ms);
   out->set_total_ms(s.total_ms);

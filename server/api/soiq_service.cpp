@@ -57,6 +57,7 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_surfaces(c.surfaces);
     response->set_series(c.series);
     response->set_cached_features(c.cached_features);
+    for (const std::string& m : c.series_modalities) response->add_series_modalities(m);
     if (config_.pacs_peer) response->set_pacs(dicom::describe_pacs_peer(*config_.pacs_peer));
     return ok_status();
   });

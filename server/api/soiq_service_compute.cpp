@@ -7,6 +7,7 @@
 #include "server/api/proto_records.h"
 #include "server/api/query_request.h"
 #include "server/api/rpc_handling.h"
+#include "server/app/modality_names.h"
 #include "server/app/stored_structure_features.h"
 #include "server/app/structure_conversion.h"
 
@@ -59,7 +60,7 @@ Result<FeatureAsk> ask_of(const v1::FeaturesRequest& request) {
     SOIQ_ASSIGN_OR_RETURN(RegionSpec spec, parse_region(r));
     ask.regions.push_back(spec);
   }
-  ask.images.assign(request.images().begin(), request.images().end());
+  for (const std::string& image : request.images()) ask.images.push_back(dicom_modality(image));
   if (request.images_size() > 0 && request.features_size() == 0) {
     ask.names = shape_feature_names();
     for (const auto& n : intensity_feature_names())

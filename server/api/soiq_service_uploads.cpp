@@ -6,6 +6,7 @@
 #include "server/api/received_dicom_files.h"
 #include "server/api/rpc_handling.h"
 #include "server/app/dicom_import.h"
+#include "server/app/modality_names.h"
 #include "server/app/upload_image.h"
 #include "server/app/upload_surface.h"
 #include "server/util/temp_dir.h"
@@ -55,7 +56,7 @@ Result<ImageUpload> image_upload_of(const v1::UploadImageHeader& h) {
   if (h.series_uid().empty()) return invalid_argument("series_uid is required");
   if (h.modality().empty()) return invalid_argument("modality is required (e.g. CT, MR, PT)");
   u.series_uid = h.series_uid();
-  u.modality = h.modality();
+  u.modality = dicom_modality(h.modality());
   u.format = h.format();
   return u;
 }

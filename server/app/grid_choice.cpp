@@ -29,7 +29,7 @@ Result<db::SeriesRecord> find_series(const std::string& ref, const std::vector<d
   if (by_modality.size() > 1)
     return failed_precondition("study " + study_uid + " has " + std::to_string(by_modality.size()) + " " + ref +
                                " series; name one by its series uid");
-  return not_found("study " + study_uid + " has no image series '" + ref + "' (by uid or modality; upload one)");
+  return not_found("no image series '" + ref + "' in study " + study_uid + " (by uid or modality; upload one)");
 }
 
 Result<ResolvedGrid> resolve_grid(const GridChoice& choice, const db::StructureRecord& structure,

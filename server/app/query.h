@@ -72,6 +72,13 @@ struct QueryProgress {
   int64_t done = 0, total = 0;
 };
 
+// Structures stage 2 dropped for one reason ("NOT_FOUND: no image series 'PT' in their study ...").
+struct QuerySkip {
+  std::string reason;
+  int64_t count = 0;
+  std::vector<int64_t> structure_ids;  // the first few
+};
+
 struct QuerySummary {
   int64_t stage1_candidates = 0;
   int64_t computed = 0;    // structures whose features were computed now
@@ -79,6 +86,7 @@ struct QuerySummary {
   int64_t matched = 0, returned = 0;
   int64_t failed = 0;                 // structures whose features could not be computed
   std::vector<std::string> failures;  // "structure 12: FAILED_PRECONDITION: ..." (the first 10)
+  std::vector<QuerySkip> skipped;     // the `failed` ones grouped by reason, largest group first
   double stage1_ms = 0, stage2_ms = 0, total_ms = 0;
 };
 

@@ -12,6 +12,8 @@
 #include <optional>
 
 #include "core/features/asymmetry_index.h"
+#include "server/app/image_refs_check.h"
+#include "server/app/query_skips.h"
 
 namespace soiq::server {
 namespace {
@@ -19,6 +21,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// The images a query names: its intensity features' and its grid's, when the grid is a series.
+std::vector<std::string> image_refs(const FeatureAsk& ask) {
+  std::vector<std::string> refs = ask.images;
+  if (ask.grid.kind != GridChoice::Kind::kAxisAligned) refs.push_back(ask.grid.series);
+  return refs;
+}
 
 // One structure whose features the query needs: a candidate, or a candidate's twin.
 struct Subject {
@@ -47,6 +56,7 @@ class QueryRun {
 
   Result<QuerySummary> run(int64_t stage1_cap) {
     const Clock::time_point start = Clock::now();
+    SOIQ_RETURN_IF_ERROR(check_image_refs(store_, image_refs(q_.ask)));
     SOIQ_ASSIGN_OR_RETURN(candidates_, store_.stage1(q_.stage1, stage1_cap));
     summary_.stage1_candidates = int64_t(candidates_.size());
     summary_.stage1_ms = ms_since(start);
@@ -57,6 +67,7 @@ class QueryRun {
     for (size_t i = 0; i < candidates_.size() && !enough_; ++i) SOIQ_RETURN_IF_ERROR(evaluate(i));
     SOIQ_RETURN_IF_ERROR(compute(misses));
     SOIQ_RETURN_IF_ERROR(stream_ordered());
+    summary_.skipped = skips_.groups();
     summary_.stage2_ms = ms_since(stage2_start);
     summary_.total_ms = ms_since(start);
     return summary_;
@@ -208,6 +219,7 @@ class QueryRun {
       ++summary_.failed;
       if (summary_.failures.size() < 10)
         summary_.failures.push_back("structure " + std::to_string(s.structure.id) + ": " + s.error.to_string());
+      skips_.add(s.error, s.structure.study_uid, s.structure.id);
       return ok_status();
     }
     QueryRow row;
@@ -303,6 +315,7 @@ class QueryRun {
   int64_t done_ = 0;
   bool enough_ = false;  // limit rows sent: nothing more to compute
   QuerySummary summary_;
+  QuerySkips skips_;
 };
 
 }  // namespace

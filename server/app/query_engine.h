@@ -15,9 +15,11 @@
 // predicate on an asymmetry and has no value for it.
 //
 // A structure whose features cannot be computed (no image of the modality in its study, an empty
-// shell, ...) does not match; it is counted in QuerySummary::failed and its reason given (first 10).
+// shell, ...) does not match; it is counted in QuerySummary::failed, its reason given (first 10),
+// and the reasons counted in QuerySummary::skipped (query_skips.h).
 //
-// Errors: RESOURCE_EXHAUSTED when stage 1 keeps more than the stage-1 cap; the store's errors;
+// Errors: NOT_FOUND, before stage 1, for an image no stored series answers to (image_refs_check.h);
+// RESOURCE_EXHAUSTED when stage 1 keeps more than the stage-1 cap; the store's errors;
 // CANCELLED or DEADLINE_EXCEEDED when `stop` says so (work in flight is abandoned: workers check
 // between structures and between steps); the output's own errors (a closed stream) unchanged.
 // Thread-safety: one engine serves concurrent queries; a run uses the calling thread and the pool.

@@ -121,6 +121,19 @@ grep -q "imported 2 series and 2 structures from 98 files" "$tmp/imp.err" || fai
 printf 'not dicom' >"$tmp/plain.txt"
 expect 2 "plain.txt" -- "$soiq" import "$tmp/plain.txt"
 
+# No silent empty answers. "PET" is DICOM's PT: the same rows as [inside,PT].
+"$soiq" query --patient STS_002 --name 'GTV*' --select 'mean[inside,PET]' --series-modality CT --format csv \
+  >"$tmp/pet2.csv" 2>/dev/null || fail "query naming PET"
+[ "$(tail -n +2 "$tmp/pet2.csv")" = "$(tail -n +2 "$tmp/pet.csv")" ] || fail "PET and PT differ: $(cat "$tmp/pet2.csv")"
+# An image no stored series has is refused before anything is computed, naming what is held.
+expect 3 "no image in this soiqd has modality 'NM'; it holds CT, MR, PT" -- "$soiq" query --select 'mean[inside,NM]'
+# The demo's amygdalae have no PT image in their studies: a partial answer, exit 8, with the count
+# and the reason on stderr.
+"$soiq" query --name 'amygdala' --where 'mean[inside,PT] > 0' >"$tmp/partial.out" 2>"$tmp/partial.err"
+[ $? -eq 8 ] || fail "a partial answer does not exit 8: $(cat "$tmp/partial.err")"
+grep -q "^  4 skipped: NOT_FOUND: no image series 'PT' in their study" "$tmp/partial.err" ||
+  fail "partial answer without its reason: $(cat "$tmp/partial.err")"
+
 # Authentication: a server with a token refuses a client without it.
 echo "0123456789abcdef0123456789abcdef" >"$tmp/token"
 start_soiqd auth --token-file "$tmp/token"

@@ -35,6 +35,23 @@ class QueryEngineTest : public ::testing::Test {
     return f;
   }
 
+  // A PT series of patient P1 in `study`.
+  void add_pt_series(const std::string& study) {
+    db::NewSeries s = db::testing::new_series("P1", study, study + ".9", 1.0f);
+    s.series.modality = "PT";
+    const Result<bool> put = store_->put_series(s);
+    ASSERT_TRUE(put.ok()) << put.status().to_string();
+  }
+
+  static QueryFeature mean_of(const std::string& image) {
+    QueryFeature f;
+    f.name = "mean";
+    f.intensity = true;
+    f.image = image;
+    f.label = {"mean", "inside", image};
+    return f;
+  }
+
   // A query over every structure reading `features`, with the ask that covers them.
   static Query query_of(std::vector<QueryFeature> features) {
     Query q;
@@ -174,18 +191,53 @@ TEST_F(QueryEngineTest, AStructureWithoutTwinHasNoAsymmetryAndMatchesNoPredicate
 
 TEST_F(QueryEngineTest, AStructureWhoseFeaturesCannotBeHadIsCountedAsFailedWithItsReason) {
   const int64_t id = add_box("a", "", 10);
-  QueryFeature mean;
-  mean.name = "mean";
-  mean.intensity = true;
-  mean.image = "PT";  // the study has no image at all
-  mean.label = {"mean", "inside", "PT"};
-  Ran ran = run(query_of({mean}));
+  add_pt_series("S2");  // the store holds PT, but not in study S1
+  Ran ran = run(query_of({mean_of("PT")}));
   ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
   EXPECT_TRUE(ran.rows.empty());
   EXPECT_EQ(ran.summary->failed, 1);
   ASSERT_EQ(ran.summary->failures.size(), 1u);
   EXPECT_NE(ran.summary->failures[0].find("structure " + std::to_string(id) + ": NOT_FOUND"), std::string::npos)
       << ran.summary->failures[0];
+}
+
+TEST_F(QueryEngineTest, SkippedStructuresAreCountedByReasonLargestFirstWithTheirIds) {
+  add_pt_series("S2");  // the store holds PT, but not in S1 or S3
+  std::vector<int64_t> s1, s3;
+  for (int i = 0; i < 7; ++i) s1.push_back(add_box("in_s1", "", 10, "S1"));
+  for (int i = 0; i < 2; ++i) s3.push_back(add_box("in_s3", "", 10, "S3"));
+  Ran ran = run(query_of({mean_of("PT")}));
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  EXPECT_TRUE(ran.rows.empty());
+  EXPECT_EQ(ran.summary->failed, 9);
+  ASSERT_EQ(ran.summary->skipped.size(), 1u);  // one reason, whatever the study: "their study"
+  const QuerySkip& k = ran.summary->skipped[0];
+  EXPECT_EQ(k.count, 9);
+  EXPECT_EQ(k.reason, "NOT_FOUND: no image series 'PT' in their study (by uid or modality; upload one)");
+  EXPECT_EQ(k.structure_ids, std::vector<int64_t>(s1.begin(), s1.begin() + 5));
+}
+
+TEST_F(QueryEngineTest, AnImageNoStoredSeriesHasIsRefusedBeforeStage1NamingWhatTheStoreHolds) {
+  add_box("a", "", 10);
+  add_pt_series("S2");
+  Ran ran = run(query_of({mean_of("MR")}));
+  ASSERT_FALSE(ran.summary.ok());
+  EXPECT_EQ(ran.summary.status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(ran.summary.status().message(), "no image in this soiqd has modality 'MR'; it holds PT");
+  EXPECT_TRUE(ran.progress.empty());  // refused before stage 1 said anything
+  Ran uid = run(query_of({mean_of("1.2.999")}));
+  ASSERT_FALSE(uid.summary.ok());
+  EXPECT_EQ(uid.summary.status().code(), StatusCode::kNotFound);
+  EXPECT_NE(uid.summary.status().message().find("no image series '1.2.999'"), std::string::npos)
+      << uid.summary.status().message();
+  Ran grid = run([&] {
+    Query q = query_of({shape("voxel_count")});
+    q.ask.grid.kind = GridChoice::Kind::kSeriesModality;
+    q.ask.grid.series = "CT";
+    return q;
+  }());
+  EXPECT_EQ(grid.summary.status().code(), StatusCode::kNotFound);
+  EXPECT_NE(grid.summary.status().message().find("modality 'CT'"), std::string::npos);
 }
 
 TEST_F(QueryEngineTest, AStopEndsTheRunWithItsStatus) {
