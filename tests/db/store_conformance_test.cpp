@@ -112,6 +112,19 @@ TYPED_TEST(StoreConformance, ASeriesIsReplacedByItsUidWithItsNewImage) {
   EXPECT_EQ((*listed)[0].sha256, again.series.sha256);
 }
 
+TYPED_TEST(StoreConformance, CountsListEachModalityOfTheSeriesOnceInOrder) {
+  EXPECT_TRUE(this->counts().series_modalities.empty());
+  int n = 0;
+  for (const char* modality : {"PT", "MR", "PT", "CT", "MR", "PT"}) {
+    ++n;
+    NewSeries s = new_series("P1", "S1", "S1." + std::to_string(n), float(n));
+    s.series.modality = modality;
+    ASSERT_TRUE(this->store().put_series(s).ok());
+  }
+  EXPECT_EQ(this->counts().series, 6);
+  EXPECT_EQ(this->counts().series_modalities, (std::vector<std::string>{"CT", "MR", "PT"}));
+}
+
 TYPED_TEST(StoreConformance, AnImportBatchWithOneRefusedRecordStoresNothing) {
   this->add("P1", "S1", "kept", 1);
   const Counts before = this->counts();
