@@ -38,7 +38,7 @@
 //   along an axis can be empty along that axis (shell(2) above a face normal to a 2.5 mm axis), and
 //   shell(r) volumes run below the analytic offset volume (core(r) above it) by a fraction of the
 //   spacing times the surface area: sphere R = 20 mm, shell(2) on a 1 mm grid -15 %, 0.5 mm -8 %,
-//   0.25 mm -3 %; core(2) +4 %, +2 %, +1 % (tests/core/regions_test.cpp).
+//   0.25 mm -3 %; core(2) +4 %, +2 %, +1 % (tests/core/regions_sphere_test.cpp).
 //   Decided, not overlooked: centre-to-centre distance is the binary dilation by a ball of r mm
 //   that peritumoral-ring studies use, it gives a mask and the surface it came from the same
 //   shell, and it needs nothing but the voxels. Distances to the stored surface would track the

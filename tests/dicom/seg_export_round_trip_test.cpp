@@ -1,15 +1,13 @@
 // DICOM SEG export (dicom/seg_export.h) and read-back (dicom/read_seg.h): round trips are lossless
 // voxel for voxel on axis-aligned and oblique grids and on the real STS_002 GTV, DCMTK itself accepts
-// what we write, and bad inputs are refused with a message that says why.
-#include "dicom/seg_export.h"
-
+// what we write, and the study's values are copied from the source. The inputs are in
+// seg_export_fixture.h; the bad inputs are in seg_export_errors_test.cpp.
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dctk.h>
 #include <dcmtk/dcmseg/segdoc.h>
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -20,65 +18,24 @@
 #include "core/base/run_length_volume.h"
 #include "dicom/import_dicom.h"
 #include "dicom/read_seg.h"
+#include "dicom/seg_export.h"
 #include "dicom_test_support.h"
+#include "seg_export_fixture.h"
 #include "seg_source_of.h"
 #include "seg_test_support.h"
 
 namespace soiq::dicom {
 namespace {
 
+using testing::axis_aligned_grid;
+using testing::BadInput;
 using testing::data_dir;
+using testing::oblique_grid;
+using testing::read_back;
+using testing::segment_of;
+using testing::shapes;
 using testing::synthetic_source;
 using testing::TempDir;
-
-// Columns and rows chosen so that a frame is not a whole number of bytes (37 x 29 = 1073 bits): the
-// bit-packed frames then start mid-byte, which the packing must get right.
-ImageGeometry axis_aligned_grid() {
-  ImageGeometry g;
-  g.dims = {37, 29, 11};
-  g.spacing_mm = {0.7, 1.3, 2.5};
-  g.origin_mm = {-100.25, 30.5, -7.125};
-  return g;
-}
-
-// Rotation by 30 degrees about (1, 2, 3)/|..|: every direction cosine is non-trivial.
-ImageGeometry oblique_grid() {
-  ImageGeometry g = axis_aligned_grid();
-  const Vec3 a = (1.0 / std::sqrt(14.0)) * Vec3{1, 2, 3};
-  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
-  for (int r = 0; r < 3; ++r)
-    for (int col = 0; col < 3; ++col) {
-      const double cross_term = (r == col) ? 0 : ((r + 1) % 3 == col ? -1 : 1) * a[3 - r - col] * s;
-      g.direction[r][col] = (r == col ? c : 0) + (1 - c) * a[r] * a[col] + cross_term;
-    }
-  return g;
-}
-
-// A hollow ball (a shell: a hole inside), a box apart from it and scattered single voxels; slices 0
-// and 7 stay empty so that frames are sparse.
-Mask shapes(const ImageGeometry& g, uint32_t seed) {
-  Mask m{g, std::vector<uint8_t>(static_cast<size_t>(g.voxel_count()), 0)};
-  const int64_t nx = g.dims[0], ny = g.dims[1];
-  auto at = [&](int64_t i, int64_t j, int64_t k) -> uint8_t& {
-    return m.voxels[static_cast<size_t>(i + nx * (j + ny * k))];
-  };
-  for (int64_t k = 1; k < g.dims[2]; ++k) {
-    if (k == 7) continue;
-    for (int64_t j = 0; j < ny; ++j)
-      for (int64_t i = 0; i < nx; ++i) {
-        const double r2 = std::pow((i - 12) * 0.7, 2) + std::pow((j - 14) * 1.3, 2) + std::pow((k - 5) * 2.5, 2);
-        if (r2 <= 8.0 * 8.0 && r2 >= 4.0 * 4.0) at(i, j, k) = 1;
-        if (i >= 28 && i < 36 && j >= 3 && j < 9 && k >= 2 && k < 5) at(i, j, k) = 1;
-      }
-  }
-  uint32_t x = seed;
-  for (int n = 0; n < 40; ++n) {
-    x = x * 1664525u + 1013904223u;
-    const int64_t i = x % nx, j = (x / 64) % ny, k = 1 + (x / 4096) % (g.dims[2] - 1);
-    if (k != 7) at(i, j, k) = 1;
-  }
-  return m;
-}
 
 std::set<int64_t> slices_with_voxels(const Mask& m) {
   std::set<int64_t> out;
@@ -86,27 +43,6 @@ std::set<int64_t> slices_with_voxels(const Mask& m) {
   for (size_t n = 0; n < m.voxels.size(); ++n)
     if (m.voxels[n]) out.insert(static_cast<int64_t>(n) / per_slice);
   return out;
-}
-
-SegSegment segment_of(const std::string& label, RunLengthVolume volume) {
-  SegSegment s;
-  s.label = label;
-  s.volume = std::move(volume);
-  return s;
-}
-
-SegWriteOptions max_frames(int64_t n) {
-  SegWriteOptions o;
-  o.max_frames = n;
-  return o;
-}
-
-// read_seg_file on `bytes` saved to a temp file: read_seg reads only files (dicom/read_seg.h).
-Result<SegObject> read_back(const std::string& bytes, const ImageGeometry& g) {
-  TempDir tmp;
-  const std::string path = tmp.file("seg.dcm");
-  std::ofstream(path, std::ios::binary) << bytes;
-  return read_seg_file(path, g);
 }
 
 void expect_same_voxels(const RunLengthVolume& got, const RunLengthVolume& want) {
@@ -242,12 +178,7 @@ TEST(SegExport, StsGtvOnItsCtRoundTripsAndDcmtkAcceptsIt) {
   EXPECT_EQ(value, OFString(source.series_uid.c_str()));
 }
 
-// --- bad inputs ---
-
-struct BadInput {
-  SegSource source = synthetic_source(axis_aligned_grid());
-  SegSegment segment = segment_of("GTV", from_mask(shapes(axis_aligned_grid(), 1)));
-};
+// --- the study's values ---
 
 std::string tag_value(DcmDataset& ds, const DcmTagKey& tag) {
   OFString value;
@@ -292,98 +223,6 @@ TEST(SegExport, MissingOrInvalidStudyValuesAreWrittenEmpty) {
   DcmDataset& ds = *dataset_of(written->bytes, file);
   for (const DcmTagKey& tag : {DCM_StudyTime, DCM_AccessionNumber, DCM_StudyID, DCM_StudyDate})
     EXPECT_EQ(tag_value(ds, tag), "") << DcmTag(tag).getTagName();
-}
-
-void expect_error(const Result<WrittenSeg>& r, StatusCode code, const std::string& phrase) {
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), code) << r.status().to_string();
-  EXPECT_NE(r.status().message().find(phrase), std::string::npos) << r.status().to_string();
-}
-
-TEST(SegExport, VolumeOnAnotherGridIsInvalidArgument) {
-  BadInput in;
-  ImageGeometry other = axis_aligned_grid();
-  other.spacing_mm[2] = 3.0;
-  in.segment.volume.geometry = other;
-  expect_error(write_seg(in.source, {in.segment}), StatusCode::kInvalidArgument, "not on the source series grid");
-}
-
-TEST(SegExport, EmptyVolumeIsInvalidArgumentNamingTheStructure) {
-  BadInput in;
-  in.segment.volume = empty_volume(axis_aligned_grid());
-  expect_error(write_seg(in.source, {in.segment}), StatusCode::kInvalidArgument, "structure 'GTV' has no voxels");
-}
-
-TEST(SegExport, WrongSliceUidCountIsInvalidArgument) {
-  BadInput in;
-  in.source.slice_sop_instance_uids.pop_back();
-  expect_error(write_seg(in.source, {in.segment}), StatusCode::kInvalidArgument,
-               "10 slice SOP instance uids but its grid has 11 slices");
-}
-
-TEST(SegExport, EmptyLabelIsInvalidArgument) {
-  BadInput in;
-  in.segment.label = "";
-  expect_error(write_seg(in.source, {in.segment}), StatusCode::kInvalidArgument, "empty label");
-}
-
-TEST(SegExport, MissingFrameOfReferenceIsInvalidArgument) {
-  BadInput in;
-  in.source.frame_of_reference_uid = "";
-  expect_error(write_seg(in.source, {in.segment}), StatusCode::kInvalidArgument, "no frame of reference uid");
-}
-
-TEST(SegExport, TooManyFramesIsResourceExhausted) {
-  BadInput in;
-  expect_error(write_seg(in.source, {in.segment}, max_frames(3)), StatusCode::kResourceExhausted,
-               "over the limit of 3");
-}
-
-TEST(SegRead, NonSegDicomIsInvalidArgument) {
-  auto r = read_seg_file(data_dir("dicom/CT_small.dcm"), axis_aligned_grid());
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
-  EXPECT_NE(r.status().message().find("not a DICOM Segmentation"), std::string::npos) << r.status().to_string();
-}
-
-TEST(SegRead, MissingFileIsNotFound) {
-  auto r = read_seg_file(data_dir("dicom/no_such_seg.dcm"), axis_aligned_grid());
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), StatusCode::kNotFound) << r.status().to_string();
-}
-
-TEST(SegRead, GarbageBytesAreRefused) {
-  std::string garbage(4096, '\0');
-  uint32_t x = 7;
-  for (char& c : garbage) c = static_cast<char>((x = x * 1103515245u + 12345u) >> 24);
-  auto r = read_back(garbage, axis_aligned_grid());
-  ASSERT_FALSE(r.ok());
-  EXPECT_TRUE(r.status().code() == StatusCode::kDataLoss || r.status().code() == StatusCode::kInvalidArgument)
-      << r.status().to_string();
-}
-
-TEST(SegRead, FrameOffTheGridSlicesIsInvalidArgumentNamingTheFrame) {
-  BadInput in;
-  auto written = write_seg(in.source, {in.segment});
-  ASSERT_TRUE(written.ok()) << written.status().to_string();
-  ImageGeometry shifted = axis_aligned_grid();
-  shifted.origin_mm[2] += 0.5 * shifted.spacing_mm[2];  // frames now fall between slices
-  auto r = read_back(written->bytes, shifted);
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
-  EXPECT_NE(r.status().message().find("SEG frame 1:"), std::string::npos) << r.status().to_string();
-  EXPECT_NE(r.status().message().find("not on a slice"), std::string::npos) << r.status().to_string();
-}
-
-TEST(SegRead, OtherOrientationIsInvalidArgument) {
-  BadInput in;
-  auto written = write_seg(in.source, {in.segment});
-  ASSERT_TRUE(written.ok()) << written.status().to_string();
-  ImageGeometry rotated = oblique_grid();
-  auto r = read_back(written->bytes, rotated);
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
-  EXPECT_NE(r.status().message().find("row direction"), std::string::npos) << r.status().to_string();
 }
 
 }  // namespace
