@@ -23,9 +23,18 @@ std::string held(const std::vector<std::string>& modalities) {
 
 }  // namespace
 
-Status check_image_refs(db::Store& store, const std::vector<std::string>& refs) {
-  std::vector<std::string> modalities;
-  bool counted = false;
+Result<bool> ImageRefsCheck::known(db::Store& store, const std::string& modality, bool fresh) {
+  if (fresh) {
+    SOIQ_ASSIGN_OR_RETURN(db::Counts counts, store.counts());
+    std::lock_guard<std::mutex> lock(mutex_);
+    modalities_ = std::move(counts.series_modalities);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::any_of(modalities_.begin(), modalities_.end(),
+                     [&](const std::string& m) { return same_ignoring_case(m, modality); });
+}
+
+Status ImageRefsCheck::check(db::Store& store, const std::vector<std::string>& refs) {
   for (const std::string& ref : refs) {
     if (is_series_uid(ref)) {
       Result<db::SeriesRecord> series = store.get_series(ref);
@@ -34,16 +43,13 @@ Status check_image_refs(db::Store& store, const std::vector<std::string>& refs) 
       SOIQ_RETURN_IF_ERROR(series.status());
       continue;
     }
-    if (!counted) {
-      SOIQ_ASSIGN_OR_RETURN(db::Counts counts, store.counts());
-      modalities = std::move(counts.series_modalities);
-      counted = true;
-    }
-    const bool found = std::any_of(modalities.begin(), modalities.end(),
-                                   [&](const std::string& m) { return same_ignoring_case(m, ref); });
+    SOIQ_ASSIGN_OR_RETURN(const bool seen, known(store, ref, false));
+    if (seen) continue;
+    SOIQ_ASSIGN_OR_RETURN(const bool found, known(store, ref, true));
     if (!found) {
       const std::string alias = same_ignoring_case(ref, "PT") ? " (PET's DICOM code)" : "";
-      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities));
+      std::lock_guard<std::mutex> lock(mutex_);
+      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities_));
     }
   }
   return ok_status();

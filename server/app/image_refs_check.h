@@ -10,9 +10,13 @@
 //          business, reported per structure.
 // Errors   NOT_FOUND naming the reference and, for a modality, the modalities the store holds;
 //          the store's errors.
-// Cost     one skip-scan of the series' modalities (a seek per distinct modality) and one lookup
-//          per uid.
+// Cost     one lookup per uid. The modalities are read from the store (Store::counts) once and kept:
+//          a modality seen before passes without a read, one not seen makes it read them again
+//          before refusing, so an image uploaded since is never refused. (A modality whose last
+//          series was deleted passes; its candidates are then reported skipped, per structure.)
+// Thread-safety: one ImageRefsCheck serves concurrent queries.
 
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -21,6 +25,16 @@
 
 namespace soiq::server {
 
-Status check_image_refs(db::Store& store, const std::vector<std::string>& refs);
+class ImageRefsCheck {
+ public:
+  Status check(db::Store& store, const std::vector<std::string>& refs);
+
+ private:
+  // Whether `modality` is among those last read; reads them again first when `fresh` is asked.
+  Result<bool> known(db::Store& store, const std::string& modality, bool fresh);
+
+  std::mutex mutex_;
+  std::vector<std::string> modalities_;  // as the store last listed them
+};
 
 }  // namespace soiq::server

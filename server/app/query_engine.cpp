@@ -12,7 +12,6 @@
 #include <optional>
 
 #include "core/features/asymmetry_index.h"
-#include "server/app/image_refs_check.h"
 #include "server/app/query_skips.h"
 
 namespace soiq::server {
@@ -50,13 +49,13 @@ struct Completions {
 // One run of one query: the steps of query_engine.h, in order, over shared state.
 class QueryRun {
  public:
-  QueryRun(const Query& q, db::Store& store, FeatureEngine& features, WorkerPool& pool,
+  QueryRun(const Query& q, db::Store& store, FeatureEngine& features, WorkerPool& pool, ImageRefsCheck& image_refs,
            const std::function<Status()>& stop, const QueryOutput& out)
-      : q_(q), store_(store), features_(features), pool_(pool), stop_(stop), out_(out) {}
+      : q_(q), store_(store), features_(features), pool_(pool), image_refs_(image_refs), stop_(stop), out_(out) {}
 
   Result<QuerySummary> run(int64_t stage1_cap) {
     const Clock::time_point start = Clock::now();
-    SOIQ_RETURN_IF_ERROR(check_image_refs(store_, image_refs(q_.ask)));
+    SOIQ_RETURN_IF_ERROR(image_refs_.check(store_, image_refs(q_.ask)));
     SOIQ_ASSIGN_OR_RETURN(candidates_, store_.stage1(q_.stage1, stage1_cap));
     summary_.stage1_candidates = int64_t(candidates_.size());
     summary_.stage1_ms = ms_since(start);
@@ -301,6 +300,7 @@ class QueryRun {
   db::Store& store_;
   FeatureEngine& features_;
   WorkerPool& pool_;
+  ImageRefsCheck& image_refs_;
   const std::function<Status()>& stop_;
   const QueryOutput& out_;
 
@@ -322,7 +322,7 @@ class QueryRun {
 
 Result<QuerySummary> QueryEngine::run(const Query& query, const std::function<Status()>& stop, const QueryOutput& out) {
   if (query.limit < 1) return invalid_argument("a query's limit must be >= 1, got " + std::to_string(query.limit));
-  return QueryRun(query, store_, features_, pool_, stop, out).run(limits_.stage1_cap);
+  return QueryRun(query, store_, features_, pool_, image_refs_, stop, out).run(limits_.stage1_cap);
 }
 
 }  // namespace soiq::server

@@ -29,6 +29,7 @@
 #include "core/base/status.h"
 #include "db/store.h"
 #include "server/app/feature_engine.h"
+#include "server/app/image_refs_check.h"
 #include "server/app/query.h"
 #include "server/util/worker_pool.h"
 
@@ -55,6 +56,7 @@ class QueryEngine {
   FeatureEngine& features_;
   WorkerPool& pool_;
   const QueryLimits limits_;
+  ImageRefsCheck image_refs_;
 };
 
 }  // namespace soiq::server

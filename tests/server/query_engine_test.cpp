@@ -240,6 +240,18 @@ TEST_F(QueryEngineTest, AnImageNoStoredSeriesHasIsRefusedBeforeStage1NamingWhatT
   EXPECT_NE(grid.summary.status().message().find("modality 'CT'"), std::string::npos);
 }
 
+TEST_F(QueryEngineTest, AModalityUploadedAfterARefusalIsAcceptedByTheNextQuery) {
+  add_box("a", "", 10);
+  add_pt_series("S2");
+  ASSERT_TRUE(run(query_of({mean_of("PT")})).summary.ok());  // PT now known to the engine
+  EXPECT_EQ(run(query_of({mean_of("MR")})).summary.status().code(), StatusCode::kNotFound);
+  db::NewSeries mr = db::testing::new_series("P1", "S3", "S3.1", 1.0f);  // new_series makes MR
+  ASSERT_TRUE(store_->put_series(mr).ok());
+  Ran ran = run(query_of({mean_of("MR")}));
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  EXPECT_EQ(ran.summary->failed, 1);  // the box's study S1 has no MR: skipped, said so
+}
+
 TEST_F(QueryEngineTest, AStopEndsTheRunWithItsStatus) {
   add_box("a", "", 10);
   add_box("b", "", 20);
