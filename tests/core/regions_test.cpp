@@ -233,6 +233,13 @@ TEST(Regions, ParseRejectsBadRadiusAndUnknownNames) {
   }
 }
 
+TEST(Regions, AnUnknownNameSuggestsTheClosestWithTheGivenRadius) {
+  EXPECT_NE(parse_region("insde").status().message().find("did you mean 'inside'?"), std::string::npos);
+  EXPECT_NE(parse_region("shel:5").status().message().find("did you mean 'shell:5'?"), std::string::npos);
+  EXPECT_NE(parse_region("cor:2.5").status().message().find("did you mean 'core:2.5'?"), std::string::npos);
+  EXPECT_EQ(parse_region("rim:3").status().message().find("did you mean"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace soiq
 
