@@ -39,7 +39,7 @@ Result<bool> parse_stage1_option(int argc, char** argv, int& i, soiq::v1::Stage1
     if (years < 0) return invalid_argument(arg + " must be >= 0 years");
     arg == "--min-age" ? s.set_min_age_years(years) : s.set_max_age_years(years);
   }
-  if (arg.starts_with("--birth-date") || arg.starts_with("--study-date")) SOIQ_RETURN_IF_ERROR(check_date(v, arg));
+  if (arg.find("date") != std::string::npos) SOIQ_RETURN_IF_ERROR(check_date(v, arg));  // the four date bounds
   if (arg == "--birth-date-from") s.set_birth_date_from(v);
   if (arg == "--birth-date-to") s.set_birth_date_to(v);
   if (arg == "--study-date-from") s.set_study_date_from(v);
