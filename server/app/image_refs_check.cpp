@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "core/base/did_you_mean.h"
 #include "server/app/modality_names.h"
 
 namespace soiq::server {
@@ -43,7 +44,8 @@ Status check_image_refs(db::Store& store, const std::vector<std::string>& refs) 
                                    [&](const std::string& m) { return same_ignoring_case(m, ref); });
     if (!found) {
       const std::string alias = same_ignoring_case(ref, "PT") ? " (PET's DICOM code)" : "";
-      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities));
+      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities) +
+                       did_you_mean(ref, modalities));
     }
   }
   return ok_status();
