@@ -210,7 +210,7 @@ Status check_feature_name(std::string_view name) {
     if (f.family == FeatureFamily::kSurface) names.push_back(std::string(kMaskPrefix) + std::string(f.name));
   }
   return invalid_argument("unknown feature '" + std::string(name) + "'" + did_you_mean(name, names) +
-                          "; known features by family: " + known_feature_names());
+                          " (known features by family: " + known_feature_names() + ")");
 }
 
 bool is_intensity_only(std::string_view name) {

@@ -116,7 +116,7 @@ int feature_definitions_version();
 std::string known_feature_names();
 
 // OK when `name` is a shape, intensity or mask_ surface feature; else INVALID_ARGUMENT "unknown
-// feature 'name'; did you mean 'closest'?; known features by family: ..." (known_feature_names;
+// feature 'name'; did you mean 'closest'? (known features by family: ...)" (known_feature_names;
 // the did-you-mean only when a name is near, core/base/did_you_mean.h).
 Status check_feature_name(std::string_view name);
 
