@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/base/did_you_mean.h"
+
 namespace soiq::client {
 
 namespace {
@@ -67,7 +69,11 @@ Status check_region(const std::string& region, const Parser& p) {
     }
     return ok_status();
   }
-  return p.error("unknown region '" + region + "' (use inside, shell:R or core:R)");
+  // Suggest with the reader's own radius, as core's parse_region does: "shel:5" means "shell:5".
+  const size_t colon = region.find(':');
+  const std::string radius = colon == std::string::npos ? "R" : region.substr(colon + 1);
+  const std::string names[] = {"inside", "shell:" + radius, "core:" + radius};
+  return p.error("unknown region '" + region + "'" + did_you_mean(region, names) + " (use inside, shell:R or core:R)");
 }
 
 Result<FeatureRef> parse_feature_at(Parser& p, bool inside_asym) {

@@ -31,12 +31,12 @@ Status make_output_folder(const std::string& path);
 bool ends_with(const std::string& path, const std::string& suffix);
 
 // Runs command `name`: parsed arguments (or the parse error), then `act`. Any error is one line on
-// stderr, "soiq NAME: message" (with a pointer to the usage after a parse error), and the exit code
+// stderr, "soiq NAME: message" (with a pointer to `soiq NAME --help` after a parse error), and the exit code
 // comes from exit_code(): the one place a command's outcome becomes a process status.
 template <typename Args, typename Act>
 int run_command(const char* name, const Result<Args>& args, Act&& act) {
   if (!args.ok()) {
-    std::fprintf(stderr, "soiq %s: %s (usage: soiq help)\n", name, args.status().message().c_str());
+    std::fprintf(stderr, "soiq %s: %s (usage: soiq %s --help)\n", name, args.status().message().c_str(), name);
     return exit_code(args.status());
   }
   const Status s = act(*args);

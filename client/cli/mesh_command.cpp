@@ -15,13 +15,10 @@
 namespace soiq::cli {
 namespace {
 
-constexpr const char* kUsage = "usage: soiq mesh MASK -o OUT.{stl,vtk,vtp,ply,obj} [--label N]\n";
-
 struct MeshArgs {
   std::string mask_path;
   std::string out_path;
   int label = -1;  // < 0: every nonzero voxel
-  bool help = false;
 };
 
 Result<MeshArgs> parse_args(int argc, char** argv) {
@@ -32,9 +29,7 @@ Result<MeshArgs> parse_args(int argc, char** argv) {
       if (i + 1 >= argc) return invalid_argument(std::string(name) + " needs a value");
       return std::string(argv[++i]);
     };
-    if (arg == "-h" || arg == "--help") {
-      args.help = true;
-    } else if (arg == "-o" || arg == "--output") {
+    if (arg == "-o" || arg == "--output") {
       SOIQ_ASSIGN_OR_RETURN(args.out_path, value(arg));
     } else if (arg == "--label" || arg.starts_with("--label=")) {
       std::string text;
@@ -57,7 +52,6 @@ Result<MeshArgs> parse_args(int argc, char** argv) {
       return invalid_argument("unexpected argument '" + std::string(arg) + "' (one MASK only)");
     }
   }
-  if (args.help) return args;
   if (args.mask_path.empty()) return invalid_argument("missing MASK");
   if (args.out_path.empty()) return invalid_argument("missing -o OUT");
   return args;
@@ -79,13 +73,6 @@ Status mesh(const MeshArgs& args) {
   return ok_status();
 }
 
-int run_mesh_command(int argc, char** argv) {
-  const auto args = parse_args(argc, argv);
-  if (args.ok() && args->help) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  return run_command("mesh", args, mesh);
-}
+int run_mesh_command(int argc, char** argv) { return run_command("mesh", parse_args(argc, argv), mesh); }
 
 }  // namespace soiq::cli

@@ -1,5 +1,8 @@
 #include "client/cli/query_args.h"
 
+#include <charconv>
+#include <cstdio>
+
 #include "client/cli/cli_args.h"
 #include "client/cli/grid_args.h"
 #include "client/cli/record_args.h"
@@ -39,7 +42,7 @@ Result<bool> parse_stage1_option(int argc, char** argv, int& i, soiq::v1::Stage1
     if (years < 0) return invalid_argument(arg + " must be >= 0 years");
     arg == "--min-age" ? s.set_min_age_years(years) : s.set_max_age_years(years);
   }
-  if (arg.starts_with("--birth-date") || arg.starts_with("--study-date")) SOIQ_RETURN_IF_ERROR(check_date(v, arg));
+  if (arg.find("date") != std::string::npos) SOIQ_RETURN_IF_ERROR(check_date(v, arg));  // the four date bounds
   if (arg == "--birth-date-from") s.set_birth_date_from(v);
   if (arg == "--birth-date-to") s.set_birth_date_to(v);
   if (arg == "--study-date-from") s.set_study_date_from(v);
@@ -120,6 +123,39 @@ std::vector<std::string> query_feature_columns(const soiq::v1::QueryRequest& r) 
   for (const auto& f : r.select()) columns.push_back(client::feature_text(f));
   if (r.has_order_by()) columns.push_back(client::feature_text(r.order_by()));
   return columns;
+}
+
+Status in_command_line_words(const Status& status, const soiq::v1::QueryRequest& r) {
+  const std::string& m = status.message();
+  std::string flag, field;
+  int index = 0;
+  for (const char* name : {"where", "select"}) {
+    const std::string prefix = std::string(name) + "[";
+    if (!m.starts_with(prefix)) continue;
+    const size_t close = m.find("]: ");
+    if (close == std::string::npos) return status;
+    const char* first = m.data() + prefix.size();
+    const auto [end, ec] = std::from_chars(first, m.data() + close, index);
+    if (ec != std::errc() || end != m.data() + close) return status;
+    flag = std::string("--") + name;
+    field = m.substr(0, close + 3);
+  }
+  if (m.starts_with("order_by: ") && r.has_order_by()) {
+    return Status(status.code(),
+                  "--order-by '" + client::feature_text(r.order_by()) + "': " + m.substr(sizeof("order_by: ") - 1));
+  }
+  std::string text;
+  if (flag == "--where" && index >= 0 && index < r.where_size()) {
+    const soiq::v1::Predicate& p = r.where(index);
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", p.value());
+    text = client::feature_text(p.feature()) + " " + client::comparison_text(p.op()) + " " + value;
+  } else if (flag == "--select" && index >= 0 && index < r.select_size()) {
+    text = client::feature_text(r.select(index));
+  } else {
+    return status;
+  }
+  return Status(status.code(), flag + " '" + text + "': " + m.substr(field.size()));
 }
 
 std::vector<size_t> distinct_columns(const std::vector<std::string>& columns) {

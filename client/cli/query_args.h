@@ -31,6 +31,10 @@ Result<QueryArgs> parse_query_args(int argc, char** argv);
 // select, then order_by (as feature_text gives them).
 std::vector<std::string> query_feature_columns(const soiq::v1::QueryRequest& request);
 
+// soiqd's message about a field of the request ("where[0]: unknown feature ...") in the words of
+// the command line ("--where 'sphercity > 1': unknown feature ..."); other messages unchanged.
+Status in_command_line_words(const Status& status, const soiq::v1::QueryRequest& request);
+
 // The positions of `columns` to print: the first of each distinct name (an --order-by that repeats
 // a --select, say, is shown once).
 std::vector<size_t> distinct_columns(const std::vector<std::string>& columns);

@@ -77,7 +77,7 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   const Result<soiq::v1::QuerySummary> summary = c.query(a.request, handlers);
   std::signal(SIGINT, previous);
   bar.clear();
-  if (!summary.ok()) return summary.status();
+  if (!summary.ok()) return in_command_line_words(summary.status(), a.request);
   out.end();
   print_summary(*summary);
   return summary->failed();

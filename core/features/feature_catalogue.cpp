@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "core/base/did_you_mean.h"
+
 namespace soiq {
 namespace {
 
@@ -186,17 +188,29 @@ int feature_definitions_version() {
 }
 
 std::string known_feature_names() {
+  // Grouped by family, so a reader scans the one they meant; voxel_count is listed once (volume).
   std::string known;
-  for (const FeatureDef& f : kCatalogue) {
-    if (f.family == FeatureFamily::kIntensity && find_shape_feature(f.name) != nullptr) continue;
-    known += (known.empty() ? "" : ", ") + std::string(f.name);
+  for (const FeatureFamily family :
+       {FeatureFamily::kVolume, FeatureFamily::kSurface, FeatureFamily::kDiameter2d, FeatureFamily::kIntensity}) {
+    std::string names;
+    for (const FeatureDef& f : kCatalogue) {
+      if (f.family != family || (family == FeatureFamily::kIntensity && find_shape_feature(f.name))) continue;
+      names += (names.empty() ? "" : ", ") + std::string(f.name);
+    }
+    known += (known.empty() ? "" : "; ") + std::string(family_name(family)) + ": " + names;
   }
   return known + " (and mask_<surface feature> beside a stored surface)";
 }
 
 Status check_feature_name(std::string_view name) {
   if (find_shape_feature(name) || find_intensity_feature(name) || mask_feature(name)) return ok_status();
-  return invalid_argument("unknown feature '" + std::string(name) + "'; known features: " + known_feature_names());
+  std::vector<std::string> names;
+  for (const FeatureDef& f : kCatalogue) names.emplace_back(f.name);
+  for (const FeatureDef& f : kCatalogue) {
+    if (f.family == FeatureFamily::kSurface) names.push_back(std::string(kMaskPrefix) + std::string(f.name));
+  }
+  return invalid_argument("unknown feature '" + std::string(name) + "'" + did_you_mean(name, names) +
+                          " (known features by family: " + known_feature_names() + ")");
 }
 
 bool is_intensity_only(std::string_view name) {

@@ -111,12 +111,13 @@ const FeatureDef* mask_feature(std::string_view name);
 // definition invalidates cached values.
 int feature_definitions_version();
 
-// "voxel_count, voxel_volume_mm3, ..." for messages that list what is known: the shape names,
-// then the intensity-only ones, then "mask_<surface feature>".
+// "volume: voxel_count, ...; surface: ...; diameter_2d: ...; intensity: mean, ..." for messages
+// that list what is known: real feature names only, grouped by family, then "mask_<surface feature>".
 std::string known_feature_names();
 
 // OK when `name` is a shape, intensity or mask_ surface feature; else INVALID_ARGUMENT "unknown
-// feature 'name'; known features: ..." (known_feature_names).
+// feature 'name'; did you mean 'closest'? (known features by family: ...)" (known_feature_names;
+// the did-you-mean only when a name is near, core/base/did_you_mean.h).
 Status check_feature_name(std::string_view name);
 
 // True when `name` is only an intensity feature: it needs an image (voxel_count does not).

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/base/did_you_mean.h"
 #include "core/regions/ball_morphology.h"
 #include "core/regions/distance_transform.h"
 
@@ -99,7 +100,11 @@ Result<RegionSpec> parse_region(std::string_view text) {
     spec.kind = RegionKind::kCore;
     number = text.substr(5);
   } else {
-    return invalid_argument("unknown region '" + std::string(text) + "'" + accepted);
+    // Suggest with the reader's own radius: "shel:5" means "shell:5", not "shell:R".
+    const size_t colon = text.find(':');
+    const std::string radius = colon == std::string_view::npos ? "R" : std::string(text.substr(colon + 1));
+    const std::string names[] = {"inside", "shell:" + radius, "core:" + radius};
+    return invalid_argument("unknown region '" + std::string(text) + "'" + did_you_mean(text, names) + accepted);
   }
   const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), spec.radius_mm);
   if (ec != std::errc() || end != number.data() + number.size() || !std::isfinite(spec.radius_mm) ||

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "core/base/did_you_mean.h"
 #include "server/app/modality_names.h"
 
 namespace soiq::server {
@@ -49,7 +50,8 @@ Status ImageRefsCheck::check(db::Store& store, const std::vector<std::string>& r
     if (!found) {
       const std::string alias = same_ignoring_case(ref, "PT") ? " (PET's DICOM code)" : "";
       std::lock_guard<std::mutex> lock(mutex_);
-      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities_));
+      return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities_) +
+                       did_you_mean(ref, modalities_));
     }
   }
   return ok_status();

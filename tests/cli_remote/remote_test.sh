@@ -124,9 +124,10 @@ expect 2 "plain.txt" -- "$soiq" import "$tmp/plain.txt"
 # No silent empty answers. "PET" is DICOM's PT: the same rows as [inside,PT].
 "$soiq" query --patient STS_002 --name 'GTV*' --select 'mean[inside,PET]' --series-modality CT --format csv \
   >"$tmp/pet2.csv" 2>/dev/null || fail "query naming PET"
-[ "$(tail -n +2 "$tmp/pet2.csv")" = "$(tail -n +2 "$tmp/pet.csv")" ] || fail "PET and PT differ: $(cat "$tmp/pet2.csv")"
+[ "$(tail -n +2 "$tmp/pet2.csv" | sort)" = "$(tail -n +2 "$tmp/pet.csv" | sort)" ] || fail "PET and PT differ: $(cat "$tmp/pet2.csv" "$tmp/pet.csv")"
 # An image no stored series has is refused before anything is computed, naming what is held.
 expect 3 "no image in this soiqd has modality 'NM'; it holds CT, MR, PT" -- "$soiq" query --select 'mean[inside,NM]'
+expect 3 "it holds CT, MR, PT; did you mean 'MR'?" -- "$soiq" query --select 'mean[inside,MRI]'
 # The demo's amygdalae have no PT image in their studies: a partial answer, exit 8, with the count
 # and the reason on stderr.
 "$soiq" query --name 'amygdala' --where 'mean[inside,PT] > 0' >"$tmp/partial.out" 2>"$tmp/partial.err"

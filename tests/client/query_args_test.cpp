@@ -102,5 +102,19 @@ INSTANTIATE_TEST_SUITE_P(
                     BadQuery{{"volume>3"}, "conditions go in --where"},
                     BadQuery{{"--where"}, "--where needs a value"}));
 
+TEST(InCommandLineWords, NamesTheFlagAndTheExpressionInsteadOfTheField) {
+  const auto a = parse({"--where", "volume_mm3 > 5", "--select", "mean[inside,PT]", "--order-by", "sphericity"});
+  ASSERT_TRUE(a.ok()) << a.status().to_string();
+  const Status where = in_command_line_words(invalid_argument("where[0]: unknown feature 'volume_mm3'"), a->request);
+  EXPECT_EQ(where.message(), "--where 'volume_mm3 > 5': unknown feature 'volume_mm3'");
+  EXPECT_EQ(where.code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(in_command_line_words(invalid_argument("select[0]: needs an image"), a->request).message(),
+            "--select 'mean[inside,PT]': needs an image");
+  EXPECT_EQ(in_command_line_words(invalid_argument("order_by: an array"), a->request).message(),
+            "--order-by 'sphericity': an array");
+  EXPECT_EQ(in_command_line_words(not_found("where[7]: out of range"), a->request).message(), "where[7]: out of range");
+  EXPECT_EQ(in_command_line_words(Status(StatusCode::kUnavailable, "no server"), a->request).message(), "no server");
+}
+
 }  // namespace
 }  // namespace soiq::cli

@@ -99,6 +99,19 @@ TEST(FeatureCatalogue, NamesAreCheckedInOnePlace) {
   EXPECT_EQ(known_feature_names().find("where"), std::string::npos);
 }
 
+TEST(FeatureCatalogue, AnUnknownNameGetsTheClosestFirstThenTheNamesByFamily) {
+  const std::string m = check_feature_name("sphericty").message();
+  EXPECT_NE(m.find("unknown feature 'sphericty'; did you mean 'sphericity'?"), std::string::npos) << m;
+  const size_t volume = m.find("volume: voxel_count"), surface = m.find("; surface: "),
+               intensity = m.find("; intensity: ");
+  EXPECT_LT(m.find("did you mean"), volume) << m;
+  EXPECT_LT(volume, surface) << m;
+  EXPECT_LT(surface, intensity) << m;
+  EXPECT_EQ(check_feature_name("mask_sphercity").message().find("did you mean 'mask_sphericity'?") == std::string::npos,
+            false);
+  EXPECT_EQ(check_feature_name("zzzzzzzz").message().find("did you mean"), std::string::npos);
+}
+
 // Bitwise equal doubles, NaN-aware.
 void expect_same_hull_free(const SurfaceShape& a, const SurfaceShape& b) {
   EXPECT_EQ(a.mesh_volume_mm3, b.mesh_volume_mm3);

@@ -27,6 +27,13 @@ TEST(Regions, ParseRejectsBadRadiusAndUnknownNames) {
   }
 }
 
+TEST(Regions, AnUnknownNameSuggestsTheClosestWithTheGivenRadius) {
+  EXPECT_NE(parse_region("insde").status().message().find("did you mean 'inside'?"), std::string::npos);
+  EXPECT_NE(parse_region("shel:5").status().message().find("did you mean 'shell:5'?"), std::string::npos);
+  EXPECT_NE(parse_region("cor:2.5").status().message().find("did you mean 'core:2.5'?"), std::string::npos);
+  EXPECT_EQ(parse_region("rim:3").status().message().find("did you mean"), std::string::npos);
+}
+
 // Found by fuzz_feature_expression: names printed with %g lost digits, so two radii shared one name
 // (and soiqd's cache entries). A name now reads back to exactly its radius.
 TEST(RegionName, ReadsBackToExactlyItsRadius) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The install and the CMake package, as a packager and a user of the client library meet them:
-# `cmake --install` into a fresh prefix puts soiq and soiqd in bin/; a separate project finds the
+# `cmake --install` into a fresh prefix puts soiq and soiqd in bin/, soiq's bash completion and the
+# soiq(1) and soiqd(8) man pages under share/; a separate project finds the
 # package with find_package(soiq), links soiq::client, and asks a real soiqd (the installed one,
 # on a free loopback port) for its version, which must be this build's.
 #   install_test.sh SOURCE_DIR BUILD_DIR [CONSUMER_LINK_FLAGS]
@@ -18,7 +19,8 @@ fail() {
 
 cmake --install "$build" --prefix "$tmp/prefix" >"$tmp/install.log" 2>&1 || fail "cmake --install: $(tail -5 "$tmp/install.log")"
 for f in bin/soiq bin/soiqd include/soiq/client/soiq_client.h include/soiq/soiq/v1/soiq.grpc.pb.h \
-  include/soiq/core/base/status.h lib/cmake/soiq/soiqConfig.cmake; do
+  include/soiq/core/base/status.h lib/cmake/soiq/soiqConfig.cmake share/bash-completion/completions/soiq \
+  share/man/man1/soiq.1 share/man/man8/soiqd.8; do
   [ -e "$tmp/prefix/$f" ] || fail "not installed: $f"
 done
 

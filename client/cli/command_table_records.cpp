@@ -1,0 +1,126 @@
+// The rows of the commands that store, list, show, remove and fetch records on soiqd in the
+// command table: upload, upload-image, import, export-seg, ls, show, rm, download.
+#include "client/cli/command_table.h"
+#include "client/cli/download_command.h"
+#include "client/cli/export_seg_command.h"
+#include "client/cli/import_command.h"
+#include "client/cli/ls_command.h"
+#include "client/cli/rm_command.h"
+#include "client/cli/show_command.h"
+#include "client/cli/upload_command.h"
+#include "client/cli/upload_image_command.h"
+
+namespace soiq::cli {
+
+std::vector<CommandSpec> record_commands() {
+  const OptionSpec patient = {"--patient", "ID", "", "the patient id (required)"};
+  const OptionSpec study = {"--study", "UID", "", "the study instance uid (required)"};
+  const OptionSpec sex = {"--sex", "M|F|O", "", "the patient's sex"};
+  const OptionSpec birth = {"--birth-date", "YYYYMMDD", "", "the patient's birth date"};
+  const OptionSpec study_date = {"--study-date", "YYYYMMDD", "", "the study's date"};
+  const OptionSpec description = {"--description", "TEXT", "", "the study's description"};
+  const OptionSpec rows = {"--format", "table|json|csv", "table", "output format"};
+  const OptionSpec output = {"-o", "OUT", "", "the file to write", "--output"};
+  return {
+      {"upload",
+       CommandGroup::kRemote,
+       {"upload MESH --patient ID --study UID --name NAME [--laterality L|R] [--sex M|F|O]",
+        "       [--birth-date YYYYMMDD] [--study-date YYYYMMDD] [--modality MR] [--description D]",
+        "       [--ras] [--robust] [-q]"},
+       "stores a surface model; prints its structure id and whether the surface was deduplicated",
+       "Sends a surface model (.stl .obj .ply .vtk .vtp) with its patient and study to soiqd, which checks "
+       "it, converts it and stores it. Prints the new structure id.",
+       {patient,
+        study,
+        {"--name", "NAME", "", "the structure's name, e.g. hippocampus (required)"},
+        {"--laterality", "L|R", "", "the structure's side"},
+        sex,
+        birth,
+        study_date,
+        {"--modality", "M", "", "the study's modality (MR, CT, PT)"},
+        description,
+        {"--ras", "", "LPS", "the file's coordinates are RAS, not LPS"},
+        {"--robust", "", "", "accept open or self-intersecting surfaces"},
+        {"-q", "", "", "print only the structure id", "--quiet"}},
+       {"soiq upload brain1.vtp --patient P1 --study 1.2.3 --name hippocampus --laterality L"},
+       run_upload_command},
+      {"upload-image",
+       CommandGroup::kRemote,
+       {"upload-image IMAGE --patient ID --study UID --series UID --modality PT [--sex ..] [--birth-date ..]",
+        "             [--study-date ..] [--description D]"},
+       "stores an image series (.nii .nii.gz .nrrd .mha): a target grid and the image of intensity features",
+       "Sends an image with its patient, study and series to soiqd. The series can then be a conversion's "
+       "target grid (--series UID) and the image of intensity features (--image MODALITY).",
+       {patient,
+        study,
+        {"--series", "UID", "", "the series instance uid (required)"},
+        {"--modality", "M", "", "the series' modality: MR, CT, PT, ... (required)"},
+        sex,
+        birth,
+        study_date,
+        description},
+       {"soiq upload-image pet.nii.gz --patient P1 --study 1.2.3 --series 1.2.3.4 --modality PT"},
+       run_upload_image_command},
+      {"import",
+       CommandGroup::kRemote,
+       {"import PATH... [--format table|json|csv]"},
+       "sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
+       "Structure Set ROIs structures on their series' grid; prints what was imported, problems on stderr",
+       "Sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
+       "Structure Set ROIs structures on their series' grid. Prints what was imported; problems on stderr.",
+       {rows},
+       {"soiq import data/STS_002/"},
+       run_import_command},
+      {"export-seg",
+       CommandGroup::kRemote,
+       {"export-seg ID... -o OUT.dcm [--description TEXT]"},
+       "imported structures as one binary DICOM SEG on the image series they were drawn on",
+       "Writes imported structures as one binary DICOM Segmentation on the image series they were drawn "
+       "on, one segment per structure.",
+       {output, {"--description", "TEXT", "", "the SEG series' description"}},
+       {"soiq export-seg 1 2 -o seg.dcm"},
+       run_export_seg_command},
+      {"ls",
+       CommandGroup::kRemote,
+       {"ls [patients|studies|structures] [--patient ID|GLOB] [--study UID] [--name GLOB] [--laterality L|R]",
+        "   [--sex M|F|O] [--format table|json|csv] [--all | --page-size N]"},
+       "lists patients, studies or structures",
+       "Lists the patients (default), studies or structures soiqd holds, a page at a time (or --all).",
+       {{"--patient", "ID|GLOB", "", "only this patient (a glob: * and ?)"},
+        {"--study", "UID", "", "structures of this study"},
+        {"--name", "GLOB", "", "structures of this name"},
+        {"--laterality", "L|R", "", "structures of this side"},
+        {"--sex", "M|F|O", "", "patients of this sex"},
+        rows,
+        {"--all", "", "", "every page"},
+        {"--page-size", "N", "100", "rows per page"}},
+       {"soiq ls structures --name 'hippo*' --laterality L", "soiq ls patients --all --format csv"},
+       run_ls_command},
+      {"show",
+       CommandGroup::kRemote,
+       {"show patient ID | study UID | [structure] ID [--format text|json]"},
+       "one record in full",
+       "Prints one patient, study or structure in full. A bare number is a structure id.",
+       {{"--format", "text|json", "text", "output format"}},
+       {"soiq show 4", "soiq show patient P1 --format json"},
+       run_show_command},
+      {"rm",
+       CommandGroup::kRemote,
+       {"rm structure ID | patient ID"},
+       "removes a structure, or a patient with everything of theirs",
+       "Removes one structure, or one patient with their studies, series and structures.",
+       {},
+       {"soiq rm structure 4"},
+       run_rm_command},
+      {"download",
+       CommandGroup::kRemote,
+       {"download ID -o OUT.{stl,obj,ply,vtk,vtp} [--ras]"},
+       "a stored structure's surface model",
+       "Writes a stored structure's surface model; its extension chooses the format.",
+       {output, {"--ras", "", "LPS", "write RAS coordinates instead of LPS"}},
+       {"soiq download 4 -o hippocampus.stl"},
+       run_download_command},
+  };
+}
+
+}  // namespace soiq::cli
