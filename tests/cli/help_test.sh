@@ -38,12 +38,14 @@ complete_words() {  # complete_words WORD...: COMPREPLY for the last word, one p
 }
 [ "$(complete_words soiq qu)" = "query" ] || fail "soiq qu<TAB>: $(complete_words soiq qu)"
 [ "$(complete_words soiq query --sel)" = "--select" ] || fail "soiq query --sel<TAB>: $(complete_words soiq query --sel)"
-complete_words soiq query --select sphe | grep -qx sphericity || fail "--select sphe<TAB>: $(complete_words soiq query --select sphe)"
+# Captured before grep: with pipefail, `grep -q` leaving early makes the writer's SIGPIPE fail the pipe.
+words=$(complete_words soiq query --select sphe)
+grep -qx sphericity <<<"$words" || fail "--select sphe<TAB>: $words"
 [ "$(complete_words soiq ls --format j)" = "json" ] || fail "ls --format j<TAB>: $(complete_words soiq ls --format j)"
 [ "$(complete_words soiq pacs f)" = "find" ] || fail "soiq pacs f<TAB>: $(complete_words soiq pacs f)"
 [ "$(complete_words soiq pacs find --lev)" = "--level" ] || fail "pacs find --lev<TAB>: $(complete_words soiq pacs find --lev)"
-complete_words soiq features x.vtp --features voxel_count,sphe | grep -qx voxel_count,sphericity ||
-  fail "--features a,sphe<TAB>: $(complete_words soiq features x.vtp --features voxel_count,sphe)"
+words=$(complete_words soiq features x.vtp --features voxel_count,sphe)
+grep -qx voxel_count,sphericity <<<"$words" || fail "--features a,sphe<TAB>: $words"
 expect 2 "soiq completion bash" -- $soiq completion zsh
 
 finish help_test
