@@ -38,7 +38,6 @@ complete_words() {  # complete_words WORD...: COMPREPLY for the last word, one p
 }
 [ "$(complete_words soiq qu)" = "query" ] || fail "soiq qu<TAB>: $(complete_words soiq qu)"
 [ "$(complete_words soiq query --sel)" = "--select" ] || fail "soiq query --sel<TAB>: $(complete_words soiq query --sel)"
-# Captured before grep: with pipefail, `grep -q` leaving early makes the writer's SIGPIPE fail the pipe.
 words=$(complete_words soiq query --select sphe)
 grep -qx sphericity <<<"$words" || fail "--select sphe<TAB>: $words"
 [ "$(complete_words soiq ls --format j)" = "json" ] || fail "ls --format j<TAB>: $(complete_words soiq ls --format j)"

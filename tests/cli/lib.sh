@@ -2,6 +2,8 @@
 # every test makes of an error: its exit code, a phrase of its message, and that it is one line.
 # Each test calls `finish NAME` last.
 set -uo pipefail
+# With pipefail, `cmd | grep -q` fails when grep leaves before cmd's last write (SIGPIPE): the tests
+# capture output first and grep it (`grep -q X <<<"$(cmd)"`).
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0

@@ -62,7 +62,7 @@ start_soiqd main --pacs "SOIQTEST@127.0.0.1:$pacs_port" --pacs-timeout 5
 export SOIQ_SERVER=$server
 "$soiq" pacs echo >"$tmp/echo" || fail "pacs echo: $(cat "$tmp/echo")"
 grep -q "PACS 'SOIQTEST' at 127.0.0.1:$pacs_port answered C-ECHO" "$tmp/echo" || fail "echo says: $(cat "$tmp/echo")"
-"$soiq" info | grep -q "SOIQTEST" || fail "soiq info does not name the PACS"
+grep -q "SOIQTEST" <<<"$("$soiq" info)" || fail "soiq info does not name the PACS"
 
 "$soiq" pacs find --level patient --patient 'STS*' --format csv >"$tmp/patients.csv" 2>"$tmp/find.err" ||
   fail "pacs find patients: $(cat "$tmp/find.err")"

@@ -40,17 +40,17 @@ SOIQ_SERVER= "$soiq" info --server 127.0.0.1 --timeout 0.5 2>"$tmp/err" >/dev/nu
 grep -q "127.0.0.1:0" "$tmp/err" && fail "a bare host is shown with port 0: $(cat "$tmp/err")"
 
 # Listing and showing.
-"$soiq" ls | grep -q "^P1 " || fail "ls patients lacks P1"
+grep -q "^P1 " <<<"$("$soiq" ls)" || fail "ls patients lacks P1"
 [ "$("$soiq" ls structures --patient P1 --format csv | wc -l)" -eq 3 ] || fail "ls structures: not header + 2 rows"
 "$soiq" ls structures --name PHANT* --laterality R --format json >"$tmp/ls.json" || fail "ls --format json"
 grep -q "\"id\": $id2," "$tmp/ls.json" || fail "ls json lacks structure $id2: $(cat "$tmp/ls.json")"
 grep -q "\"id\": $id," "$tmp/ls.json" && fail "ls --laterality R lists the L structure"
-"$soiq" ls studies --patient P1 | grep -q "^1.2.3 " || fail "ls studies"
-"$soiq" show structure "$id" | grep -q "^name  *phantom" || fail "show structure"
-"$soiq" show "$id" | grep -q "^name  *phantom" || fail "show ID (a bare id is a structure)"
+grep -q "^1.2.3 " <<<"$("$soiq" ls studies --patient P1)" || fail "ls studies"
+grep -q "^name  *phantom" <<<"$("$soiq" show structure "$id")" || fail "show structure"
+grep -q "^name  *phantom" <<<"$("$soiq" show "$id")" || fail "show ID (a bare id is a structure)"
 expect 2 "soiq rm structure $id" -- "$soiq" rm "$id"
-"$soiq" show study 1.2.3 | grep -q "^series  *1.2.3.1 CT" || fail "show study lacks its series"
-"$soiq" show patient P1 --format json | grep -q '"patient_id":"P1"' || fail "show patient --format json"
+grep -q "^series  *1.2.3.1 CT" <<<"$("$soiq" show study 1.2.3)" || fail "show study lacks its series"
+grep -q '"patient_id":"P1"' <<<"$("$soiq" show patient P1 --format json)" || fail "show patient --format json"
 
 # Features on the stored image's grid: the voxels are the mask's own (the conversion is exact), so
 # the volume equals the offline value of the mask, and the mean is IBSI's 2.15.
@@ -63,10 +63,10 @@ local_volume=$("$soiq" features "$phantom/mask.nii.gz" --features voxel_volume_m
   fail "remote volume '$remote_volume' != offline '$local_volume'"
 within mean "$(awk -F, '$3 == "mean" { print $4 }' "$tmp/f.csv")" 2.15 0.005
 "$soiq" convert "$id" --series 1.2.3.1 -o "$tmp/back.nii.gz" >/dev/null || fail "remote convert"
-"$soiq" compare "$tmp/back.nii.gz" "$phantom/mask.nii.gz" | grep -q "^identical" || fail "remote convert != mask"
-"$soiq" convert "$id" --spacing 0.5 -o "$tmp/fine.nrrd" | grep -q "voxels inside" || fail "remote convert to nrrd"
+grep -q "^identical" <<<"$("$soiq" compare "$tmp/back.nii.gz" "$phantom/mask.nii.gz")" || fail "remote convert != mask"
+grep -q "voxels inside" <<<"$("$soiq" convert "$id" --spacing 0.5 -o "$tmp/fine.nrrd")" || fail "remote convert to nrrd"
 [ -s "$tmp/fine.nrrd" ] || fail "no nrrd written"
-"$soiq" download "$id" -o "$tmp/down.vtp" | grep -q "bytes ->" || fail "download"
+grep -q "bytes ->" <<<"$("$soiq" download "$id" -o "$tmp/down.vtp")" || fail "download"
 "$soiq" features "$tmp/down.vtp" --features mesh_volume_mm3 --format csv >/dev/null || fail "downloaded mesh unreadable"
 "$soiq" download "$id" -o "$tmp/new/folder/down.stl" >/dev/null && [ -s "$tmp/new/folder/down.stl" ] || fail "download into a new folder"
 
@@ -93,9 +93,9 @@ printf 'solid open\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 10 0 0\
 expect 4 "robust" -- "$soiq" upload "$tmp/open.stl" "${record[@]}" --name open
 
 # Deleting.
-"$soiq" rm structure "$id2" | grep -q "^deleted 1 structure$" || fail "rm structure"
+grep -q "^deleted 1 structure$" <<<"$("$soiq" rm structure "$id2")" || fail "rm structure"
 expect 3 "$id2" -- "$soiq" show structure "$id2"
-"$soiq" rm patient P1 | grep -q "^deleted 1 structure$" || fail "rm patient"
+grep -q "^deleted 1 structure$" <<<"$("$soiq" rm patient P1)" || fail "rm patient"
 expect 3 "P1" -- "$soiq" show patient P1
 
 # The demo cohort answers queries at once.
