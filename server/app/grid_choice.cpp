@@ -5,16 +5,10 @@
 #include <cstdio>
 
 #include "core/voxelize/grid_around.h"
+#include "server/app/modality_names.h"
 
 namespace soiq::server {
-namespace {
-
-std::string upper(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
-  return s;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Result<db::SeriesRecord> find_series(const std::string& ref, const std::vector<db::SeriesRecord>& study_series,
                                      const std::string& study_uid) {
@@ -23,7 +17,7 @@ Result<db::SeriesRecord> find_series(const std::string& ref, const std::vector<d
   }
   std::vector<const db::SeriesRecord*> by_modality;
   for (const auto& s : study_series) {
-    if (upper(s.modality) == upper(ref)) by_modality.push_back(&s);
+    if (same_modality(s.modality, ref)) by_modality.push_back(&s);
   }
   if (by_modality.size() == 1) return *by_modality[0];
   if (by_modality.size() > 1)

@@ -9,12 +9,6 @@
 namespace soiq::server {
 namespace {
 
-bool same_ignoring_case(const std::string& a, const std::string& b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](unsigned char x, unsigned char y) {
-           return std::toupper(x) == std::toupper(y);
-         });
-}
-
 std::string held(const std::vector<std::string>& modalities) {
   if (modalities.empty()) return "it holds no image series yet (soiq upload-image, soiq import)";
   std::string out = "it holds ";
@@ -32,7 +26,7 @@ Result<bool> ImageRefsCheck::known(db::Store& store, const std::string& modality
   }
   std::lock_guard<std::mutex> lock(mutex_);
   return std::any_of(modalities_.begin(), modalities_.end(),
-                     [&](const std::string& m) { return same_ignoring_case(m, modality); });
+                     [&](const std::string& m) { return same_modality(m, modality); });
 }
 
 Status ImageRefsCheck::check(db::Store& store, const std::vector<std::string>& refs) {
@@ -48,7 +42,7 @@ Status ImageRefsCheck::check(db::Store& store, const std::vector<std::string>& r
     if (seen) continue;
     SOIQ_ASSIGN_OR_RETURN(const bool found, known(store, ref, true));
     if (!found) {
-      const std::string alias = same_ignoring_case(ref, "PT") ? " (PET's DICOM code)" : "";
+      const std::string alias = same_modality(ref, "PT") ? " (PET's DICOM code)" : "";
       std::lock_guard<std::mutex> lock(mutex_);
       return not_found("no image in this soiqd has modality '" + ref + "'" + alias + "; " + held(modalities_) +
                        did_you_mean(ref, modalities_));

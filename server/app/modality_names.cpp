@@ -5,11 +5,13 @@
 
 namespace soiq::server {
 
-std::string dicom_modality(const std::string& name) {
-  std::string upper = name;
-  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return char(std::toupper(c)); });
-  return upper == "PET" ? "PT" : name;
+bool same_modality(const std::string& a, const std::string& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](unsigned char x, unsigned char y) {
+           return std::toupper(x) == std::toupper(y);
+         });
 }
+
+std::string dicom_modality(const std::string& name) { return same_modality(name, "PET") ? "PT" : name; }
 
 bool is_series_uid(const std::string& ref) {
   return !ref.empty() && ref.find('.') != std::string::npos &&

@@ -6,6 +6,8 @@
 // dicom_modality   "PET" (any case) -> "PT"; every other text unchanged. Applied once, where a
 //                  request is decoded, so "PET" means PT everywhere (stage 1, images, grids,
 //                  uploads) and rows and messages show "PT".
+// same_modality    ASCII case-insensitive equality of two modality codes ("mr" is MR), the one
+//                  comparison every lookup of an image by modality uses.
 // is_series_uid    true for a DICOM UID (digits and dots, PS3.5 9.1), which names one series;
 //                  false for a modality code.
 // Cost O(length). Pure.
@@ -15,6 +17,8 @@
 namespace soiq::server {
 
 std::string dicom_modality(const std::string& name);
+
+bool same_modality(const std::string& a, const std::string& b);
 
 bool is_series_uid(const std::string& ref);
 
