@@ -1,5 +1,6 @@
 #include "core/io/legacy_vtk_geometry.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -181,22 +182,36 @@ Result<std::string> legacy_vtk_geometry(const std::string& bytes, const std::str
     return bad(path, "not polydata (expected 'DATASET POLYDATA')");
   }
   int64_t points = -1;
+  // What VTK's reader gets: the checked sections, without METADATA blocks (VTK would read their
+  // contents by its own rules, which could differ from where this check thinks a block ends).
+  std::string geometry;
+  size_t kept_from = 0;
   while (!in.at_end()) {
     const size_t section_start = in.pos();
     const auto w = in.line_words();
     if (w.empty()) continue;
     const std::string& key = w[0];
-    if (key == "POINT_DATA" || key == "CELL_DATA" || key == "FIELD") return bytes.substr(0, section_start);
+    if (key == "POINT_DATA" || key == "CELL_DATA" || key == "FIELD") {
+      geometry += bytes.substr(kept_from, section_start - kept_from);
+      kept_from = bytes.size();
+      break;
+    }
     if (key == "METADATA") {
-      // Key/value information up to a blank line: skip it.
+      // Key/value information up to a blank line: dropped.
       const size_t blank = bytes.find("\n\n", in.pos());
-      in.set_pos(blank == std::string::npos ? bytes.size() : blank + 2);
+      if (blank == std::string::npos) return bad(path, "METADATA is not ended by a blank line");
+      geometry += bytes.substr(kept_from, section_start - kept_from);
+      kept_from = blank + 2;
+      in.set_pos(kept_from);
       continue;
     }
     if (key == "POINTS") {
       const auto n = w.size() == 3 ? parse_integer(w[1]) : std::nullopt;
       const int size = w.size() == 3 ? scalar_size(w[2]) : 0;
       if (!n || *n < 0 || size == 0) return bad(path, "malformed POINTS line");
+      // Every coordinate takes at least a byte, so a count past a third of the file cannot be met
+      // (and 3 * count must not overflow).
+      if (*n > int64_t(bytes.size() / 3)) return bad(path, "POINTS data is truncated or malformed");
       if (!in.values(3 * *n, size, false, nullptr)) return bad(path, "POINTS data is truncated or malformed");
       points = *n;
       continue;
@@ -208,7 +223,8 @@ Result<std::string> legacy_vtk_geometry(const std::string& bytes, const std::str
     SOIQ_RETURN_IF_ERROR(check_cell_section(in, w, header.version, points, path));
   }
   if (points < 0) return bad(path, "no POINTS section");
-  return bytes;
+  geometry += bytes.substr(std::min(kept_from, bytes.size()));
+  return geometry;
 }
 
 }  // namespace soiq

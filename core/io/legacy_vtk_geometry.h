@@ -6,9 +6,10 @@
 // Inputs   the file's bytes (ASCII or BINARY, file versions 3.0-5.1); `path` for messages.
 // Output   the file up to its first attribute section (POINT_DATA, CELL_DATA, FIELD), which soiq
 //          ignores anyway: header, DATASET POLYDATA, POINTS, VERTICES, LINES, POLYGONS,
-//          TRIANGLE_STRIPS (legacy counts or 5.1 OFFSETS/CONNECTIVITY), METADATA blocks.
+//          TRIANGLE_STRIPS (legacy counts or 5.1 OFFSETS/CONNECTIVITY), without its METADATA
+//          blocks (each up to the next blank line), so VTK never reads a byte not checked here.
 // Errors   INVALID_ARGUMENT naming the file and the problem: not polydata, truncated section,
-//          malformed count, cell point index out of range.
+//          malformed count, cell point index out of range, METADATA without its ending blank line.
 // Cost     O(file size); thread-safe.
 
 #include <string>

@@ -46,6 +46,37 @@ TEST(ParseMesh, LegacyBinaryVtkWithANanVertexIsRefused) {
   testing_io::expect_invalid(parse_mesh(bytes, "vtk", false, "nan.vtk"), "vertex 1 that is not a finite number");
 }
 
+// The fuzzer's find: a POINTS count near 2^63 made "3 values per point" overflow before the data
+// was measured against it.
+TEST(ParseMesh, LegacyVtkWithAPointsCountNoFileCanHoldIsRefused) {
+  for (const char* format : {"BINARY", "ASCII"}) {
+    const std::string bytes = std::string("# vtk DataFile Version 3.0\nhuge\n") + format +
+                              "\nDATASET POLYDATA\nPOINTS 5124095576030431004 float\n0 0 0 1 0 0 0 1 0\n";
+    testing_io::expect_invalid(parse_mesh(bytes, "vtk", false, "huge.vtk"), "POINTS data is truncated");
+  }
+}
+
+// The fuzzer's find: VTK reads a METADATA block by its own rules, so a section after "METADATA"
+// that this check skipped as part of the block reached VTK's reader unchecked (it crashed on its
+// bad counts). Blocks now end at a blank line or the file is refused, and VTK never sees them.
+TEST(ParseMesh, LegacyVtkMetadataWithoutItsBlankLineIsRefused) {
+  const std::string bytes =
+      "# vtk DataFile Version 3.0\nm\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+      "METADATA\nTRIANGLE_STRIPS 6 30\n4 0 1 2 7\n";
+  testing_io::expect_invalid(parse_mesh(bytes, "vtk", false, "m.vtk"), "METADATA is not ended by a blank line");
+}
+
+TEST(ParseMesh, LegacyVtkCellsAfterAMetadataBlockAreCheckedLikeAnyOthers) {
+  const std::string head =
+      "# vtk DataFile Version 3.0\nm\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+      "METADATA\nINFORMATION 0\n\n";
+  const auto good = parse_mesh(head + "POLYGONS 4 16\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n", "vtk", false, "m.vtk");
+  ASSERT_TRUE(good.ok()) << good.status().to_string();
+  EXPECT_EQ(good->triangles.size(), 4u);
+  testing_io::expect_invalid(parse_mesh(head + "POLYGONS 1 4\n3 0 1 9\n", "vtk", false, "m.vtk"),
+                             "point index 9 is out of range");
+}
+
 TEST(ParseMesh, FormatIsCaseInsensitiveAndMayHaveADot) {
   const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_TRUE(parse_mesh(off, ".OFF", false, "a").ok());
