@@ -104,6 +104,12 @@ Result<LegacyHeader> read_header(const std::string& bytes, const std::string& pa
   const size_t l3 = l2 == std::string::npos ? l2 : bytes.find('\n', l2 + 1);
   if (!bytes.starts_with("# vtk DataFile Version") || l3 == std::string::npos) return bad(path, "malformed header");
   const std::string_view version_text = trim(std::string_view(bytes).substr(22, l1 - 22));
+  // Only the versions VTK writes: VTK parses others its own way ("501" crashed its reader), so this
+  // check could not know which layout VTK would read.
+  static constexpr std::string_view kVersions[] = {"1.0", "2.0", "3.0", "4.0", "4.1", "4.2", "5.0", "5.1"};
+  if (std::find(std::begin(kVersions), std::end(kVersions), version_text) == std::end(kVersions))
+    return bad(path,
+               "unsupported file version '" + std::string(version_text.substr(0, 20)) + "' (soiq reads 1.0 to 5.1)");
   const auto version = parse_double(version_text);
   if (!version) return bad(path, "malformed header version");
   const std::string format = std::string(trim(std::string_view(bytes).substr(l2 + 1, l3 - l2 - 1)));
