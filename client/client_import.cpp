@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "client/cancel_watcher.h"
 #include "client/dicom_files_to_send.h"
 #include "client/soiq_client.h"
 
@@ -17,6 +18,7 @@ Result<v1::ImportDicomResponse> Client::import_dicom(const std::vector<std::stri
   for (const FileToSend& f : files) total += f.size_bytes;
   v1::ImportDicomResponse response;
   auto ctx = context(options_.stream_deadline);
+  CancelWatcher watcher(cancel_flag(), ctx.get());
   auto writer = stub_->ImportDicom(ctx.get(), &response);
   const size_t chunk = std::max<size_t>(1, options_.chunk_bytes);
   std::string buffer(chunk, '\0');

@@ -70,6 +70,7 @@ Result<Response> Client::upload(const Header& header, std::string_view bytes, co
   const Status s = with_retries(options_.retry, [&]() -> Status {
     response.Clear();
     auto ctx = context(options_.stream_deadline);
+    CancelWatcher watcher(cancel_flag(), ctx.get());
     grpc::ClientContext* raw = ctx.get();
     auto writer = [&] {
       if constexpr (std::is_same_v<Request, v1::UploadSurfaceRequest>) {
@@ -142,6 +143,7 @@ Status Client::stream_to_file(
         std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
         if (!out) return not_found("cannot write '" + out_path + "'");
         auto ctx = context(options_.stream_deadline);
+        CancelWatcher watcher(cancel_flag(), ctx.get());
         auto reader = start(ctx.get());
         bool stopped = false;
         const grpc::Status g = drain(
@@ -183,7 +185,7 @@ Result<v1::ConvertSummary> Client::convert(const v1::ConvertRequest& request, co
       options_.retry,
       [&]() -> Status {
         auto ctx = context(options_.stream_deadline);
-        CancelWatcher watcher(handlers.cancel, ctx.get());
+        CancelWatcher watcher(cancel_flag(handlers.cancel), ctx.get());
         auto reader = stub_->Convert(ctx.get(), request);
         const grpc::Status g = drain(
             *reader, *ctx,
@@ -213,7 +215,7 @@ Result<v1::QuerySummary> Client::query(const v1::QueryRequest& request, const Qu
       [&]() -> Status {
         summary.reset();
         auto ctx = context(options_.stream_deadline);
-        CancelWatcher watcher(handlers.cancel, ctx.get());
+        CancelWatcher watcher(cancel_flag(handlers.cancel), ctx.get());
         auto reader = stub_->Query(ctx.get(), request);
         bool any = false;  // progress events may repeat on a retry; rows may not
         const grpc::Status g = drain(
@@ -266,7 +268,7 @@ Result<v1::ImportDicomResponse> Client::pacs_pull(const v1::PacsPullRequest& req
                                                   const std::atomic<bool>* cancel) const {
   std::optional<v1::ImportDicomResponse> imported;
   auto ctx = context(options_.stream_deadline);
-  CancelWatcher watcher(cancel, ctx.get());
+  CancelWatcher watcher(cancel_flag(cancel), ctx.get());
   auto reader = stub_->PacsPull(ctx.get(), request);
   bool delivered = false, stopped = false;
   const grpc::Status g = drain(

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "client/cancel_watcher.h"
 #include "client/grpc_status.h"
 #include "client/read_token_file.h"
 #include "client/server_target.h"
@@ -99,6 +100,8 @@ Result<Response> Client::unary(Call call, bool retry, bool long_running) const {
   const Status s = with_retries(policy, [&]() -> Status {
     response.Clear();
     auto ctx = context(deadline);
+    // Only long calls can be interrupted: the short ones end within their deadline anyway.
+    CancelWatcher watcher(long_running ? cancel_flag() : nullptr, ctx.get());
     return map(call(*stub_, ctx.get(), &response), deadline, *ctx);
   });
   if (!s.ok()) return s;
@@ -214,6 +217,7 @@ Result<v1::FeaturesResponse> Client::compute_features(const v1::FeaturesRequest&
   const Status s = with_retries(options_.retry, [&]() -> Status {
     response.Clear();
     auto ctx = context(options_.stream_deadline);
+    CancelWatcher watcher(cancel_flag(), ctx.get());
     return map(stub_->ComputeFeatures(ctx.get(), request, &response), options_.stream_deadline, *ctx);
   });
   if (!s.ok()) return s;

@@ -14,8 +14,11 @@
 // queries. Retries (retry.h) on UNAVAILABLE for the calls safe to repeat: gets, lists, info,
 // features, uploads (the bytes are local and resent whole), and convert, download and query while
 // nothing has been delivered to a callback yet. Deletes are not retried.
-// Cancellation: a callback returning false, or `*cancel` becoming true (checked every 50 ms), cancels
-// the call (ClientContext::TryCancel); the method then returns CANCELLED.
+// Cancellation: a callback returning false, or a cancel flag becoming true (checked every 50 ms),
+// cancels the call (ClientContext::TryCancel); the method then returns CANCELLED. The flag is the
+// handlers' or pacs_pull's own, else ClientOptions::cancel, which covers every long call (uploads,
+// imports, downloads, convert, features, queries, SEG export, PACS pull and push). soiqd stores
+// nothing of an upload or import whose stream was cancelled before it ended.
 // Thread-safety: a Client may be used from several threads at once (gRPC stubs are thread-safe).
 
 #include <atomic>
@@ -45,6 +48,7 @@ struct ClientOptions {
   int max_send_message_bytes = 8 << 20;
   size_t chunk_bytes = 1 << 20;  // upload chunks; soiqd accepts 4 MiB messages by default
   RetryPolicy retry;
+  const std::atomic<bool>* cancel = nullptr;  // true: cancel the long call in progress (Ctrl-C)
 };
 
 // (bytes sent so far, total bytes); called after each chunk.
@@ -148,6 +152,11 @@ class Client {
   template <typename Request, typename Response, typename Header>
   Result<Response> upload(const Header& header, std::string_view bytes, const ProgressFn& progress,
                           const char* what) const;
+
+  // `own` when set, else options_.cancel.
+  const std::atomic<bool>* cancel_flag(const std::atomic<bool>* own = nullptr) const {
+    return own != nullptr ? own : options_.cancel;
+  }
 
   ClientOptions options_;
   std::string token_;

@@ -76,7 +76,7 @@ std::string bash_completion_script() {
     if (c.name.starts_with("pacs ")) pacs.emplace_back(c.name.substr(5));
   }
   commands = command_words();
-  for (const OptionSpec& o : connection_options()) connection.emplace_back(o.name);
+  for (const OptionSpec& o : global_options()) connection.emplace_back(o.name);
   std::string arms;
   for (const CommandSpec& c : command_table()) arms += command_arm(c);
   return "# bash completion for soiq; made by `soiq completion bash` from its command table.\n"

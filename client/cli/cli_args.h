@@ -5,6 +5,8 @@
 #include <string>
 
 #include "client/cli/exit_code.h"
+#include "client/cli/interrupt.h"
+#include "client/soiq_client.h"
 #include "core/base/status.h"
 #include "core/base/vec3.h"
 
@@ -42,9 +44,29 @@ int run_command(const char* name, const Result<Args>& args, Act&& act) {
   const Status s = act(*args);
   if (!s.ok()) {
     std::fprintf(stderr, "soiq %s: %s\n", name, s.message().c_str());
-    return exit_code(s);
+    return interrupted() ? kExitInterrupted : exit_code(s);
   }
   return 0;
+}
+
+// run_command for a command that can run long: while `act(args, options)` runs, Ctrl-C
+// (interrupt.h) cancels the call in progress through `options.cancel` (`remote` with the flag
+// set). When interrupted, `act` returns the status of interrupted_by_user() naming what it kept;
+// the exit code is then kExitInterrupted.
+template <typename Args, typename Act>
+int run_long_command(const char* name, const Result<Args>& args, const client::ClientOptions& remote, Act&& act) {
+  return run_command(name, args, [&](const Args& a) {
+    const InterruptScope scope;
+    client::ClientOptions options = remote;
+    options.cancel = scope.flag();
+    return act(a, options);
+  });
+}
+
+// CANCELLED "interrupted; <kept>": what an interrupted command says it kept ("nothing was
+// imported").
+inline Status interrupted_by_user(const std::string& kept) {
+  return Status(StatusCode::kCancelled, "interrupted; " + kept);
 }
 
 }  // namespace soiq::cli

@@ -57,8 +57,8 @@ std::string wrap(std::string_view text, size_t indent, size_t width) {
 std::string_view exit_code_text() {
   return "Exit codes: 0 ok, 1 other, 2 invalid argument or usage, 3 not found, 4 already exists or failed "
          "precondition, 5 resource exhausted, 6 unavailable, deadline or cancelled, 7 unauthenticated or "
-         "permission denied, 8 partial query answer (some candidates skipped; the summary says why). Errors "
-         "are one line on stderr.";
+         "permission denied, 8 partial query answer (some candidates skipped; the summary says why), 130 "
+         "interrupted by Ctrl-C (the command says what it kept). Errors are one line on stderr.";
 }
 
 std::string overview_help() {
@@ -66,8 +66,8 @@ std::string overview_help() {
   out += "Offline commands (no server needed):\n" + group_overview(CommandGroup::kOffline) + "\n";
   out += "Remote commands (talk to soiqd):\n" + group_overview(CommandGroup::kRemote) + "\n";
   out += "About soiq itself:\n" + group_overview(CommandGroup::kOther) + "\n";
-  out += "Connection options, for every remote command, before or after the command name:\n";
-  for (const OptionSpec& o : connection_options()) out += option_line(o);
+  out += "Global options, before or after the command name (the connection's apply to remote commands):\n";
+  for (const OptionSpec& o : global_options()) out += option_line(o);
   out += "\n" + wrap(exit_code_text(), 0);
   out += "'soiq help COMMAND' or 'soiq COMMAND --help' prints a command's options, defaults and examples.\n";
   return out;
@@ -83,11 +83,10 @@ std::string command_help(const CommandSpec& c) {
   out += "\n" + wrap(c.description, 0) + "\nOptions:\n";
   for (const OptionSpec& o : c.options) out += option_line(o);
   out += option_line({"-h", "", "", "print this help", "--help"});
-  if (c.group == CommandGroup::kRemote || c.name == "convert" || c.name == "features") {
-    out += "\nConnection options (see 'soiq help'):";
-    for (const OptionSpec& o : connection_options()) out += " " + std::string(o.name) + " " + std::string(o.value);
-    out += "\n";
-  }
+  out += "\nGlobal options (see 'soiq help'):";
+  for (const OptionSpec& o : global_options())
+    out += " " + std::string(o.name) + (o.value.empty() ? "" : " " + std::string(o.value));
+  out += "\n";
   if (!c.examples.empty()) out += "\nExamples:\n";
   for (const std::string_view e : c.examples) out += "  " + std::string(e) + "\n";
   out += "\n" + wrap(exit_code_text(), 0);

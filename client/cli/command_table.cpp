@@ -45,7 +45,7 @@ std::vector<std::string> option_words(const CommandSpec& command) {
   return words;
 }
 
-std::span<const OptionSpec> connection_options() {
+std::span<const OptionSpec> global_options() {
   static const OptionSpec options[] = {
       {"--server", "ADDRESS", "$SOIQ_SERVER, else 127.0.0.1:50051",
        "soiqd's address: HOST[:PORT], [IPV6]:PORT, http://HOST:PORT (plaintext), https://HOST:PORT (TLS), "
@@ -53,6 +53,10 @@ std::span<const OptionSpec> connection_options() {
       {"--token-file", "F", "", "send the bearer token in F (authorization: Bearer ...)"},
       {"--tls-ca", "F", "", "use TLS and verify soiqd's certificate against the PEM roots in F"},
       {"--timeout", "SECONDS", "30 s; 600 s for uploads, conversions, queries", "deadline of each call"},
+      {"--quiet", "", "",
+       "no progress bars, notes or summaries on stderr (errors and skipped candidates still show); "
+       "'soiq upload' prints only the new id",
+       "-q"},
   };
   return options;
 }

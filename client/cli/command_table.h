@@ -55,8 +55,9 @@ const OptionSpec* find_option(const CommandSpec& command, std::string_view name)
 std::vector<std::string> command_words();
 std::vector<std::string> option_words(const CommandSpec& command);
 
-// The connection options every remote command takes (client/cli/remote_options.h).
-std::span<const OptionSpec> connection_options();
+// The options every command takes, before or after its name (client/cli/remote_options.h): the
+// connection's and --quiet.
+std::span<const OptionSpec> global_options();
 
 // The rows of the groups, defined in command_table_<group>.cpp.
 std::vector<CommandSpec> offline_commands();

@@ -7,6 +7,9 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/interrupt.h"
+#include "client/cli/progress_bar.h"
+#include "client/cli/quiet.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
 #include "client/cohort/synthetic_cohort.h"
@@ -54,8 +57,9 @@ class TempDir {
   std::string path_;
 };
 
+// Uploads one patient's image and structures, then prints its line (the bar cleared first).
 Status load_patient(const client::Client& c, const cohort::CohortConfig& config, const cohort::SyntheticPatient& p,
-                    const std::string& dir, size_t& structures) {
+                    const std::string& dir, size_t& structures, ProgressBar& bar) {
   const cohort::Demographics& d = p.demographics;
   soiq::v1::Patient patient;
   patient.set_patient_id(p.patient_id);
@@ -93,6 +97,8 @@ Status load_patient(const client::Client& c, const cohort::CohortConfig& config,
     if (first == 0) first = last;
   }
   structures += meshes.size();
+  if (quiet()) return ok_status();
+  bar.clear();
   std::printf("%s  %s  born %s  MR %s: image %lldx%lldx%lld, %zu structures (ids %lld-%lld)\n", p.patient_id.c_str(),
               d.sex.c_str(), d.birth_date.c_str(), d.study_date.c_str(), (long long)mr.geometry.dims[0],
               (long long)mr.geometry.dims[1], (long long)mr.geometry.dims[2], meshes.size(), (long long)first,
@@ -111,10 +117,25 @@ Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
   // Meshes and images are made one patient at a time, as they are sent.
   const cohort::CohortConfig config = cohort::demo_cohort_config();
   const std::vector<cohort::SyntheticPatient> people = cohort::synthetic_patients(config, a.patients, uint64_t(a.seed));
-  size_t structures = 0;
-  for (const cohort::SyntheticPatient& p : people)
-    SOIQ_RETURN_IF_ERROR(load_patient(c, config, p, dir.path(), structures));
+  size_t structures = 0, loaded = 0;
+  // Ctrl-C stops between two patients, so none is left with part of its structures; the calls are
+  // not cancelled (a patient takes a fraction of a second), and a second Ctrl-C ends at once.
+  const InterruptScope interrupt;
+  ProgressBar bar;
+  for (const cohort::SyntheticPatient& p : people) {
+    if (interrupt.interrupted()) break;
+    bar.update("patients", int64_t(loaded), int64_t(people.size()));
+    const Status s = load_patient(c, config, p, dir.path(), structures, bar);
+    if (!s.ok()) return s;
+    ++loaded;
+  }
+  bar.clear();
+  if (interrupt.interrupted()) {
+    return interrupted_by_user(std::to_string(loaded) + " of " + std::to_string(people.size()) +
+                               " patients were loaded, each whole (" + std::to_string(structures) + " structures)");
+  }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (quiet()) return ok_status();
   std::printf("\nloaded %zu patients, %zu MR images, %zu structures into soiqd at %s in %.1f s\n", people.size(),
               people.size(), structures, c.address().c_str(), s);
   std::printf(

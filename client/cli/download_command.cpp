@@ -46,7 +46,9 @@ Result<DownloadArgs> parse(int argc, char** argv) {
 Status download(const DownloadArgs& a, const client::ClientOptions& remote) {
   SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  SOIQ_ASSIGN_OR_RETURN(const int64_t bytes, c.download_surface(a.request, a.out));
+  const Result<int64_t> written = c.download_surface(a.request, a.out);
+  if (!written.ok() && interrupted()) return interrupted_by_user("no file was written");
+  SOIQ_ASSIGN_OR_RETURN(const int64_t bytes, written);
   std::printf("%lld bytes -> %s\n", (long long)bytes, a.out.c_str());
   return ok_status();
 }
@@ -54,7 +56,9 @@ Status download(const DownloadArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_download_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("download", parse(argc, argv), [&](const DownloadArgs& a) { return download(a, remote); });
+  return run_long_command(
+      "download", parse(argc, argv), remote,
+      [](const DownloadArgs& a, const client::ClientOptions& options) { return download(a, options); });
 }
 
 }  // namespace soiq::cli

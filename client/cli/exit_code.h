@@ -3,7 +3,8 @@
 // README repeats the table):
 //   0 OK; 2 INVALID_ARGUMENT (and usage errors); 3 NOT_FOUND; 4 ALREADY_EXISTS or
 //   FAILED_PRECONDITION; 5 RESOURCE_EXHAUSTED; 6 UNAVAILABLE, DEADLINE_EXCEEDED or CANCELLED;
-//   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code; 8 a partial query answer (kExitPartial).
+//   7 UNAUTHENTICATED or PERMISSION_DENIED; 1 any other code; 8 a partial query answer (kExitPartial);
+//   130 a long command stopped by Ctrl-C (kExitInterrupted, interrupt.h).
 
 #include "core/base/status.h"
 

@@ -40,7 +40,9 @@ Result<ExportSegArgs> parse(int argc, char** argv) {
 Status export_seg(const ExportSegArgs& a, const client::ClientOptions& remote) {
   SOIQ_RETURN_IF_ERROR(make_output_folder(a.out));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  SOIQ_ASSIGN_OR_RETURN(const v1::SegInfo info, c.export_seg(a.request, a.out));
+  const Result<v1::SegInfo> written = c.export_seg(a.request, a.out);
+  if (!written.ok() && interrupted()) return interrupted_by_user("no file was written");
+  SOIQ_ASSIGN_OR_RETURN(const v1::SegInfo info, written);
   std::printf("DICOM SEG %s: %d segment%s, %lld frames, %lld bytes, on series %s -> %s\n",
               info.sop_instance_uid().c_str(), info.segments(), info.segments() == 1 ? "" : "s",
               (long long)info.frames(), (long long)info.size_bytes(), info.referenced_series_uid().c_str(),
@@ -51,7 +53,9 @@ Status export_seg(const ExportSegArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_export_seg_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("export-seg", parse(argc, argv), [&](const ExportSegArgs& a) { return export_seg(a, remote); });
+  return run_long_command(
+      "export-seg", parse(argc, argv), remote,
+      [](const ExportSegArgs& a, const client::ClientOptions& options) { return export_seg(a, options); });
 }
 
 }  // namespace soiq::cli

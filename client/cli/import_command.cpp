@@ -42,8 +42,18 @@ Result<ImportArgs> parse(int argc, char** argv) {
 Status import(const ImportArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   ProgressBar bar;
-  auto r = c.import_dicom(a.paths, [&](int64_t done, int64_t total) { bar.update("sending", done, total); });
+  bool sent_all = false;
+  auto r = c.import_dicom(a.paths, [&](int64_t done, int64_t total) {
+    bar.update("sending", done, total);
+    sent_all = done == total;
+  });
   bar.clear();
+  if (!r.ok() && interrupted()) {
+    // soiqd stores an import only once it has every file, and asks once more just before writing.
+    return interrupted_by_user(sent_all ? "soiqd was told to drop the import ('soiq ls studies' shows whether it "
+                                          "had stored it already)"
+                                        : "nothing was imported");
+  }
   if (!r.ok()) return r.status();
   print_import_report(*r, a.format);
   return ok_status();
@@ -52,7 +62,8 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_import_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("import", parse(argc, argv), [&](const ImportArgs& a) { return import(a, remote); });
+  return run_long_command("import", parse(argc, argv), remote,
+                          [](const ImportArgs& a, const client::ClientOptions& options) { return import(a, options); });
 }
 
 }  // namespace soiq::cli

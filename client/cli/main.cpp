@@ -1,5 +1,5 @@
 // `soiq`: the command-line client. Commands are rows of one table (client/cli/command_table.h);
-// this dispatches from it: the connection options are taken out, -h/--help prints the row's help,
+// this dispatches from it: the global options are taken out, -h/--help prints the row's help,
 // options the row does not list are refused with a suggestion, and the row's function runs.
 #include <cstdio>
 #include <new>

@@ -64,8 +64,8 @@ std::string soiq_man_page() {
       "\\fB\\-h\\fR print a command's help.\n"
       ".SH COMMANDS\n";
   for (const CommandSpec& c : command_table()) out += command_section(c);
-  out += ".SH CONNECTION OPTIONS\nFor every remote command, before or after the command name:\n";
-  for (const OptionSpec& o : connection_options()) out += option_item(o);
+  out += ".SH GLOBAL OPTIONS\nBefore or after the command name; the connection's apply to remote commands:\n";
+  for (const OptionSpec& o : global_options()) out += option_item(o);
   out += ".SH EXIT STATUS\n" + roff_escape(exit_code_text()) + "\n";
   out +=
       ".SH ENVIRONMENT\n.TP\n.B SOIQ_SERVER\nsoiqd's address when \\fB\\-\\-server\\fR is not given.\n"

@@ -1,13 +1,12 @@
 #include "client/cli/pacs_command.h"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <string>
 
 #include "client/cli/cli_args.h"
 #include "client/cli/import_report.h"
 #include "client/cli/progress_bar.h"
+#include "client/cli/quiet.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/row_printer.h"
@@ -16,9 +15,6 @@ namespace soiq::cli {
 namespace {
 
 namespace v1 = soiq::v1;
-
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_pull_interrupt(int) { g_interrupted = true; }
 
 struct PacsArgs {
   std::string verb;  // echo, find, pull, push
@@ -110,18 +106,13 @@ void print_matches(const v1::PacsFindResponse& r, const std::string& format, boo
 
 Status pull(const client::Client& c, const PacsArgs& a) {
   ProgressBar bar;
-  g_interrupted = false;
-  auto previous = std::signal(SIGINT, on_pull_interrupt);
-  auto r = c.pacs_pull(
-      a.pull,
-      [&](const v1::PacsPullProgress& p) {
-        const std::string stage = "study " + std::to_string(p.study()) + "/" + std::to_string(p.studies());
-        bar.update(stage, p.received(), p.remaining() < 0 ? 0 : p.received() + p.remaining());
-        return true;
-      },
-      &g_interrupted);
-  std::signal(SIGINT, previous);
+  auto r = c.pacs_pull(a.pull, [&](const v1::PacsPullProgress& p) {
+    const std::string stage = "study " + std::to_string(p.study()) + "/" + std::to_string(p.studies());
+    bar.update(stage, p.received(), p.remaining() < 0 ? 0 : p.received() + p.remaining());
+    return true;
+  });
   bar.clear();
+  if (!r.ok() && interrupted()) return interrupted_by_user("nothing was imported");
   if (!r.ok()) return r.status();
   print_import_report(*r, a.format);
   return ok_status();
@@ -138,11 +129,15 @@ Status pacs(const PacsArgs& a, const client::ClientOptions& remote) {
     SOIQ_ASSIGN_OR_RETURN(const v1::PacsFindResponse r, c.pacs_find(a.find));
     print_matches(r, a.format, a.find.level() == v1::PACS_LEVEL_PATIENT);
     std::fflush(stdout);  // the rows before the summary line on a shared terminal
-    std::fprintf(stderr, "%d match%s on %s\n", r.matches_size(), r.matches_size() == 1 ? "" : "es", r.pacs().c_str());
+    if (!quiet())
+      std::fprintf(stderr, "%d match%s on %s\n", r.matches_size(), r.matches_size() == 1 ? "" : "es", r.pacs().c_str());
     return ok_status();
   }
   if (a.verb == "pull") return pull(c, a);
-  SOIQ_ASSIGN_OR_RETURN(const v1::PacsPushResponse r, c.pacs_push(a.push));
+  const Result<v1::PacsPushResponse> pushed = c.pacs_push(a.push);
+  if (!pushed.ok() && interrupted())
+    return interrupted_by_user("the PACS may have stored the SEG already ('soiq pacs find' shows its series)");
+  SOIQ_ASSIGN_OR_RETURN(const v1::PacsPushResponse r, pushed);
   std::printf("stored DICOM SEG %s (%d segment%s, %lld frames, %lld bytes, on series %s) on %s in %.1f ms\n",
               r.seg().sop_instance_uid().c_str(), r.seg().segments(), r.seg().segments() == 1 ? "" : "s",
               (long long)r.seg().frames(), (long long)r.seg().size_bytes(), r.seg().referenced_series_uid().c_str(),
@@ -153,7 +148,8 @@ Status pacs(const PacsArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_pacs_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("pacs", parse(argc, argv), [&](const PacsArgs& a) { return pacs(a, remote); });
+  return run_long_command("pacs", parse(argc, argv), remote,
+                          [](const PacsArgs& a, const client::ClientOptions& options) { return pacs(a, options); });
 }
 
 }  // namespace soiq::cli

@@ -6,9 +6,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "client/cli/quiet.h"
+
 namespace soiq::cli {
 
-ProgressBar::ProgressBar() : enabled_(isatty(fileno(stderr)) != 0) {}
+// Both must be terminals: output sent to a file or a pipe is a script's, which wants no redraws in
+// its log.
+ProgressBar::ProgressBar() : enabled_(isatty(fileno(stderr)) != 0 && isatty(fileno(stdout)) != 0 && !quiet()) {}
 
 namespace {
 

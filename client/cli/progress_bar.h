@@ -1,6 +1,7 @@
 #pragma once
 // A one-line progress bar on stderr, "stage2  300/1000 [#########.....]  120/s, 6 s left", redrawn in
-// place with '\r', shown only when stderr is a terminal (so logs and pipes stay clean). The rate
+// place with '\r', shown only when stdout and stderr are terminals and --quiet is not given (so logs
+// and pipes stay clean). The rate
 // and the time left are measured from the first update of the current stage. clear() erases it
 // before anything else is written to stderr. Not thread-safe.
 
@@ -12,7 +13,7 @@ namespace soiq::cli {
 
 class ProgressBar {
  public:
-  ProgressBar();  // enabled iff isatty(stderr)
+  ProgressBar();  // enabled iff isatty(stdout) && isatty(stderr) && !quiet()
   explicit ProgressBar(bool enabled) : enabled_(enabled) {}
   void update(const std::string& stage, int64_t done, int64_t total);
   void clear();

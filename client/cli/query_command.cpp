@@ -1,23 +1,18 @@
 #include "client/cli/query_command.h"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <string>
 
 #include "client/cli/cli_args.h"
 #include "client/cli/progress_bar.h"
 #include "client/cli/query_args.h"
+#include "client/cli/quiet.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/row_printer.h"
 
 namespace soiq::cli {
 
 namespace {
-
-std::atomic<bool> g_interrupted{false};
-
-extern "C" void on_interrupt(int) { g_interrupted = true; }
 
 // `shown`: the positions of the row's values to print (distinct_columns).
 std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, const std::vector<size_t>& shown, bool csv) {
@@ -38,12 +33,13 @@ std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, const std::vector<siz
 // The summary line, then one line per reason candidates were skipped (stage 2 could not answer for
 // them), so a short or empty table never looks like "nothing matched" when it is not.
 void print_summary(const soiq::v1::QuerySummary& s) {
-  std::fprintf(stderr,
-               "%lld candidates, %lld computed, %lld cache hits, %lld matched, %lld returned, %lld skipped; "
-               "stage 1 %.1f ms, stage 2 %.1f ms, total %.1f ms\n",
-               (long long)s.stage1_candidates(), (long long)s.computed(), (long long)s.cache_hits(),
-               (long long)s.matched(), (long long)s.returned(), (long long)s.failed(), s.stage1_ms(), s.stage2_ms(),
-               s.total_ms());
+  if (!quiet())
+    std::fprintf(stderr,
+                 "%lld candidates, %lld computed, %lld cache hits, %lld matched, %lld returned, %lld skipped; "
+                 "stage 1 %.1f ms, stage 2 %.1f ms, total %.1f ms\n",
+                 (long long)s.stage1_candidates(), (long long)s.computed(), (long long)s.cache_hits(),
+                 (long long)s.matched(), (long long)s.returned(), (long long)s.failed(), s.stage1_ms(), s.stage2_ms(),
+                 s.total_ms());
   for (const soiq::v1::QuerySkip& k : s.skipped()) {
     std::string ids;
     for (const int64_t id : k.structure_ids()) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
@@ -63,7 +59,6 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   RowPrinter out(a.format, header);
   ProgressBar bar;
   client::QueryHandlers handlers;
-  handlers.cancel = &g_interrupted;
   handlers.on_progress = [&](const soiq::v1::QueryProgress& p) {
     bar.update(p.stage(), p.done(), p.total());
     return true;
@@ -72,11 +67,12 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
     out.row(row_cells(row, shown, a.format == "csv"));
     return true;
   };
-  g_interrupted = false;
-  auto previous = std::signal(SIGINT, on_interrupt);
   const Result<soiq::v1::QuerySummary> summary = c.query(a.request, handlers);
-  std::signal(SIGINT, previous);
   bar.clear();
+  if (!summary.ok() && interrupted()) {
+    out.end();
+    return interrupted_by_user("the rows printed are part of the answer only");
+  }
   if (!summary.ok()) return in_command_line_words(summary.status(), a.request);
   out.end();
   print_summary(*summary);
@@ -87,10 +83,11 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
 
 int run_query_command(int argc, char** argv, const client::ClientOptions& remote) {
   int64_t skipped = 0;
-  const int code = run_command("query", parse_query_args(argc, argv), [&](const QueryArgs& a) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(skipped, query(a, remote));
-    return ok_status();
-  });
+  const int code = run_long_command("query", parse_query_args(argc, argv), remote,
+                                    [&](const QueryArgs& a, const client::ClientOptions& options) -> Status {
+                                      SOIQ_ASSIGN_OR_RETURN(skipped, query(a, options));
+                                      return ok_status();
+                                    });
   return code == 0 && skipped > 0 ? kExitPartial : code;
 }
 

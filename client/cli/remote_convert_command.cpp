@@ -1,11 +1,13 @@
 #include "client/cli/remote_convert_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "client/cli/cli_args.h"
 #include "client/cli/grid_args.h"
+#include "client/cli/progress_bar.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/show_records.h"
@@ -65,15 +67,25 @@ Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) 
   const std::string path = direct ? a.out : a.out + ".part.nii.gz";
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   if (!file) return not_found("cannot write '" + path + "'");
+  ProgressBar bar;
+  int64_t expected = 0, received = 0;
   client::ConvertHandlers handlers;
+  handlers.on_summary = [&](const soiq::v1::ConvertSummary& s) {
+    expected = s.nifti_bytes();
+    return true;
+  };
   handlers.on_nifti = [&](std::string_view bytes) {
     file.write(bytes.data(), std::streamsize(bytes.size()));
+    received += int64_t(bytes.size());
+    bar.update("receiving", received, std::max(expected, received));
     return bool(file);
   };
   const Result<soiq::v1::ConvertSummary> summary = c.convert(a.request, handlers);
+  bar.clear();
   file.close();
   if (!summary.ok() || !file) {
     std::remove(path.c_str());
+    if (interrupted()) return interrupted_by_user("no output was written");
     return summary.ok() ? data_loss("error writing '" + path + "' (disk full?)") : summary.status();
   }
   if (!direct) {
@@ -91,7 +103,9 @@ Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) 
 }  // namespace
 
 int run_remote_convert_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("convert", parse(argc, argv), [&](const RemoteConvertArgs& a) { return convert(a, remote); });
+  return run_long_command(
+      "convert", parse(argc, argv), remote,
+      [](const RemoteConvertArgs& a, const client::ClientOptions& options) { return convert(a, options); });
 }
 
 }  // namespace soiq::cli

@@ -81,7 +81,9 @@ FeatureReport to_report(const soiq::v1::FeaturesResponse& r) {
 
 Status features(const RemoteFeaturesArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::FeaturesResponse r, c.compute_features(a.request));
+  const Result<soiq::v1::FeaturesResponse> computed = c.compute_features(a.request);
+  if (!computed.ok() && interrupted()) return interrupted_by_user("no values were printed");
+  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::FeaturesResponse r, computed);
   print_feature_report(to_report(r), a.format);
   if (r.from_cache() && isatty(fileno(stderr))) std::fputs("(from soiqd's feature cache)\n", stderr);
   return ok_status();
@@ -90,7 +92,9 @@ Status features(const RemoteFeaturesArgs& a, const client::ClientOptions& remote
 }  // namespace
 
 int run_remote_features_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("features", parse(argc, argv), [&](const RemoteFeaturesArgs& a) { return features(a, remote); });
+  return run_long_command(
+      "features", parse(argc, argv), remote,
+      [](const RemoteFeaturesArgs& a, const client::ClientOptions& options) { return features(a, options); });
 }
 
 }  // namespace soiq::cli

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/quiet.h"
 
 namespace soiq::cli {
 
@@ -18,6 +19,11 @@ Result<client::ClientOptions> take_remote_options(int& argc, char** argv) {
       value = arg.substr(eq + 1);
       arg = arg.substr(0, eq);
       has_value = true;
+    }
+    if (arg == "--quiet" || arg == "-q") {
+      if (has_value) return invalid_argument(arg + " takes no value");
+      set_quiet(true);
+      continue;
     }
     if (arg != "--server" && arg != "--token-file" && arg != "--tls-ca" && arg != "--timeout") {
       argv[out++] = argv[i];

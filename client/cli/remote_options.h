@@ -1,7 +1,7 @@
 #pragma once
-// The options every remote command shares — --server HOST:PORT, --token-file F, --tls-ca F,
-// --timeout SECONDS (also as --name=value) — taken out of the command line wherever they stand
-// (before or after the command name), and the connection they describe.
+// The options every command shares — --server HOST:PORT, --token-file F, --tls-ca F,
+// --timeout SECONDS (also as --name=value), and --quiet (-q, quiet.h) — taken out of the command
+// line wherever they stand (before or after the command name), and the connection they describe.
 // $SOIQ_SERVER gives the server when --server is not given; the default is 127.0.0.1:50051.
 
 #include <string>

@@ -4,6 +4,8 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/progress_bar.h"
+#include "client/cli/quiet.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
 
@@ -14,7 +16,6 @@ namespace {
 struct UploadArgs {
   std::string mesh;
   soiq::v1::UploadSurfaceHeader header;
-  bool quiet = false;
 };
 
 Result<UploadArgs> parse(int argc, char** argv) {
@@ -34,8 +35,6 @@ Result<UploadArgs> parse(int argc, char** argv) {
       a.header.set_coordinates(soiq::v1::RAS);
     } else if (arg == "--robust") {
       a.header.set_robust(true);
-    } else if (arg == "-q" || arg == "--quiet") {
-      a.quiet = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
     } else if (a.mesh.empty()) {
@@ -55,9 +54,14 @@ Result<UploadArgs> parse(int argc, char** argv) {
 
 Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, c.upload_surface(a.header, a.mesh));
+  ProgressBar bar;
+  const Result<soiq::v1::UploadSurfaceResponse> uploaded =
+      c.upload_surface(a.header, a.mesh, [&](int64_t done, int64_t total) { bar.update("sending", done, total); });
+  bar.clear();
+  if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
+  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, uploaded);
   const soiq::v1::Structure& s = r.structure();
-  if (a.quiet) {
+  if (quiet()) {
     std::printf("%lld\n", (long long)s.id());
     return ok_status();
   }
@@ -72,7 +76,8 @@ Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_upload_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("upload", parse(argc, argv), [&](const UploadArgs& a) { return upload(a, remote); });
+  return run_long_command("upload", parse(argc, argv), remote,
+                          [](const UploadArgs& a, const client::ClientOptions& options) { return upload(a, options); });
 }
 
 }  // namespace soiq::cli

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/progress_bar.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/show_records.h"
@@ -48,7 +49,12 @@ Result<UploadImageArgs> parse(int argc, char** argv) {
 
 Status upload_image(const UploadImageArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadImageResponse r, c.upload_image(a.header, a.image));
+  ProgressBar bar;
+  const Result<soiq::v1::UploadImageResponse> uploaded =
+      c.upload_image(a.header, a.image, [&](int64_t done, int64_t total) { bar.update("sending", done, total); });
+  bar.clear();
+  if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
+  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadImageResponse r, uploaded);
   std::printf("series %s: %s, %s; %s\n", r.series().series_uid().c_str(), r.series().modality().c_str(),
               geometry_text(r.series().geometry()).c_str(), r.replaced() ? "replaced" : "new");
   return ok_status();
@@ -57,8 +63,9 @@ Status upload_image(const UploadImageArgs& a, const client::ClientOptions& remot
 }  // namespace
 
 int run_upload_image_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("upload-image", parse(argc, argv),
-                     [&](const UploadImageArgs& a) { return upload_image(a, remote); });
+  return run_long_command(
+      "upload-image", parse(argc, argv), remote,
+      [](const UploadImageArgs& a, const client::ClientOptions& options) { return upload_image(a, options); });
 }
 
 }  // namespace soiq::cli

@@ -88,11 +88,16 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
         convert_structure(store_, features_, pool_, request->structure_id(), choice, fill_rule_of(request->fill_rule()),
                           !runs, [&] { return stop_status(*ctx); }));
     const RunLengthVolume& volume = c.voxelization.volume;
+    // Encoded before the summary, which tells the client how many bytes follow.
+    std::string bytes;
+    if (!runs) {
+      SOIQ_ASSIGN_OR_RETURN(bytes, mask_nifti_bytes(volume, config_.max_grid_voxels));
+    }
     v1::ConvertResponse first;
     *first.mutable_summary() = summary_of(c, ms_since(start));
+    first.mutable_summary()->set_nifti_bytes(int64_t(bytes.size()));
     if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
     if (runs) return write_runs(volume, c.grid.geometry.dims[1], *writer);
-    SOIQ_ASSIGN_OR_RETURN(const std::string bytes, mask_nifti_bytes(volume, config_.max_grid_voxels));
     for (size_t at = 0; at < bytes.size(); at += kChunkBytes) {
       v1::ConvertResponse chunk;
       chunk.set_nifti_chunk(bytes.substr(at, kChunkBytes));

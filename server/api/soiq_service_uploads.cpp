@@ -14,10 +14,18 @@
 namespace soiq::server {
 namespace {
 
+// Read() returns false both when the client ended its stream and when it cancelled the call
+// (Ctrl-C, a lost connection). A cancelled stream's bytes are a prefix of the file, which may still
+// parse (an OBJ cut after a face, DICOM files cut between two files) and must not be stored.
+Status stream_complete(const grpc::ServerContext& ctx, const char* what) {
+  if (!ctx.IsCancelled()) return ok_status();
+  return Status(StatusCode::kCancelled, std::string(what) + " upload was cancelled by the client before it ended");
+}
+
 // Reads a client stream: the header first, then chunks up to `max_bytes` in all.
 template <typename Request, typename Header>
-Status read_upload(grpc::ServerReader<Request>* reader, int64_t max_bytes, Header& header, std::string& bytes,
-                   const char* what) {
+Status read_upload(const grpc::ServerContext& ctx, grpc::ServerReader<Request>* reader, int64_t max_bytes,
+                   Header& header, std::string& bytes, const char* what) {
   Request part;
   if (!reader->Read(&part) || part.part_case() != Request::kHeader)
     return invalid_argument(std::string(what) + " upload must start with a header message");
@@ -30,7 +38,7 @@ Status read_upload(grpc::ServerReader<Request>* reader, int64_t max_bytes, Heade
                                 std::to_string(max_bytes) + " bytes (soiqd --max-upload-bytes)");
     bytes += part.chunk();
   }
-  return ok_status();
+  return stream_complete(ctx, what);
 }
 
 // The header's fields, checked in the order a client fixes them: patient, study, then the rest.
@@ -68,7 +76,7 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
   return handle(__func__, *ctx, [&]() -> Status {
     v1::UploadSurfaceHeader h;
     std::string bytes;
-    SOIQ_RETURN_IF_ERROR(read_upload(reader, config_.max_upload_bytes, h, bytes, "surface"));
+    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, h, bytes, "surface"));
     SOIQ_ASSIGN_OR_RETURN(const SurfaceUpload upload, surface_upload_of(h));
     SOIQ_ASSIGN_OR_RETURN(const UploadedSurface stored, upload_surface(store_, upload, bytes));
     *response->mutable_structure() = to_proto(stored.added.structure);
@@ -83,7 +91,7 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
   return handle(__func__, *ctx, [&]() -> Status {
     v1::UploadImageHeader h;
     std::string bytes;
-    SOIQ_RETURN_IF_ERROR(read_upload(reader, config_.max_upload_bytes, h, bytes, "image"));
+    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, h, bytes, "image"));
     SOIQ_ASSIGN_OR_RETURN(const ImageUpload upload, image_upload_of(h));
     SOIQ_ASSIGN_OR_RETURN(const UploadedImage stored, upload_image(store_, budget_, config_.max_grid_voxels, upload,
                                                                    bytes, [&] { return stop_status(*ctx); }));
@@ -98,6 +106,7 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
   return handle(__func__, *ctx, [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
     SOIQ_ASSIGN_OR_RETURN(ReceivedFiles files, receive_dicom_files(*reader, dir.path(), config_.max_upload_bytes));
+    SOIQ_RETURN_IF_ERROR(stream_complete(*ctx, "DICOM"));
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult imported, on_pool<DicomImportResult>([&] {
                             return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels,
                                                        budget_, [&] { return stop_status(*ctx); });

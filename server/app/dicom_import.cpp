@@ -214,6 +214,9 @@ Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::strin
     return invalid_argument("nothing could be imported from the " + std::to_string(sent.size()) +
                             " file(s) sent: " + why);
   }
+  // Last look before the one write: a client that gave up (Ctrl-C) while its files were decoded
+  // gets nothing stored, as it is told.
+  if (stop) SOIQ_RETURN_IF_ERROR(stop());
   SOIQ_ASSIGN_OR_RETURN(const db::ImportedBatch stored, store.import_batch(planned.batch));
   list_records(planned.batch, r);
   for (const auto& s : planned.batch.series) r.series.push_back(s.series);

@@ -8,7 +8,8 @@
 //          images' peak bytes (server/app/dicom_import_bytes.h, from the headers) are reserved there
 //          after the header scan and before any pixel is decoded, and held until the write is
 //          done; while others hold the budget the import waits, first come first served, until
-//          `stop` returns non-OK. Call on a worker (as FeatureEngine::admit).
+//          `stop` returns non-OK, which is asked once more just before the write (a client that
+//          gave up gets nothing stored). Call on a worker (as FeatureEngine::admit).
 // Output   What was imported (the api layer turns it into ImportDicom's reply, proto_records.h):
 //          - series: each CT, MR and PET series as an image, in its DICOM study and patient
 //            (sex, birth and study dates kept when valid, age at study from dicom/; no names);
@@ -35,7 +36,7 @@
 // Errors   INVALID_ARGUMENT when nothing at all can be imported (the message names the first
 //          problem or file). RESOURCE_EXHAUSTED when the images can never fit the budget (the
 //          message names the series, the estimate and the limit), before anything is decoded or
-//          stored. `stop`'s status when it ends a wait. Any Store error unchanged (nothing stored
+//          stored. `stop`'s status when it ends a wait or the import. Any Store error unchanged (nothing stored
 //          then).
 // Cost     O(files + voxels + contour points) reads, then one write transaction.
 

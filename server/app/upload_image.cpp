@@ -37,6 +37,7 @@ Result<UploadedImage> upload_image(db::Store& store, MemoryBudget& budget, int64
   s.series.sha256 = encoded.sha256;
   s.image_blob = std::move(encoded.blob);
   UploadedImage out{s.series, false};
+  if (stop) SOIQ_RETURN_IF_ERROR(stop());  // a client that gave up while this decoded gets nothing stored
   SOIQ_ASSIGN_OR_RETURN(out.replaced, store.put_series(std::move(s)));  // moved: the blob is not copied
   return out;
 }

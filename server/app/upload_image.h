@@ -9,7 +9,8 @@
 //          records, non-empty series_uid and modality); `format` is nii, nii.gz, nrrd or mha.
 //          bytes: the file, whole, at most the caller's upload limit. budget: the server's memory
 //          budget. max_grid_voxels: the largest image accepted. stop: CANCELLED or
-//          DEADLINE_EXCEEDED once the caller is gone (polled while waiting for the budget).
+//          DEADLINE_EXCEEDED once the caller is gone (polled while waiting for the budget, and
+//          once more just before the write).
 // Output   The stored series record (its geometry and sha256 filled) and whether it replaced a
 //          stored series of the same uid.
 // Errors   parse_image's: INVALID_ARGUMENT for an unknown format, empty or malformed bytes or a

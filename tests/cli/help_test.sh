@@ -18,7 +18,7 @@ for cmd in mesh convert features compare upload upload-image import export-seg l
   grep -q "^usage: soiq $cmd" "$tmp/help" || fail "'soiq $cmd --help': $(head -2 "$tmp/help")"
 done
 $soiq help >"$tmp/help" || fail "'soiq help' exited $?"
-grep -q "Connection options" "$tmp/help" || fail "'soiq help' lacks the connection options"
+grep -q "Global options" "$tmp/help" || fail "'soiq help' lacks the global options"
 grep -q "8 partial query answer" "$tmp/help" || fail "'soiq help' lacks the exit codes"
 
 # Did you mean.

@@ -58,7 +58,7 @@ TEST(CommandHelp, OverviewListsEveryCommandTheConnectionOptionsAndTheExitCodes) 
       EXPECT_TRUE(contains(overview, "soiq " + std::string(c.synopsis.front()))) << c.name;
     }
   }
-  for (const OptionSpec& o : connection_options()) EXPECT_TRUE(contains(overview, o.name)) << o.name;
+  for (const OptionSpec& o : global_options()) EXPECT_TRUE(contains(overview, o.name)) << o.name;
   EXPECT_TRUE(contains(overview, "8 partial query answer"));
   EXPECT_TRUE(contains(overview, "id:N"));
   EXPECT_TRUE(contains(overview, "asym(FEATURE)"));
