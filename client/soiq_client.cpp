@@ -100,8 +100,8 @@ Result<Response> Client::unary(Call call, bool retry, bool long_running) const {
   const Status s = with_retries(policy, [&]() -> Status {
     response.Clear();
     auto ctx = context(deadline);
-    // Only long calls can be interrupted: the short ones end within their deadline anyway.
-    CancelWatcher watcher(long_running ? cancel_flag() : nullptr, ctx.get());
+    // Short calls too: one to a soiqd that hangs would otherwise hold Ctrl-C for its whole deadline.
+    CancelWatcher watcher(cancel_flag(), ctx.get());
     return map(call(*stub_, ctx.get(), &response), deadline, *ctx);
   });
   if (!s.ok()) return s;
@@ -205,6 +205,7 @@ Result<bool> Client::serving(const std::string& service) const {
   request.set_service(service);
   grpc::health::v1::HealthCheckResponse response;
   auto ctx = context(options_.deadline);
+  CancelWatcher watcher(cancel_flag(), ctx.get());
   const Status s =
       map(grpc::health::v1::Health::NewStub(channel_)->Check(ctx.get(), request, &response), options_.deadline, *ctx);
   if (!s.ok()) return s;

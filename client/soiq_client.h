@@ -16,8 +16,7 @@
 // nothing has been delivered to a callback yet. Deletes are not retried.
 // Cancellation: a callback returning false, or a cancel flag becoming true (checked every 50 ms),
 // cancels the call (ClientContext::TryCancel); the method then returns CANCELLED. The flag is the
-// handlers' or pacs_pull's own, else ClientOptions::cancel, which covers every long call (uploads,
-// imports, downloads, convert, features, queries, SEG export, PACS pull and push). soiqd stores
+// handlers' or pacs_pull's own, else ClientOptions::cancel, which covers every call. soiqd stores
 // nothing of an upload or import whose stream was cancelled before it ended.
 // Thread-safety: a Client may be used from several threads at once (gRPC stubs are thread-safe).
 
@@ -48,7 +47,7 @@ struct ClientOptions {
   int max_send_message_bytes = 8 << 20;
   size_t chunk_bytes = 1 << 20;  // upload chunks; soiqd accepts 4 MiB messages by default
   RetryPolicy retry;
-  const std::atomic<bool>* cancel = nullptr;  // true: cancel the long call in progress (Ctrl-C)
+  const std::atomic<bool>* cancel = nullptr;  // true: cancel the call in progress (Ctrl-C)
 };
 
 // (bytes sent so far, total bytes); called after each chunk.

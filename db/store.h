@@ -147,7 +147,7 @@ struct PatientFilter {
 };
 
 struct StructureFilter {
-  std::string patient_id;
+  std::string patient_id;  // exact, or a GLOB ("DEMO_*") when it has * ? or [ in it
   std::string study_uid;
   std::string name_glob;  // case-insensitive
   std::string laterality;

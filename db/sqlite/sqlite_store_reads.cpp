@@ -245,7 +245,11 @@ Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter
     if (used != after.size()) return invalid_argument("page_token does not hold a structure id");
   }
   SqlConditions where;
-  if (!f.patient_id.empty()) where.equal("p.patient_id", f.patient_id);
+  if (f.patient_id.find_first_of("*?[") != std::string::npos) {
+    where.glob("p.patient_id", f.patient_id);
+  } else if (!f.patient_id.empty()) {
+    where.equal("p.patient_id", f.patient_id);
+  }
   if (!f.study_uid.empty()) where.equal("st.study_uid", f.study_uid);
   if (!f.name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.name_glob));
   if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);

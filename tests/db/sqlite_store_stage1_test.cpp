@@ -266,6 +266,27 @@ TEST_F(Stage1, StructurePagesCoverEveryRowExactlyOnce) {
   }
 }
 
+// `soiq ls structures --patient 'P00*'`: a patient id with a wildcard is a glob, as in stage 1;
+// without one it is exact (an id may hold no wildcard, so nothing exact is lost).
+TEST_F(Stage1, StructuresOfPatientsMatchingAGlobAreThoseStage1Finds) {
+  for (const std::string& glob : {std::string("P00*"), std::string("Q?0*"), std::string("P0000")}) {
+    StructureFilter f;
+    f.patient_id = glob;
+    std::vector<int64_t> seen;
+    PageRequest page{50, ""};
+    do {
+      auto got = store_->list_structures(f, page);
+      ASSERT_TRUE(got.ok()) << got.status().to_string();
+      for (const auto& s : got->items) seen.push_back(s.id);
+      page.page_token = got->next_page_token;
+    } while (!page.page_token.empty());
+    Stage1Filter same;
+    same.patient_id_glob = glob;
+    EXPECT_FALSE(seen.empty()) << glob;
+    EXPECT_EQ(seen, expected_ids(same)) << glob;
+  }
+}
+
 TEST_F(Stage1, PatientAndStudyPagesCoverEveryRowExactlyOnce) {
   std::set<std::string> patients;
   std::vector<std::string> order;
