@@ -26,7 +26,7 @@ std::vector<CommandSpec> record_commands() {
        CommandGroup::kRemote,
        {"upload MESH --patient ID --study UID --name NAME [--laterality L|R] [--sex M|F|O]",
         "       [--birth-date YYYYMMDD] [--study-date YYYYMMDD] [--modality MR] [--description D]",
-        "       [--ras] [--robust] [-q]"},
+        "       [--ras] [--robust] [--quiet]"},
        "stores a surface model; prints its structure id and whether the surface was deduplicated",
        "Sends a surface model (.stl .obj .ply .vtk .vtp) with its patient and study to soiqd, which checks "
        "it, converts it and stores it. Prints the new structure id (with --quiet, only the id).",

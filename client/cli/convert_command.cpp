@@ -6,6 +6,7 @@
 #include "client/cli/cli_args.h"
 #include "client/cli/exit_code.h"
 #include "client/cli/mesh_on_grid.h"
+#include "client/cli/structure_operand.h"
 #include "core/io/write_image.h"
 #include "core/voxelize/voxelize_1d.h"
 
@@ -28,6 +29,7 @@ Result<ConvertArgs> parse(int argc, char** argv) {
       if (i + 1 >= argc) return invalid_argument("-o needs a value");
       a.out = argv[++i];
     } else if (!arg.empty() && arg[0] == '-') {
+      SOIQ_RETURN_IF_ERROR(refuse_stored_only_option(arg, "convert"));
       return invalid_argument("unknown option '" + arg + "'");
     } else if (a.mesh.empty()) {
       a.mesh = arg;

@@ -10,6 +10,7 @@
 #include "client/cli/feature_list_output.h"
 #include "client/cli/feature_report_output.h"
 #include "client/cli/mesh_on_grid.h"
+#include "client/cli/structure_operand.h"
 #include "core/features/structure_features.h"
 #include "core/io/read_image.h"
 
@@ -80,6 +81,7 @@ Result<FeaturesArgs> parse(int argc, char** argv) {
     } else if (arg == "--ibsi") {
       a.ibsi = true;
     } else if (!arg.empty() && arg[0] == '-') {
+      SOIQ_RETURN_IF_ERROR(refuse_stored_only_option(arg, "features"));
       return invalid_argument("unknown option '" + arg + "'");
     } else if (a.input.empty()) {
       a.input = arg;

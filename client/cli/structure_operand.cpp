@@ -22,4 +22,10 @@ Result<OperandKind> structure_operand_kind(const std::string& operand) {
   return structure_operand_kind(operand, exists);
 }
 
+Status refuse_stored_only_option(const std::string& option, const std::string& command) {
+  if (option != "--series" && option != "--series-modality") return ok_status();
+  return invalid_argument(option + " applies to a stored structure: soiq " + command + " ID " + option +
+                          (option == "--series" ? " UID" : " M") + " (the operand here is a file, or missing)");
+}
+
 }  // namespace soiq::cli

@@ -23,4 +23,9 @@ Result<OperandKind> structure_operand_kind(const std::string& operand, bool file
 // The same, asking the file system whether `operand` exists as a file.
 Result<OperandKind> structure_operand_kind(const std::string& operand);
 
+// The offline parsers' word for an option only the stored form takes (--series, --series-modality):
+// INVALID_ARGUMENT saying so ("--series applies to a stored structure: soiq convert ID --series UID"),
+// rather than calling a documented option unknown. OK for any other option.
+Status refuse_stored_only_option(const std::string& option, const std::string& command);
+
 }  // namespace soiq::cli
