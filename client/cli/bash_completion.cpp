@@ -47,6 +47,9 @@ std::vector<std::string> feature_words() {
   return names;
 }
 
+// The regions a feature expression names inside its brackets ("shell:" and "core:" take a radius).
+std::vector<std::string> region_words() { return {"inside", "shell:", "core:"}; }
+
 // The case arm `key) opts="..."; values=...` of one command ("pacs find" is keyed pacs_find).
 std::string command_arm(const CommandSpec& c) {
   std::string key(c.name);
@@ -115,7 +118,16 @@ std::string bash_completion_script() {
          join(feature_words()) +
          "\"\n"
          "  case $prev in\n"
-         "    --select | --order-by | --where) COMPREPLY=($(compgen -W \"$features\" -- \"$cur\")); return ;;\n"
+         "    --select | --order-by | --where)\n"
+         // Inside an expression: after NAME[ the regions; after asym( or an opening quote, the names.
+         "      if [[ $cur == *\\[* && $cur != *\\]* ]]; then\n"
+         "        local head=${cur%\\[*} tail=${cur##*\\[}\n"
+         "        [[ $tail == *,* ]] || COMPREPLY=($(compgen -P \"$head[\" -W \"" + join(region_words()) + "\" -- \"$tail\"))\n"
+         "        return\n"
+         "      fi\n"
+         "      local word=${cur##*[^a-z_0-9]}\n"
+         "      COMPREPLY=($(compgen -P \"${cur%\"$word\"}\" -W \"$features\" -- \"$word\"))\n"
+         "      return ;;\n"
          "    --features)\n"
          "      local head=${cur%,*} tail=${cur##*,}\n"
          "      [[ $cur == *,* ]] && head=\"$head,\" || head=''\n"

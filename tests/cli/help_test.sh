@@ -45,6 +45,13 @@ grep -qx sphericity <<<"$words" || fail "--select sphe<TAB>: $words"
 [ "$(complete_words soiq pacs find --lev)" = "--level" ] || fail "pacs find --lev<TAB>: $(complete_words soiq pacs find --lev)"
 words=$(complete_words soiq features x.vtp --features voxel_count,sphe)
 grep -qx voxel_count,sphericity <<<"$words" || fail "--features a,sphe<TAB>: $words"
+# Inside a feature expression: regions after NAME[, names after asym( or an opening quote.
+[ "$(complete_words soiq query --where 'mean[in')" = "mean[inside" ] ||
+  fail "--where mean[in<TAB>: $(complete_words soiq query --where 'mean[in')"
+[ "$(complete_words soiq query --select 'asym(voxel_vo')" = "asym(voxel_volume_mm3" ] ||
+  fail "--select asym(voxel_vo<TAB>: $(complete_words soiq query --select 'asym(voxel_vo')"
+words=$(complete_words soiq query --where "'sphe")
+grep -qx "'sphericity" <<<"$words" || fail "--where 'sphe<TAB>: $words"
 expect 2 "soiq completion bash" -- $soiq completion zsh
 
 finish help_test
