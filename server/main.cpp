@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   bool help = false;
   Result<soiq::server::ServerConfig> config = soiq::server::parse_server_config(argc, argv, help, std::getenv);
   if (!config.ok()) {
-    std::fprintf(stderr, "soiqd: %s\n%s", config.status().message().c_str(), soiq::server::server_usage());
+    std::fprintf(stderr, "soiqd: %s (soiqd --help lists the options)\n", config.status().message().c_str());
     return 2;
   }
   if (help) {

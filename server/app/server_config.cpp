@@ -3,7 +3,9 @@
 #include <cctype>
 #include <charconv>
 #include <thread>
+#include <vector>
 
+#include "core/base/did_you_mean.h"
 #include "core/voxelize/memory_estimate.h"
 #include "server/app/pacs_address.h"
 
@@ -26,19 +28,66 @@ struct Option {
   std::function<Status(const std::string& value, const std::string& what)> set;
 };
 
+// What --help and soiqd(8) say of each option, in the order of the parser's table below (a test
+// holds the two to the same flags).
+struct OptionText {
+  const char* flag;
+  const char* value;
+  const char* default_text;
+  const char* meaning;
+};
+
+constexpr OptionText kOptionTexts[] = {
+    {"--listen", "HOST:PORT", "127.0.0.1:50051", "where to listen; port 0 binds any free port (see --port-file)"},
+    {"--db", "PATH", "var/soiq.db", "the SQLite store (made, with its folder, when missing)"},
+    {"--port-file", "PATH", "none", "write the bound port there once soiqd serves"},
+    {"--max-upload-bytes", "N", "268435456 (256 MiB)", "the largest upload or import soiqd accepts"},
+    {"--max-grid-voxels", "N", "500000000", "the largest grid of a conversion or an image"},
+    {"--memory-budget", "BYTES", "half the RAM (or of the cgroup's limit)",
+     "the peak bytes all conversions, features and imports may hold at once (8G, 512M or bytes)"},
+    {"--workers", "N", "the hardware threads", "conversions and feature computations at once"},
+    {"--query-result-cap", "N", "10000", "the most rows one query returns"},
+    {"--stage1-cap", "N", "100000", "the most candidate structures stage 1 of a query may select"},
+    {"--tls-cert", "PEM", "none (plaintext)", "serve TLS with this certificate chain (with --tls-key)"},
+    {"--tls-key", "PEM", "none", "the private key of --tls-cert"},
+    {"--token-file", "PATH", "none (no authentication)",
+     "require 'authorization: Bearer TOKEN' with the token in PATH"},
+    {"--pacs", "AE@HOST:PORT", "none (the pacs calls are refused)", "the PACS of soiq pacs echo, find, pull and push"},
+    {"--pacs-calling-ae", "AE", "SOIQ", "soiqd's AE title towards the PACS"},
+    {"--pacs-timeout", "SECONDS", "30", "the PACS's connect, association and message timeout"},
+};
+
+std::string usage_text() {
+  std::string out =
+      "usage: soiqd [OPTION]...\n\n"
+      "Serves the soiq gRPC API (soiq.v1) and the standard health service; soiq(1) is its client.\n"
+      "Every option may also be given as --option=value, or in its environment variable (the option\n"
+      "wins). SIGTERM or SIGINT stops it after the calls in progress (up to 10 s).\n\n"
+      "Options:\n";
+  for (const OptionText& o : kOptionTexts) {
+    std::string env = std::string("SOIQ_") + (o.flag + 2);
+    for (char& ch : env) ch = ch == '-' ? '_' : char(std::toupper(static_cast<unsigned char>(ch)));
+    out += "  " + std::string(o.flag) + " " + o.value + "\n      " + o.meaning + "\n      default: " + o.default_text +
+           "; environment: " + env + "\n";
+  }
+  out +=
+      "  -h, --help\n      print this help\n\n"
+      "Exit codes: 0 stopped by a signal, 2 a bad option or value (one line on stderr), 1 any other\n"
+      "failure to start (the port in use, an unreadable store, certificate or token).\n";
+  return out;
+}
+
 }  // namespace
 
 const char* server_usage() {
-  return "usage: soiqd [--listen HOST:PORT] [--db PATH] [--port-file PATH] [--max-upload-bytes N]\n"
-         "             [--max-grid-voxels N] [--memory-budget BYTES] [--workers N] [--query-result-cap N]\n"
-         "             [--stage1-cap N]\n"
-         "             [--tls-cert PEM --tls-key PEM] [--token-file PATH]\n"
-         "             [--pacs AE@HOST:PORT [--pacs-calling-ae AE] [--pacs-timeout SECONDS]]\n"
-         "Every flag has an environment default: SOIQ_LISTEN, SOIQ_DB, SOIQ_PORT_FILE, SOIQ_MAX_UPLOAD_BYTES,\n"
-         "SOIQ_MAX_GRID_VOXELS, SOIQ_MEMORY_BUDGET, SOIQ_WORKERS, SOIQ_QUERY_RESULT_CAP, SOIQ_STAGE1_CAP, "
-         "SOIQ_TLS_CERT,\n"
-         "SOIQ_TLS_KEY, SOIQ_TOKEN_FILE, SOIQ_PACS, SOIQ_PACS_CALLING_AE, SOIQ_PACS_TIMEOUT. Port 0 binds any free "
-         "port (see --port-file).\n";
+  static const std::string text = usage_text();
+  return text.c_str();
+}
+
+std::vector<std::string> server_option_flags() {
+  std::vector<std::string> flags;
+  for (const OptionText& o : kOptionTexts) flags.emplace_back(o.flag);
+  return flags;
 }
 
 Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
@@ -103,7 +152,11 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       }
       if (match) break;
     }
-    if (!match) return invalid_argument("unknown option '" + arg + "'");
+    if (!match) {
+      std::vector<std::string> flags;
+      for (const Option& o : options) flags.emplace_back(o.flag);
+      return invalid_argument("unknown option '" + arg + "'" + did_you_mean(arg.substr(0, arg.find('=')), flags));
+    }
     SOIQ_RETURN_IF_ERROR(match->set(value, match->flag));
   }
   if (c.tls_cert.empty() != c.tls_key.empty())

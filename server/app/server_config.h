@@ -1,24 +1,8 @@
 #pragma once
 // soiqd's configuration: flags, with environment variables as defaults (flags win), so the same
-// binary runs from a shell, from `make run` and in a container.
-//
-//   flag                        environment                default
-//   --listen HOST:PORT          SOIQ_LISTEN                127.0.0.1:50051 (port 0: any free port)
-//   --db PATH                   SOIQ_DB                    var/soiq.db
-//   --port-file PATH            SOIQ_PORT_FILE             none; the bound port is written there
-//   --max-upload-bytes N        SOIQ_MAX_UPLOAD_BYTES      268435456 (256 MiB)
-//   --max-grid-voxels N         SOIQ_MAX_GRID_VOXELS       500000000
-//   --memory-budget BYTES       SOIQ_MEMORY_BUDGET         half the RAM (or of the cgroup's memory.max):
-//                                                          the peak bytes all conversions and features
-//                                                          may hold at once (8G, 512M, or bytes)
-//   --workers N                 SOIQ_WORKERS               hardware threads (concurrent conversions)
-//   --query-result-cap N        SOIQ_QUERY_RESULT_CAP      10000 rows
-//   --stage1-cap N              SOIQ_STAGE1_CAP            100000 candidate structures
-//   --tls-cert PEM --tls-key PEM SOIQ_TLS_CERT/SOIQ_TLS_KEY none (plaintext)
-//   --token-file PATH           SOIQ_TOKEN_FILE            none (no authentication)
-//   --pacs AE@HOST:PORT         SOIQ_PACS                  none (the Pacs* calls are refused)
-//   --pacs-calling-ae AE        SOIQ_PACS_CALLING_AE       SOIQ (soiq's AE title towards the PACS)
-//   --pacs-timeout SECONDS      SOIQ_PACS_TIMEOUT          30 (connect, each association and DIMSE message)
+// binary runs from a shell, from `make run` and in a container. Each flag's value, default and
+// variable (SOIQ_ and the flag's name: --max-grid-voxels is SOIQ_MAX_GRID_VOXELS) are described
+// once, in server_config.cpp's table, which `soiqd --help` and soiqd(8) print.
 //
 // Errors: INVALID_ARGUMENT naming the flag or variable and what it accepts.
 
@@ -26,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/base/status.h"
 #include "dicom/pacs_peer.h"
@@ -54,6 +39,11 @@ struct ServerConfig {
 Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
                                          const std::function<const char*(const char*)>& getenv);
 
+// `soiqd --help`: each option with its value, meaning, default and environment variable; soiqd(8)
+// is made from it in the build.
 const char* server_usage();
+
+// The flags server_usage() describes, in its order (a test holds them to the parser's).
+std::vector<std::string> server_option_flags();
 
 }  // namespace soiq::server

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <map>
 #include <string>
 #include <vector>
@@ -81,6 +82,28 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
     EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
     EXPECT_TRUE(says(p.config.status(), name)) << p.config.status().message();
   }
+}
+
+// --help and the parser cannot disagree: every flag the help describes is one the parser takes
+// (each given an unparseable value must be refused for its value, not as unknown), in the
+// environment variable the help names, and a mistyped flag gets the nearest real one.
+TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
+  const std::string usage = server_usage();
+  const std::vector<std::string> flags = server_option_flags();
+  EXPECT_EQ(flags.size(), 15u);
+  for (const std::string& flag : flags) {
+    const Parsed p = parse({flag, ""});
+    ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
+    EXPECT_FALSE(says(p.config.status(), "unknown option")) << p.config.status().message();
+    EXPECT_TRUE(says(p.config.status(), flag)) << p.config.status().message();
+    std::string env = "SOIQ_" + flag.substr(2);
+    for (char& c : env) c = c == '-' ? '_' : char(std::toupper(static_cast<unsigned char>(c)));
+    EXPECT_NE(usage.find("environment: " + env + "\n"), std::string::npos) << env;
+    const Parsed from_env = parse({}, {{env, ""}});
+    EXPECT_FALSE(from_env.config.ok()) << env << " is not read";
+  }
+  const Parsed typo = parse({"--lisen", "127.0.0.1:0"});
+  EXPECT_TRUE(says(typo.config.status(), "did you mean '--listen'?")) << typo.config.status().message();
 }
 
 TEST(ServerConfig, HelpIsReportedNotAnError) {
