@@ -7,6 +7,7 @@
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
+//   soiq-bench codec [--runs N] [--label LABEL_IMAGE]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
@@ -22,6 +23,7 @@
 #include "bench/query_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
+#include "bench/surface_codec_bench.h"
 #include "bench/table5.h"
 #include "bench/table7.h"
 
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
   const auto args =
       parse_cli_args(argc, argv, 2,
                      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models",
-                      "--sts", "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched"},
+                      "--sts", "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label"},
                      {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
@@ -67,5 +69,6 @@ int main(int argc, char** argv) {
   if (command == "features") return run_features_bench(*args);
   if (command == "query") return run_query_bench(*args);
   if (command == "import") return run_import_bench(*args);
+  if (command == "codec") return run_surface_codec_bench(*args);
   return usage();
 }

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "db/deflate.h"
+#include "db/delta_planes.h"
 
 namespace soiq::db {
 namespace {
@@ -35,6 +36,74 @@ T get(const std::string& in, size_t at) {
   std::memcpy(&v, in.data() + at, sizeof v);
   return v;
 }
+
+// The blob of version 2: the magic, the counts, then the x, y and z coordinates of every vertex and
+// the first, second and third corner of every triangle, each as a delta-planes stream
+// (delta_planes.h). Neighbouring vertices share their high bytes, and corners their neighbours'
+// indices, so the streams are mostly zero runs; LZ4 decodes them at memory speed.
+constexpr char kPlanesMagic[8] = {'S', 'O', 'I', 'Q', 'S', 'R', 'F', '2'};
+constexpr size_t kPlanesHeaderSize = 8 + 8 + 8;
+// LZ4 expands at most 255-fold: a header claiming more than that of the blob's size is corrupt,
+// and is refused before anything that large is allocated.
+constexpr size_t kMaxExpansion = 255;
+
+std::string encode_planes(const TriangleMesh& mesh) {
+  const size_t nv = mesh.vertices_mm.size(), nt = mesh.triangles.size();
+  std::string out(kPlanesHeaderSize, '\0');
+  size_t at = 0;
+  std::memcpy(out.data(), kPlanesMagic, sizeof kPlanesMagic);
+  at += sizeof kPlanesMagic;
+  put(out, at, uint64_t(nv));
+  put(out, at, uint64_t(nt));
+  for (int a = 0; a < 3; ++a) {
+    append_delta_planes(nv ? &mesh.vertices_mm[0][a] : nullptr, nv, 8, sizeof(Vec3), out);
+  }
+  for (int k = 0; k < 3; ++k) {
+    append_delta_planes(nt ? &mesh.triangles[0][k] : nullptr, nt, 4, sizeof(mesh.triangles[0]), out);
+  }
+  return out;
+}
+
+// Every triangle's corners are vertices of the mesh (a stored index >= 2^31 reads back negative).
+Status check_indices(const TriangleMesh& mesh) {
+  const uint64_t nv = mesh.vertices_mm.size();
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int32_t v : mesh.triangles[t]) {
+      if (v < 0 || uint64_t(v) >= nv) {
+        return data_loss("surface blob triangle " + std::to_string(t) + " refers to vertex " +
+                         std::to_string(uint32_t(v)) + " of " + std::to_string(nv));
+      }
+    }
+  }
+  return ok_status();
+}
+
+Result<TriangleMesh> decode_planes(const std::string& blob) {
+  if (blob.size() < kPlanesHeaderSize) return data_loss("surface blob is truncated (no header)");
+  const auto nv = get<uint64_t>(blob, 8);
+  const auto nt = get<uint64_t>(blob, 16);
+  const size_t limit = std::min(kMaxCanonicalBytes, blob.size() * kMaxExpansion);
+  if (nv > limit / 24 || nt > limit / 12 || nv * 24 + nt * 12 > limit) {
+    return data_loss("surface blob header says " + std::to_string(nv) + " vertices and " + std::to_string(nt) +
+                     " triangles, more than its " + std::to_string(blob.size()) + " bytes can hold");
+  }
+  TriangleMesh mesh;
+  mesh.vertices_mm.resize(nv);
+  mesh.triangles.resize(nt);
+  size_t at = kPlanesHeaderSize;
+  for (int a = 0; a < 3; ++a) {
+    SOIQ_RETURN_IF_ERROR(read_delta_planes(blob, at, nv, 8, sizeof(Vec3), nv ? &mesh.vertices_mm[0][a] : nullptr));
+  }
+  for (int k = 0; k < 3; ++k) {
+    SOIQ_RETURN_IF_ERROR(
+        read_delta_planes(blob, at, nt, 4, sizeof(mesh.triangles[0]), nt ? &mesh.triangles[0][k] : nullptr));
+  }
+  if (at != blob.size()) return data_loss("surface blob has " + std::to_string(blob.size() - at) + " extra bytes");
+  SOIQ_RETURN_IF_ERROR(check_indices(mesh));
+  return mesh;
+}
+
+Result<TriangleMesh> decode_deflated(const std::string& blob);
 
 }  // namespace
 
@@ -86,11 +155,23 @@ Result<EncodedSurface> encode_surface(const TriangleMesh& mesh) {
   if (nt > 0) std::memcpy(canonical.data() + at, mesh.triangles.data(), nt * 3 * sizeof(uint32_t));
 
   info.sha256 = sha256_hex(canonical.data(), canonical.size());
-  SOIQ_ASSIGN_OR_RETURN(out.blob, deflate_bytes(canonical.data(), canonical.size()));
+  out.blob = encode_planes(mesh);
   return out;
 }
 
 Result<TriangleMesh> decode_surface(const std::string& blob) {
+  if (blob.size() >= sizeof kPlanesMagic && std::memcmp(blob.data(), kPlanesMagic, sizeof kPlanesMagic) == 0)
+    return decode_planes(blob);
+  return decode_deflated(blob);
+}
+
+bool is_deflated_surface_blob(const std::string& blob) {
+  return blob.size() < sizeof kPlanesMagic || std::memcmp(blob.data(), kPlanesMagic, sizeof kPlanesMagic) != 0;
+}
+
+namespace {
+
+Result<TriangleMesh> decode_deflated(const std::string& blob) {
   SOIQ_ASSIGN_OR_RETURN(std::string canonical, inflate_bytes(blob, kMaxCanonicalBytes));
   if (canonical.size() < kHeaderSize || std::memcmp(canonical.data(), kMagic, sizeof kMagic) != 0) {
     return data_loss("blob is not a soiq surface blob (no SOIQSURF header)");
@@ -113,16 +194,10 @@ Result<TriangleMesh> decode_surface(const std::string& blob) {
   mesh.triangles.resize(nt);
   if (nv > 0) std::memcpy(mesh.vertices_mm.data(), canonical.data() + kHeaderSize, nv * 24);
   if (nt > 0) std::memcpy(mesh.triangles.data(), canonical.data() + kHeaderSize + nv * 24, nt * 12);
-  for (size_t t = 0; t < nt; ++t) {
-    for (int32_t v : mesh.triangles[t]) {
-      // A stored index >= 2^31 reads back negative: out of range as well.
-      if (v < 0 || uint64_t(v) >= nv) {
-        return data_loss("surface blob triangle " + std::to_string(t) + " refers to vertex " +
-                         std::to_string(uint32_t(v)) + " of " + std::to_string(nv));
-      }
-    }
-  }
+  SOIQ_RETURN_IF_ERROR(check_indices(mesh));
   return mesh;
 }
+
+}  // namespace
 
 }  // namespace soiq::db

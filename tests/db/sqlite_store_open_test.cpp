@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
+#include "db/deflate.h"
 #include "db/sqlite/schema_migrations.h"
 #include "db/sqlite/sqlite_store.h"
 #include "tests/db/temp_store.h"
@@ -75,6 +77,53 @@ TEST(SqliteStoreOpen, DataPersistsAcrossCloseAndReopen) {
   ASSERT_TRUE(cached.ok());
   ASSERT_EQ(cached->size(), 1u);
   EXPECT_EQ((*cached)[0].value, (std::vector<double>{1.5, -0.0}));
+}
+
+// A store of schema version 3 holds zlib surface blobs; opening it with this code re-encodes each
+// in version 2, and the structure's surface reads back exactly as before.
+TEST(SqliteStoreOpen, Version3SurfaceBlobsAreReencodedByTheMigration) {
+  TempDir dir;
+  const std::string path = dir.file("v3.db");
+  std::string sha;
+  {
+    auto store = open_store(path);
+    auto added = store->add_structure(new_structure("P1", "1.2.3", "Hippocampus", 2.5));
+    ASSERT_TRUE(added.ok()) << added.status().to_string();
+    sha = added->structure.surface.sha256;
+  }
+  const TriangleMesh mesh = testing::tetrahedron(2.5);
+  // What a version 3 store holds: the canonical bytes (32-byte header, payload) deflated.
+  std::string canonical("SOIQSURF", 8);
+  const uint32_t version = 1, reserved = 0;
+  const uint64_t nv = mesh.vertices_mm.size(), nt = mesh.triangles.size();
+  canonical.append(reinterpret_cast<const char*>(&version), 4).append(reinterpret_cast<const char*>(&reserved), 4);
+  canonical.append(reinterpret_cast<const char*>(&nv), 8).append(reinterpret_cast<const char*>(&nt), 8);
+  canonical.append(reinterpret_cast<const char*>(mesh.vertices_mm.data()), nv * sizeof(Vec3));
+  canonical.append(reinterpret_cast<const char*>(mesh.triangles.data()), nt * 12);
+  const std::string v1 = *deflate_bytes(canonical.data(), canonical.size());
+  ASSERT_EQ(sha256_hex(canonical.data(), canonical.size()), sha);
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    ASSERT_EQ(sqlite3_prepare_v2(db, "UPDATE surfaces SET blob = ? WHERE sha256 = ?", -1, &st, nullptr), SQLITE_OK);
+    sqlite3_bind_blob(st, 1, v1.data(), int(v1.size()), SQLITE_TRANSIENT);
+    sqlite3_bind_text(st, 2, sha.c_str(), -1, SQLITE_TRANSIENT);
+    ASSERT_EQ(sqlite3_step(st), SQLITE_DONE);
+    sqlite3_finalize(st);
+    ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 3", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  auto store = open_store(path);
+  ASSERT_TRUE(store);
+  EXPECT_EQ(*store->schema_version(), latest_schema_version());
+  auto blob = store->get_surface_blob(sha);
+  ASSERT_TRUE(blob.ok()) << blob.status().to_string();
+  EXPECT_FALSE(is_deflated_surface_blob(*blob));
+  auto back = decode_surface(*blob);
+  ASSERT_TRUE(back.ok()) << back.status().to_string();
+  EXPECT_EQ(back->triangles, mesh.triangles);
+  EXPECT_EQ(std::memcmp(back->vertices_mm.data(), mesh.vertices_mm.data(), nv * sizeof(Vec3)), 0);
 }
 
 TEST(SqliteStoreOpen, NewerSchemaVersionIsRefusedNamingBothVersions) {

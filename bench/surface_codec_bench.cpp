@@ -1,0 +1,237 @@
+#include "bench/surface_codec_bench.h"
+
+#include <lz4.h>
+#include <zstd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "client/cohort/deformed_ellipsoid.h"
+#include "client/cohort/split_mix_64.h"
+#include "core/base/triangle_mesh.h"
+#include "core/geometry/primitives.h"
+#include "core/io/marching_cubes.h"
+#include "core/io/read_image.h"
+#include "db/deflate.h"
+#include "db/surface_blob.h"
+
+namespace soiq::bench {
+namespace {
+
+// The canonical payload without header: vertices as float64 x y z per vertex, then uint32 triples.
+std::string canonical(const TriangleMesh& m) {
+  std::string out(m.vertices_mm.size() * 24 + m.triangles.size() * 12, '\0');
+  std::memcpy(out.data(), m.vertices_mm.data(), m.vertices_mm.size() * 24);
+  std::memcpy(out.data() + m.vertices_mm.size() * 24, m.triangles.data(), m.triangles.size() * 12);
+  return out;
+}
+
+// The "planes" transform: each coordinate axis as a plane of int64 bit-pattern deltas, each
+// triangle corner as a plane of zigzagged int32 deltas, every plane byte-shuffled.
+std::string planes(const TriangleMesh& m) {
+  const size_t nv = m.vertices_mm.size(), nt = m.triangles.size();
+  std::string out(nv * 24 + nt * 12, '\0');
+  uint8_t* o = reinterpret_cast<uint8_t*>(out.data());
+  for (int a = 0; a < 3; ++a) {
+    uint64_t prev = 0;
+    uint8_t* base = o + a * nv * 8;
+    for (size_t i = 0; i < nv; ++i) {
+      uint64_t bits;
+      std::memcpy(&bits, &m.vertices_mm[i][a], 8);
+      const uint64_t d = bits - prev;
+      prev = bits;
+      for (int b = 0; b < 8; ++b) base[b * nv + i] = uint8_t(d >> (8 * b));
+    }
+  }
+  o += nv * 24;
+  for (int k = 0; k < 3; ++k) {
+    int32_t prev = 0;
+    uint8_t* base = o + k * nt * 4;
+    for (size_t t = 0; t < nt; ++t) {
+      const int32_t v = m.triangles[t][k];
+      const int32_t d = v - prev;
+      prev = v;
+      const uint32_t z = (uint32_t(d) << 1) ^ uint32_t(d >> 31);
+      for (int b = 0; b < 4; ++b) base[b * nt + t] = uint8_t(z >> (8 * b));
+    }
+  }
+  return out;
+}
+
+TriangleMesh unplanes(const std::string& in, size_t nv, size_t nt) {
+  TriangleMesh m;
+  m.vertices_mm.resize(nv);
+  m.triangles.resize(nt);
+  const uint8_t* p = reinterpret_cast<const uint8_t*>(in.data());
+  for (int a = 0; a < 3; ++a) {
+    uint64_t prev = 0;
+    const uint8_t* base = p + a * nv * 8;
+    for (size_t i = 0; i < nv; ++i) {
+      uint64_t d = 0;
+      for (int b = 0; b < 8; ++b) d |= uint64_t(base[b * nv + i]) << (8 * b);
+      prev += d;
+      std::memcpy(&m.vertices_mm[i][a], &prev, 8);
+    }
+  }
+  p += nv * 24;
+  for (int k = 0; k < 3; ++k) {
+    int32_t prev = 0;
+    const uint8_t* base = p + k * nt * 4;
+    for (size_t t = 0; t < nt; ++t) {
+      uint32_t z = 0;
+      for (int b = 0; b < 4; ++b) z |= uint32_t(base[b * nt + t]) << (8 * b);
+      prev += int32_t((z >> 1) ^ (0u - (z & 1)));
+      m.triangles[t][k] = prev;
+    }
+  }
+  return m;
+}
+
+// Version 1's canonical bytes: its 32-byte header, then the payload.
+std::string canonical_v1(const TriangleMesh& m) {
+  std::string header(32, '\0');
+  const uint32_t version = 1;
+  const uint64_t nv = m.vertices_mm.size(), nt = m.triangles.size();
+  std::memcpy(header.data(), "SOIQSURF", 8);
+  std::memcpy(header.data() + 8, &version, 4);
+  std::memcpy(header.data() + 16, &nv, 8);
+  std::memcpy(header.data() + 24, &nt, 8);
+  return header + canonical(m);
+}
+
+TriangleMesh uncanonical(const std::string& in, size_t nv, size_t nt) {
+  TriangleMesh m;
+  m.vertices_mm.resize(nv);
+  m.triangles.resize(nt);
+  std::memcpy(m.vertices_mm.data(), in.data(), nv * 24);
+  std::memcpy(m.triangles.data(), in.data() + nv * 24, nt * 12);
+  return m;
+}
+
+std::string lz4(const std::string& in) {
+  std::string out(size_t(LZ4_compressBound(int(in.size()))), '\0');
+  out.resize(size_t(LZ4_compress_default(in.data(), out.data(), int(in.size()), int(out.size()))));
+  return out;
+}
+std::string unlz4(const std::string& in, size_t size) {
+  std::string out(size, '\0');
+  LZ4_decompress_safe(in.data(), out.data(), int(in.size()), int(size));
+  return out;
+}
+std::string zstd(const std::string& in, int level) {
+  std::string out(ZSTD_compressBound(in.size()), '\0');
+  out.resize(ZSTD_compress(out.data(), out.size(), in.data(), in.size(), level));
+  return out;
+}
+std::string unzstd(const std::string& in, size_t size) {
+  std::string out(size, '\0');
+  ZSTD_decompress(out.data(), size, in.data(), in.size());
+  return out;
+}
+
+struct Candidate {
+  const char* name;
+  std::function<std::string(const TriangleMesh&)> encode;
+  std::function<TriangleMesh(const std::string&, size_t, size_t)> decode;
+};
+
+std::vector<Candidate> candidates() {
+  return {
+      {"zlib-1 canonical (version 1 blobs)",
+       [](const TriangleMesh& m) {
+         const std::string bytes = canonical_v1(m);
+         return db::deflate_bytes(bytes.data(), bytes.size()).value();
+       },
+       [](const std::string& b, size_t nv, size_t nt) {
+         return uncanonical(db::inflate_bytes(b, 1ull << 34).value().substr(32), nv, nt);
+       }},
+      {"soiq delta planes + lz4 (version 2 blobs)", [](const TriangleMesh& m) { return db::encode_surface(m)->blob; },
+       [](const std::string& b, size_t, size_t) { return *db::decode_surface(b); }},
+      {"lz4 canonical", [](const TriangleMesh& m) { return lz4(canonical(m)); },
+       [](const std::string& b, size_t nv, size_t nt) { return uncanonical(unlz4(b, nv * 24 + nt * 12), nv, nt); }},
+      {"zstd-1 canonical", [](const TriangleMesh& m) { return zstd(canonical(m), 1); },
+       [](const std::string& b, size_t nv, size_t nt) { return uncanonical(unzstd(b, nv * 24 + nt * 12), nv, nt); }},
+      {"lz4 planes", [](const TriangleMesh& m) { return lz4(planes(m)); },
+       [](const std::string& b, size_t nv, size_t nt) { return unplanes(unlz4(b, nv * 24 + nt * 12), nv, nt); }},
+      {"zstd-1 planes", [](const TriangleMesh& m) { return zstd(planes(m), 1); },
+       [](const std::string& b, size_t nv, size_t nt) { return unplanes(unzstd(b, nv * 24 + nt * 12), nv, nt); }},
+      {"zstd-3 planes", [](const TriangleMesh& m) { return zstd(planes(m), 3); },
+       [](const std::string& b, size_t nv, size_t nt) { return unplanes(unzstd(b, nv * 24 + nt * 12), nv, nt); }},
+  };
+}
+
+// The median wall time of `runs` calls of `f`.
+double median_ms(int runs, const std::function<void()>& f) {
+  std::vector<double> ms;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+bool same(const TriangleMesh& a, const TriangleMesh& b) {
+  return a.vertices_mm.size() == b.vertices_mm.size() && a.triangles == b.triangles &&
+         std::memcmp(a.vertices_mm.data(), b.vertices_mm.data(), a.vertices_mm.size() * 24) == 0;
+}
+
+TriangleMesh float32_rounded(TriangleMesh m) {
+  for (Vec3& v : m.vertices_mm)
+    for (double& x : v) x = double(float(x));
+  return m;
+}
+
+}  // namespace
+
+int run_surface_codec_bench(const CliArgs& args) {
+  const Result<int> runs_arg = args.get_int("--runs", 20);
+  if (!runs_arg.ok() || *runs_arg < 1) {
+    std::fprintf(stderr, "soiq-bench codec: --runs must be a whole number >= 1\n");
+    return 2;
+  }
+  const int runs = *runs_arg;
+  const std::string label = args.get("--label", "");
+  std::vector<std::pair<std::string, TriangleMesh>> meshes;
+  meshes.emplace_back("uv sphere, 100k triangles, float64", uv_sphere_with_triangles({1.5, -2.25, 30.125}, 25, 100000));
+  const cohort::Ellipsoid e{{12.3, -40.1, 20.7}, {10, 7, 5}};
+  cohort::SplitMix64 random(7);
+  meshes.emplace_back("query-bench structure, 20k triangles",
+                      cohort::deformed_ellipsoid(e, cohort::draw_radial_bump(random), 20000));
+  if (!label.empty()) {
+    Result<Image> image = read_image(label);
+    if (image.ok()) {
+      Mask mask = mask_from_image(*image);
+      Result<TriangleMesh> mc = marching_cubes(mask);
+      if (mc.ok()) {
+        meshes.emplace_back("marching cubes of " + label, *mc);
+        meshes.emplace_back("same, float32 coordinates (an STL upload)", float32_rounded(*mc));
+      }
+    }
+  }
+  std::printf(
+      "| mesh | triangles | codec | bytes | vs zlib | encode ms | decode ms |\n|---|---:|---|---:|---:|---:|---:|\n");
+  for (const auto& [name, mesh] : meshes) {
+    const size_t nv = mesh.vertices_mm.size(), nt = mesh.triangles.size();
+    size_t zlib_bytes = 0;
+    for (const Candidate& c : candidates()) {
+      std::string blob;
+      const double enc = median_ms(runs, [&] { blob = c.encode(mesh); });
+      TriangleMesh back;
+      const double dec = median_ms(runs, [&] { back = c.decode(blob, nv, nt); });
+      if (zlib_bytes == 0) zlib_bytes = blob.size();
+      std::printf("| %s | %zu | %s%s | %zu | %.2f | %.3f | %.3f |\n", name.c_str(), nt, c.name,
+                  same(mesh, back) ? "" : " (NOT LOSSLESS)", blob.size(), double(blob.size()) / double(zlib_bytes), enc,
+                  dec);
+    }
+  }
+  return 0;
+}
+
+}  // namespace soiq::bench
