@@ -190,6 +190,12 @@ struct CachedFeature {
   std::vector<double> value;
 };
 
+// One surface's feature-cache entries, as a batch write takes them.
+struct SurfaceFeatures {
+  std::string surface_sha256;
+  std::vector<CachedFeature> entries;
+};
+
 struct Counts {
   int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
   std::vector<std::string> series_modalities;  // every modality a stored series has, sorted
@@ -223,6 +229,9 @@ class Store {
   virtual Result<int64_t> remove(const Removal& r) = 0;
   // Stores feature-cache entries; `surface_sha256` ties them to the surface so they go with it.
   virtual Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) = 0;
+  // Many surfaces' entries in one transaction (a query writes its results so, not one transaction
+  // per structure). A surface deleted meanwhile is skipped: nothing would read its entries.
+  virtual Status put_cached_features(const std::vector<SurfaceFeatures>& batch) = 0;
 
   // --- reads (NOT_FOUND naming the id for an unknown one) --------------------------------------
   virtual Result<PatientRecord> get_patient(const std::string& patient_id) = 0;

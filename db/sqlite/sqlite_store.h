@@ -57,6 +57,7 @@ class SqliteStore : public Store {
   Result<ImportedBatch> import_batch(const ImportBatch& b) override;
   Result<int64_t> remove(const Removal& r) override;
   Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
+  Status put_cached_features(const std::vector<SurfaceFeatures>& batch) override;
 
   Result<PatientRecord> get_patient(const std::string& patient_id) override;
   Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;

@@ -69,27 +69,54 @@ constexpr char kUpsertCachedFeatureSql[] = R"sql(
 
 }  // namespace
 
-Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
+namespace {
+
+Status check_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
   SOIQ_RETURN_IF_ERROR(validate_sha256(surface_sha256, "surface"));
   for (const CachedFeature& f : entries) {
     if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
   }
+  return ok_status();
+}
+
+// Inside a write transaction: false (nothing written) when the surface is gone.
+Result<bool> upsert_entries(Connection& c, const std::string& surface_sha256,
+                            const std::vector<CachedFeature>& entries) {
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
+    q.bind(1, surface_sha256);
+    SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
+    if (!found) return false;
+  }
+  for (const CachedFeature& f : entries) {
+    SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertCachedFeatureSql));
+    up.bind(1, f.key);
+    up.bind(2, f.entry);
+    up.bind(3, surface_sha256);
+    up.bind_blob(4, f.value.data(), f.value.size() * sizeof(double));
+    SOIQ_RETURN_IF_ERROR(up.run());
+  }
+  return true;
+}
+
+}  // namespace
+
+Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
+  SOIQ_RETURN_IF_ERROR(check_entries(surface_sha256, entries));
   return write([&](Connection& c) -> Status {
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
-      q.bind(1, surface_sha256);
-      SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
-      // The surface may have been deleted while its features were computed: nothing to cache then.
-      if (!found) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
-    }
-    for (const CachedFeature& f : entries) {
-      SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertCachedFeatureSql));
-      up.bind(1, f.key);
-      up.bind(2, f.entry);
-      up.bind(3, surface_sha256);
-      up.bind_blob(4, f.value.data(), f.value.size() * sizeof(double));
-      SOIQ_RETURN_IF_ERROR(up.run());
-    }
+    SOIQ_ASSIGN_OR_RETURN(const bool stored, upsert_entries(c, surface_sha256, entries));
+    // The surface may have been deleted while its features were computed: nothing to cache then.
+    if (!stored) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
+    return ok_status();
+  });
+}
+
+Status SqliteStore::put_cached_features(const std::vector<SurfaceFeatures>& batch) {
+  for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(check_entries(s.surface_sha256, s.entries));
+  if (batch.empty()) return ok_status();
+  return write([&](Connection& c) -> Status {
+    for (const SurfaceFeatures& s : batch)
+      SOIQ_RETURN_IF_ERROR(upsert_entries(c, s.surface_sha256, s.entries).status());
     return ok_status();
   });
 }

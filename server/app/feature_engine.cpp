@@ -174,7 +174,7 @@ Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord
 }
 
 Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const FeatureAsk& ask,
-                                             const std::atomic<bool>* cancelled) {
+                                             const std::atomic<bool>* cancelled, db::SurfaceFeatures* to_store) {
   auto check_cancel = [&]() -> Status {
     if (cancelled && cancelled->load()) return Status(StatusCode::kCancelled, "cancelled");
     return ok_status();
@@ -230,7 +230,11 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
                                  " is not available here (" + needing_own_grid() +
                                  " needs an image on the structure's own grid)");
   }
-  SOIQ_RETURN_IF_ERROR(store_.put_cached_features(plan.structure.surface.sha256, entries));
+  if (to_store != nullptr) {
+    *to_store = {plan.structure.surface.sha256, std::move(entries)};
+  } else {
+    SOIQ_RETURN_IF_ERROR(store_.put_cached_features(plan.structure.surface.sha256, entries));
+  }
   return values;
 }
 

@@ -79,9 +79,10 @@ class FeatureEngine {
   Result<FeaturePlan> plan(const db::StructureRecord& structure, const std::vector<db::SeriesRecord>& study_series,
                            const FeatureAsk& ask) const;
 
-  // Computes the plan's features and stores them all in the feature cache.
+  // Computes the plan's features and stores them all in the feature cache, or, with `to_store`,
+  // leaves them there for the caller to write with others in one transaction (the query engine).
   Result<FeatureValues> compute(const FeaturePlan& plan, const FeatureAsk& ask,
-                                const std::atomic<bool>* cancelled = nullptr);
+                                const std::atomic<bool>* cancelled = nullptr, db::SurfaceFeatures* to_store = nullptr);
 
   // The stored surface, decoded (cached).
   Result<std::shared_ptr<const TriangleMesh>> surface(const std::string& sha256);

@@ -13,6 +13,7 @@
 
 #include "core/features/asymmetry_index.h"
 #include "server/app/query_skips.h"
+#include "server/util/log.h"
 
 namespace soiq::server {
 namespace {
@@ -39,10 +40,17 @@ struct Subject {
 };
 
 // What the workers hand back to the query's thread.
+// A candidate's computed features and the cache entries still to be written.
+struct Computed {
+  size_t idx;
+  Result<FeatureValues> values;
+  db::SurfaceFeatures to_store;
+};
+
 struct Completions {
   std::mutex mutex;
   std::condition_variable wake;
-  std::deque<std::pair<size_t, Result<FeatureValues>>> done;
+  std::deque<Computed> done;
   std::atomic<bool> cancelled{false};
 };
 
@@ -158,17 +166,22 @@ class QueryRun {
     size_t pending = enough_ ? 0 : submit(misses, completions);
     Clock::time_point last_progress = Clock::now();
     while (pending > 0 && !enough_) {
-      std::deque<std::pair<size_t, Result<FeatureValues>>> batch;
+      std::deque<Computed> batch;
       {
         std::unique_lock<std::mutex> lock(completions->mutex);
         completions->wake.wait_for(lock, std::chrono::milliseconds(50), [&] { return !completions->done.empty(); });
         batch.swap(completions->done);
       }
       SOIQ_RETURN_IF_ERROR(stop_());
-      for (auto& [idx, result] : batch) {
+      // What the workers computed since the last round goes to the cache in one transaction, here
+      // and not on the workers: one writer, one commit, and the workers go on converting.
+      std::vector<db::SurfaceFeatures> to_store;
+      for (Computed& c : batch) {
         --pending;
-        SOIQ_RETURN_IF_ERROR(complete(idx, std::move(result)));
+        if (!c.to_store.entries.empty()) to_store.push_back(std::move(c.to_store));
+        SOIQ_RETURN_IF_ERROR(complete(c.idx, std::move(c.values)));
       }
+      store_cache(to_store);
       if (ms_since(last_progress) >= 100 || pending == 0) {
         SOIQ_RETURN_IF_ERROR(progress("stage2", done_));
         last_progress = Clock::now();
@@ -178,17 +191,30 @@ class QueryRun {
     return ok_status();
   }
 
+  // The answer does not depend on the cache: a failed write (a full disk) is logged, and the query
+  // goes on with the values it has.
+  void store_cache(const std::vector<db::SurfaceFeatures>& batch) {
+    if (batch.empty()) return;
+    const Status s = store_.put_cached_features(batch);
+    if (!s.ok()) {
+      log_event("warn", {{"event", "feature_cache_write_failed"},
+                         {"structures", std::to_string(batch.size())},
+                         {"error", s.message()}});
+    }
+  }
+
   size_t submit(const std::vector<size_t>& misses, const std::shared_ptr<Completions>& completions) {
     auto ask = std::make_shared<const FeatureAsk>(q_.ask);
     FeatureEngine* engine = &features_;
     for (size_t idx : misses) {
       auto plan = std::make_shared<const FeaturePlan>(*subjects_[idx].plan);
       pool_.submit([completions, ask, plan, engine, idx] {
+        db::SurfaceFeatures to_store;
         Result<FeatureValues> r = completions->cancelled.load()
                                       ? Result<FeatureValues>(Status(StatusCode::kCancelled, "cancelled"))
-                                      : engine->compute(*plan, *ask, &completions->cancelled);
+                                      : engine->compute(*plan, *ask, &completions->cancelled, &to_store);
         std::lock_guard<std::mutex> lock(completions->mutex);
-        completions->done.emplace_back(idx, std::move(r));
+        completions->done.push_back(Computed{idx, std::move(r), std::move(to_store)});
         completions->wake.notify_one();
       });
     }

@@ -40,5 +40,27 @@ TEST_F(SqliteStoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
   EXPECT_TRUE((*empty)[0].value.empty());
 }
 
+// A query's results in one transaction: every known surface's entries stored, a surface deleted
+// meanwhile skipped without failing the others, a malformed entry refusing the whole batch.
+TEST_F(SqliteStoreWriteCache, ABatchStoresEverySurfacesEntriesAndSkipsAGoneSurface) {
+  auto a = store_->add_structure(new_structure("P1", "S1", "a", 1));
+  auto b = store_->add_structure(new_structure("P1", "S1", "b", 2));
+  ASSERT_TRUE(a.ok() && b.ok());
+  const std::string gone(64, 'f');
+  std::vector<SurfaceFeatures> batch = {{a->structure.surface.sha256, {{"ka", "volume", {1}}}},
+                                        {gone, {{"kg", "volume", {9}}}},
+                                        {b->structure.surface.sha256, {{"kb", "volume", {2}}, {"kb", "area", {3}}}}};
+  ASSERT_TRUE(store_->put_cached_features(batch).ok());
+  auto got = store_->cached_features({"ka", "kb", "kg"});
+  ASSERT_TRUE(got.ok());
+  EXPECT_EQ(got->size(), 3u);  // ka volume, kb volume and area; nothing of the gone surface
+  for (const CachedFeature& f : *got) EXPECT_NE(f.key, "kg");
+
+  batch[0].entries[0].entry = "";
+  const Status s = store_->put_cached_features(batch);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(store_->put_cached_features(std::vector<SurfaceFeatures>{}).ok());
+}
+
 }  // namespace
 }  // namespace soiq::db
