@@ -3,12 +3,15 @@
 // byte budget: decoding a stored blob costs milliseconds, and a query touches the same study image
 // for every structure of the study.
 //
-// get_or_load(key, load) returns the cached object or calls `load` (outside the lock; two threads
-// missing the same key may both load, the first to finish is kept) and caches a success. Objects
-// larger than the whole budget are returned but not kept.
+// get_or_load(key, load) returns the cached object or calls `load` (outside the lock) and caches a
+// success. A key is loaded once at a time: a thread that misses a key another is loading waits for
+// that load and shares its result (or its error), so a study's image is decoded once however many
+// workers ask for it at the same moment. Objects larger than the whole budget are returned but not
+// kept.
 
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -28,21 +31,51 @@ class LruCache {
 
   Result<Ptr> get_or_load(const std::string& key, const std::function<Result<T>()>& load,
                           const std::function<int64_t(const T&)>& bytes_of) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      auto it = index_.find(key);
-      if (it != index_.end()) {
-        order_.splice(order_.begin(), order_, it->second);
-        return it->second->value;
-      }
+    std::unique_lock<std::mutex> lock(mutex_);
+    auto it = index_.find(key);
+    if (it != index_.end()) {
+      order_.splice(order_.begin(), order_, it->second);
+      return it->second->value;
     }
-    SOIQ_ASSIGN_OR_RETURN(T loaded, load());
-    const int64_t bytes = bytes_of(loaded);
-    Ptr value = std::make_shared<const T>(std::move(loaded));
+    auto in_flight = loading_.find(key);
+    if (in_flight != loading_.end()) {
+      const std::shared_future<Result<Ptr>> theirs = in_flight->second;
+      lock.unlock();  // the loader needs the lock to publish
+      return theirs.get();
+    }
+    std::promise<Result<Ptr>> mine;
+    loading_.emplace(key, mine.get_future().share());
+    lock.unlock();
+    try {
+      Result<Ptr> result = load_value(load, bytes_of, key);
+      mine.set_value(result);
+      lock.lock();
+      loading_.erase(key);
+      return result;
+    } catch (...) {  // out of memory while decoding: the waiters get it too, none waits forever
+      mine.set_exception(std::current_exception());
+      lock.lock();
+      loading_.erase(key);
+      throw;
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string key;
+    Ptr value;
+    int64_t bytes;
+  };
+
+  // Loads `key` and keeps it when it fits; called by the one thread that loads it.
+  Result<Ptr> load_value(const std::function<Result<T>()>& load, const std::function<int64_t(const T&)>& bytes_of,
+                         const std::string& key) {
+    Result<T> loaded = load();
+    if (!loaded.ok()) return loaded.status();
+    const int64_t bytes = bytes_of(*loaded);
+    Ptr value = std::make_shared<const T>(std::move(loaded).value());
     if (bytes > budget_) return value;
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = index_.find(key);
-    if (it != index_.end()) return it->second->value;
     order_.push_front(Entry{key, value, bytes});
     index_[key] = order_.begin();
     used_ += bytes;
@@ -54,17 +87,12 @@ class LruCache {
     return value;
   }
 
- private:
-  struct Entry {
-    std::string key;
-    Ptr value;
-    int64_t bytes;
-  };
   const int64_t budget_;
   std::mutex mutex_;
   std::list<Entry> order_;  // most recent first
   std::unordered_map<std::string, typename std::list<Entry>::iterator> index_;
   int64_t used_ = 0;
+  std::unordered_map<std::string, std::shared_future<Result<Ptr>>> loading_;  // keys being loaded now
 };
 
 }  // namespace soiq::server
