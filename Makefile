@@ -14,7 +14,11 @@ build: deps
 	cmake --build $(BUILD) -j $(JOBS)
 
 # soiqd on 127.0.0.1:50051 with the SQLite store var/soiq.db, in the foreground (scripts/run-server).
-run: build
+# It builds only the programs (and their man pages and completion), not the tests and benchmarks:
+# a newcomer's first answer comes minutes sooner, and `make test` builds the rest.
+run: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(BUILD) -j $(JOBS) --target soiqd soiq soiq_generated_docs
 	scripts/run-server $(BUILD)
 
 # The offline conversion demo: a real label map -> surface -> volume, voxel for voxel (scripts/demo).
