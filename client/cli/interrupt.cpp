@@ -1,6 +1,6 @@
 #include "client/cli/interrupt.h"
 
-#include <csignal>
+#include <signal.h>  // sigaction (POSIX)
 
 namespace soiq::cli {
 
