@@ -27,7 +27,7 @@ counts() {
 before=$(counts)
 [[ "$before" == *'"structures":"1"'* ]] || fail "the store does not hold the one structure: $before"
 
-# interrupted KEPT CMD...: CMD starts while soiqd is stopped, gets SIGINT a second later, and must
+# interrupted KEPT CMD...: CMD starts while soiqd is stopped, gets SIGINT once it waits on it, and must
 # exit 130 with "interrupted; KEPT" as its one line on stderr; then soiqd resumes and no record changed.
 interrupted() {
   local kept=$1
@@ -35,7 +35,13 @@ interrupted() {
   kill -STOP "$soiqd_pid"
   "$@" >"$tmp/out" 2>"$tmp/err" &
   local pid=$!
-  sleep 1
+  # Signal once it waits on soiqd: it has a socket (a connection to the stopped server), so it is
+  # past its start-up and argument parsing even on a loaded machine; a moment more to be in the call.
+  for _ in $(seq 1 200); do
+    ls -l "/proc/$pid/fd" 2>/dev/null | grep -q "socket:" && break
+    sleep 0.05
+  done
+  sleep 0.3
   kill -INT "$pid"
   wait "$pid"
   local rc=$?
