@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/voxelize/memory_estimate.h"
 #include "db/deflate.h"
 #include "db/delta_planes.h"
 
@@ -155,6 +156,13 @@ Result<EncodedSurface> encode_surface(const TriangleMesh& mesh) {
   if (nt > 0) std::memcpy(canonical.data() + at, mesh.triangles.data(), nt * 3 * sizeof(uint32_t));
 
   info.sha256 = sha256_hex(canonical.data(), canonical.size());
+  // Coordinates near the largest double overflow the bounds: those stay unknown (0 and 0), so
+  // admission measures the mesh itself and refuses it as it always has (SQLite cannot hold a NaN).
+  const SurfaceMeasure measure = surface_measure(mesh);
+  if (std::isfinite(measure.area_mm2) && std::isfinite(measure.perimeter_mm)) {
+    info.area_bound_mm2 = measure.area_mm2;
+    info.perimeter_bound_mm = measure.perimeter_mm;
+  }
   out.blob = encode_planes(mesh);
   return out;
 }

@@ -158,9 +158,16 @@ ALTER TABLE studies ADD COLUMN accession_number TEXT NOT NULL DEFAULT '';
 )sql";
 
 // Version 4: surface blobs in the delta-planes codec (db/surface_blob.h): decoding a version 1 (zlib)
-// blob was over half of a cold query's time per structure. Each version 1 blob is decoded and
-// written again in version 2; the sha256, counts and bounds describe the mesh, not its codec, and
-// stay. One transaction, so a store is either migrated whole or not at all.
+// blob was over half of a cold query's time per structure. And each surface's measure for the
+// memory budget (SurfaceInfo::area_bound_mm2, perimeter_bound_mm), which admission decoded and
+// walked the surface for before every cold conversion. Each surface is decoded once here, measured,
+// and written again in version 2; the sha256, counts and bounds describe the mesh, not its codec,
+// and stay. One transaction, so a store is either migrated whole or not at all.
+constexpr char kSchemaV4[] = R"sql(
+ALTER TABLE surfaces ADD COLUMN area_bound_mm2 REAL NOT NULL DEFAULT 0;
+ALTER TABLE surfaces ADD COLUMN perimeter_bound_mm REAL NOT NULL DEFAULT 0;
+)sql";
+
 Status reencode_surface_blobs(Connection& c) {
   std::vector<std::string> shas;
   {
@@ -172,20 +179,24 @@ Status reencode_surface_blobs(Connection& c) {
     }
   }
   SOIQ_ASSIGN_OR_RETURN(Statement read, c.prepare("SELECT blob FROM surfaces WHERE sha256 = ?"));
-  SOIQ_ASSIGN_OR_RETURN(Statement write, c.prepare("UPDATE surfaces SET blob = ? WHERE sha256 = ?"));
+  SOIQ_ASSIGN_OR_RETURN(
+      Statement write,
+      c.prepare("UPDATE surfaces SET blob = ?, area_bound_mm2 = ?, perimeter_bound_mm = ? WHERE sha256 = ?"));
   for (const std::string& sha : shas) {
     read.reset();
     read.bind(1, sha);
     SOIQ_ASSIGN_OR_RETURN(const bool found, read.step());
     if (!found) continue;
     const std::string blob = read.blob(0);
-    if (!is_deflated_surface_blob(blob)) continue;
     Result<TriangleMesh> mesh = decode_surface(blob);
     if (!mesh.ok()) return Status(mesh.status().code(), "surface " + sha + ": " + mesh.status().message());
     SOIQ_ASSIGN_OR_RETURN(const EncodedSurface encoded, encode_surface(*mesh));
+    const std::string& kept = is_deflated_surface_blob(blob) ? encoded.blob : blob;
     write.reset();
-    write.bind_blob(1, encoded.blob.data(), encoded.blob.size());
-    write.bind(2, sha);
+    write.bind_blob(1, kept.data(), kept.size());
+    write.bind(2, encoded.info.area_bound_mm2);
+    write.bind(3, encoded.info.perimeter_bound_mm);
+    write.bind(4, sha);
     SOIQ_RETURN_IF_ERROR(write.step().status());
   }
   return ok_status();
@@ -197,7 +208,7 @@ const std::vector<Migration>& migrations() {
       {1, kSchemaV1},
       {2, kSchemaV2},
       {3, kSchemaV3},
-      {4, "", reencode_surface_blobs},
+      {4, kSchemaV4, reencode_surface_blobs},
   };
   return kMigrations;
 }

@@ -75,6 +75,8 @@ StructureRecord read_structure(const Statement& row, int col) {
   for (int i = 0; i < 6; ++i) s.surface.bounds_mm[i] = row.real(col + 10 + i);
   s.source_series_uid = row.text(col + 16);
   s.source_uid = row.text(col + 17);
+  s.surface.area_bound_mm2 = row.real(col + 18);
+  s.surface.perimeter_bound_mm = row.real(col + 19);
   return s;
 }
 

@@ -38,8 +38,8 @@ inline constexpr int kStudyColumnCount = 10;
 inline constexpr char kStructureColumns[] = R"sql(
   s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256,
   sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z,
-  s.source_series_uid, s.source_uid)sql";
-inline constexpr int kStructureColumnCount = 18;
+  s.source_series_uid, s.source_uid, sf.area_bound_mm2, sf.perimeter_bound_mm)sql";
+inline constexpr int kStructureColumnCount = 20;
 
 // SeriesRecord; needs se = series and st.
 inline constexpr char kSeriesColumns[] = R"sql(

@@ -26,8 +26,9 @@ Result<StructureRecord> structure_by_id(Connection& c, int64_t id) {
 }
 
 constexpr char kInsertSurfaceSql[] = R"sql(
-  INSERT INTO surfaces(sha256, vertex_count, triangle_count, min_x, min_y, min_z, max_x, max_y, max_z, blob)
-  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)
+  INSERT INTO surfaces(sha256, vertex_count, triangle_count, min_x, min_y, min_z, max_x, max_y, max_z, blob,
+                       area_bound_mm2, perimeter_bound_mm)
+  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
 // Stores the surface blob unless one with its sha256 is there; true when it already was.
@@ -38,6 +39,8 @@ Result<bool> insert_surface(Connection& c, const NewStructure& s) {
   ins.bind(3, s.surface.triangle_count);
   for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
   ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
+  ins.bind(11, s.surface.area_bound_mm2);
+  ins.bind(12, s.surface.perimeter_bound_mm);
   SOIQ_RETURN_IF_ERROR(ins.run());
   return sqlite3_changes64(c.handle()) == 0;
 }

@@ -151,6 +151,13 @@ Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord
                                                        const ImageGeometry& geometry, const WorkExtras& extras,
                                                        const std::function<Status()>& stop) {
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  // The store keeps each surface's measure (SurfaceInfo): admission then needs no decode. A record
+  // without one (0 and 0) is measured from its mesh, once.
+  const db::SurfaceInfo& info = structure.surface;
+  if (info.area_bound_mm2 > 0 || info.perimeter_bound_mm > 0) {
+    const SurfaceMeasure stored{info.vertex_count, info.triangle_count, info.area_bound_mm2, info.perimeter_bound_mm};
+    return reserve_for(structure, geometry, extras, stored, stop);
+  }
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const SurfaceMeasure> measure,
                         measures_.get_or_load(
                             structure.surface.sha256,
@@ -160,7 +167,14 @@ Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord
                               return surface_measure(*mesh);
                             },
                             [](const SurfaceMeasure&) { return int64_t(sizeof(SurfaceMeasure)); }));
-  const ConversionEstimate conversion = conversion_peak_bytes(*measure, geometry, structure.robust);
+  return reserve_for(structure, geometry, extras, *measure, stop);
+}
+
+Result<MemoryBudget::Reservation> FeatureEngine::reserve_for(const db::StructureRecord& structure,
+                                                             const ImageGeometry& geometry, const WorkExtras& extras,
+                                                             const SurfaceMeasure& measure,
+                                                             const std::function<Status()>& stop) {
+  const ConversionEstimate conversion = conversion_peak_bytes(measure, geometry, structure.robust);
   int64_t bytes = conversion.bytes;
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));

@@ -109,6 +109,10 @@ class FeatureEngine {
 
  private:
   Result<std::shared_ptr<const Image>> image(const db::SeriesRecord& series);
+  // admit()'s reservation once the surface's measure is known.
+  Result<MemoryBudget::Reservation> reserve_for(const db::StructureRecord& structure, const ImageGeometry& geometry,
+                                                const WorkExtras& extras, const SurfaceMeasure& measure,
+                                                const std::function<Status()>& stop);
 
   db::Store& store_;
   const int64_t max_grid_voxels_;

@@ -134,11 +134,13 @@ TEST(SqliteStoreDicomRefs, VersionOneFileIsMigratedKeepingItsData) {
   }
   // Turn the file back into version 1: exactly what a version-1 soiqd wrote.
   exec(path,
-       "DROP INDEX structures_source_uid; ALTER TABLE structures DROP COLUMN source_uid; ALTER TABLE structures "
-       "DROP COLUMN source_series_uid; ALTER TABLE series DROP COLUMN slice_instance_uids; ALTER TABLE series DROP "
-       "COLUMN sop_class_uid; ALTER TABLE series DROP COLUMN frame_of_reference_uid; ALTER TABLE studies DROP "
-       "COLUMN accession_number; ALTER TABLE studies DROP COLUMN study_id; ALTER TABLE studies DROP COLUMN "
-       "study_time; PRAGMA user_version = 1;");
+       (std::string(testing::kBackToSchemaV3) +
+        "DROP INDEX structures_source_uid; ALTER TABLE structures DROP COLUMN source_uid; ALTER TABLE structures "
+        "DROP COLUMN source_series_uid; ALTER TABLE series DROP COLUMN slice_instance_uids; ALTER TABLE series DROP "
+        "COLUMN sop_class_uid; ALTER TABLE series DROP COLUMN frame_of_reference_uid; ALTER TABLE studies DROP "
+        "COLUMN accession_number; ALTER TABLE studies DROP COLUMN study_id; ALTER TABLE studies DROP COLUMN "
+        "study_time; PRAGMA user_version = 1;")
+           .c_str());
   auto store = open_store(path);
   ASSERT_NE(store, nullptr);
   auto got = store->get_structure(id);

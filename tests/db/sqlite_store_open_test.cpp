@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/voxelize/memory_estimate.h"
 #include "db/deflate.h"
 #include "db/sqlite/schema_migrations.h"
 #include "db/sqlite/sqlite_store.h"
@@ -111,7 +112,9 @@ TEST(SqliteStoreOpen, Version3SurfaceBlobsAreReencodedByTheMigration) {
     sqlite3_bind_text(st, 2, sha.c_str(), -1, SQLITE_TRANSIENT);
     ASSERT_EQ(sqlite3_step(st), SQLITE_DONE);
     sqlite3_finalize(st);
-    ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 3", nullptr, nullptr, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, (std::string(testing::kBackToSchemaV3) + "PRAGMA user_version = 3").c_str(), nullptr,
+                           nullptr, nullptr),
+              SQLITE_OK);
     sqlite3_close(db);
   }
   auto store = open_store(path);
@@ -124,6 +127,21 @@ TEST(SqliteStoreOpen, Version3SurfaceBlobsAreReencodedByTheMigration) {
   ASSERT_TRUE(back.ok()) << back.status().to_string();
   EXPECT_EQ(back->triangles, mesh.triangles);
   EXPECT_EQ(std::memcmp(back->vertices_mm.data(), mesh.vertices_mm.data(), nv * sizeof(Vec3)), 0);
+  // The measure the memory budget needs was computed by the migration, and is stored with new
+  // surfaces too.
+  const SurfaceMeasure measure = surface_measure(mesh);
+  ASSERT_GT(measure.area_mm2, 0);
+  auto migrated = store->list_structures(StructureFilter{}, PageRequest{});
+  ASSERT_TRUE(migrated.ok());
+  ASSERT_EQ(migrated->items.size(), 1u);
+  EXPECT_EQ(migrated->items[0].surface.area_bound_mm2, measure.area_mm2);
+  EXPECT_EQ(migrated->items[0].surface.perimeter_bound_mm, measure.perimeter_mm);
+  auto added = store->add_structure(new_structure("P2", "2.2", "Amygdala", 7.5));
+  ASSERT_TRUE(added.ok());
+  auto fresh = store->get_structure(added->structure.id);
+  ASSERT_TRUE(fresh.ok());
+  EXPECT_EQ(fresh->surface.area_bound_mm2, surface_measure(testing::tetrahedron(7.5)).area_mm2);
+  EXPECT_GT(fresh->surface.perimeter_bound_mm, 0);
 }
 
 TEST(SqliteStoreOpen, NewerSchemaVersionIsRefusedNamingBothVersions) {

@@ -74,8 +74,10 @@ TEST(SqliteStoreStudyIdentity, VersionTwoFileIsMigratedKeepingItsStudies) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(db,
-                         "ALTER TABLE studies DROP COLUMN accession_number; ALTER TABLE studies DROP COLUMN "
-                         "study_id; ALTER TABLE studies DROP COLUMN study_time; PRAGMA user_version = 2;",
+                         (std::string(testing::kBackToSchemaV3) +
+                          "ALTER TABLE studies DROP COLUMN accession_number; ALTER TABLE studies DROP COLUMN "
+                          "study_id; ALTER TABLE studies DROP COLUMN study_time; PRAGMA user_version = 2;")
+                             .c_str(),
                          nullptr, nullptr, nullptr),
             SQLITE_OK);
   sqlite3_close(db);

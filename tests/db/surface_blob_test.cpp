@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "core/voxelize/memory_estimate.h"
 #include "db/deflate.h"
 
 namespace soiq::db {
@@ -100,6 +101,25 @@ TEST(SurfaceBlob, InfoHasCountsAndMinThenMaxBounds) {
   EXPECT_EQ(encoded->info.triangle_count, 1);
   const double expected[6] = {-4, -2, -6, 2, 5, 3};
   for (int i = 0; i < 6; ++i) EXPECT_EQ(encoded->info.bounds_mm[i], expected[i]) << i;
+}
+
+TEST(SurfaceBlob, InfoCarriesTheMeasureTheMemoryBudgetNeeds) {
+  TriangleMesh m;
+  m.vertices_mm = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  auto encoded = encode_surface(m);
+  ASSERT_TRUE(encoded.ok());
+  const SurfaceMeasure measure = surface_measure(m);
+  ASSERT_GT(measure.area_mm2, 0);
+  EXPECT_EQ(encoded->info.area_bound_mm2, measure.area_mm2);
+  EXPECT_EQ(encoded->info.perimeter_bound_mm, measure.perimeter_mm);
+  // Coordinates whose measure overflows leave it unknown (0, 0) rather than storing infinity.
+  m.vertices_mm[1] = {std::numeric_limits<double>::max(), 0, 0};
+  m.vertices_mm[2] = {-std::numeric_limits<double>::max(), 1, 0};
+  auto huge = encode_surface(m);
+  ASSERT_TRUE(huge.ok());
+  EXPECT_EQ(huge->info.area_bound_mm2, 0);
+  EXPECT_EQ(huge->info.perimeter_bound_mm, 0);
 }
 
 TEST(SurfaceBlob, Sha256OfAbcIsTheFips180Vector) {
