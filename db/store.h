@@ -64,8 +64,9 @@ struct SurfaceInfo {
   int64_t vertex_count = 0;
   int64_t triangle_count = 0;
   double bounds_mm[6] = {0, 0, 0, 0, 0, 0};
-  // surface_measure's bounds (core/voxelize/memory_estimate.h), kept so a conversion's memory can be
-  // budgeted without decoding and walking the surface first. 0 and 0: unknown (measure the mesh).
+  // surface_measure's bounds (core/voxelize/memory_estimate.h), kept (with each structure) so a
+  // conversion's memory can be budgeted without decoding and walking the surface first. 0 and 0:
+  // unknown (admission measures the mesh).
   double area_bound_mm2 = 0;
   double perimeter_bound_mm = 0;
 };

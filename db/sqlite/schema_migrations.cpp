@@ -158,14 +158,16 @@ ALTER TABLE studies ADD COLUMN accession_number TEXT NOT NULL DEFAULT '';
 )sql";
 
 // Version 4: surface blobs in the delta-planes codec (db/surface_blob.h): decoding a version 1 (zlib)
-// blob was over half of a cold query's time per structure. And each surface's measure for the
-// memory budget (SurfaceInfo::area_bound_mm2, perimeter_bound_mm), which admission decoded and
-// walked the surface for before every cold conversion. Each surface is decoded once here, measured,
-// and written again in version 2; the sha256, counts and bounds describe the mesh, not its codec,
-// and stay. One transaction, so a store is either migrated whole or not at all.
+// blob was over half of a cold query's time per structure. And each structure's surface measure for
+// the memory budget (SurfaceInfo::area_bound_mm2, perimeter_bound_mm), which admission decoded and
+// walked the surface for before every cold conversion; in structures, not surfaces, since a column
+// added to surfaces would follow its blob and every read of it would walk the blob's overflow pages.
+// Each surface is decoded once here, measured, and written again in version 2; the sha256, counts
+// and bounds describe the mesh, not its codec, and stay. One transaction: a store is migrated whole
+// or not at all.
 constexpr char kSchemaV4[] = R"sql(
-ALTER TABLE surfaces ADD COLUMN area_bound_mm2 REAL NOT NULL DEFAULT 0;
-ALTER TABLE surfaces ADD COLUMN perimeter_bound_mm REAL NOT NULL DEFAULT 0;
+ALTER TABLE structures ADD COLUMN surface_area_bound_mm2 REAL NOT NULL DEFAULT 0;
+ALTER TABLE structures ADD COLUMN surface_perimeter_bound_mm REAL NOT NULL DEFAULT 0;
 )sql";
 
 Status reencode_surface_blobs(Connection& c) {
@@ -179,9 +181,11 @@ Status reencode_surface_blobs(Connection& c) {
     }
   }
   SOIQ_ASSIGN_OR_RETURN(Statement read, c.prepare("SELECT blob FROM surfaces WHERE sha256 = ?"));
+  SOIQ_ASSIGN_OR_RETURN(Statement write_blob, c.prepare("UPDATE surfaces SET blob = ? WHERE sha256 = ?"));
   SOIQ_ASSIGN_OR_RETURN(
-      Statement write,
-      c.prepare("UPDATE surfaces SET blob = ?, area_bound_mm2 = ?, perimeter_bound_mm = ? WHERE sha256 = ?"));
+      Statement write_measure,
+      c.prepare(
+          "UPDATE structures SET surface_area_bound_mm2 = ?, surface_perimeter_bound_mm = ? WHERE surface_sha256 = ?"));
   for (const std::string& sha : shas) {
     read.reset();
     read.bind(1, sha);
@@ -191,13 +195,17 @@ Status reencode_surface_blobs(Connection& c) {
     Result<TriangleMesh> mesh = decode_surface(blob);
     if (!mesh.ok()) return Status(mesh.status().code(), "surface " + sha + ": " + mesh.status().message());
     SOIQ_ASSIGN_OR_RETURN(const EncodedSurface encoded, encode_surface(*mesh));
-    const std::string& kept = is_deflated_surface_blob(blob) ? encoded.blob : blob;
-    write.reset();
-    write.bind_blob(1, kept.data(), kept.size());
-    write.bind(2, encoded.info.area_bound_mm2);
-    write.bind(3, encoded.info.perimeter_bound_mm);
-    write.bind(4, sha);
-    SOIQ_RETURN_IF_ERROR(write.step().status());
+    if (is_deflated_surface_blob(blob)) {
+      write_blob.reset();
+      write_blob.bind_blob(1, encoded.blob.data(), encoded.blob.size());
+      write_blob.bind(2, sha);
+      SOIQ_RETURN_IF_ERROR(write_blob.step().status());
+    }
+    write_measure.reset();
+    write_measure.bind(1, encoded.info.area_bound_mm2);
+    write_measure.bind(2, encoded.info.perimeter_bound_mm);
+    write_measure.bind(3, sha);
+    SOIQ_RETURN_IF_ERROR(write_measure.step().status());
   }
   return ok_status();
 }

@@ -38,7 +38,7 @@ inline constexpr int kStudyColumnCount = 10;
 inline constexpr char kStructureColumns[] = R"sql(
   s.id, p.patient_id, st.study_uid, s.name, s.laterality, s.robust, s.created_at, sf.sha256,
   sf.vertex_count, sf.triangle_count, sf.min_x, sf.min_y, sf.min_z, sf.max_x, sf.max_y, sf.max_z,
-  s.source_series_uid, s.source_uid, sf.area_bound_mm2, sf.perimeter_bound_mm)sql";
+  s.source_series_uid, s.source_uid, s.surface_area_bound_mm2, s.surface_perimeter_bound_mm)sql";
 inline constexpr int kStructureColumnCount = 20;
 
 // SeriesRecord; needs se = series and st.

@@ -26,9 +26,8 @@ Result<StructureRecord> structure_by_id(Connection& c, int64_t id) {
 }
 
 constexpr char kInsertSurfaceSql[] = R"sql(
-  INSERT INTO surfaces(sha256, vertex_count, triangle_count, min_x, min_y, min_z, max_x, max_y, max_z, blob,
-                       area_bound_mm2, perimeter_bound_mm)
-  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)
+  INSERT INTO surfaces(sha256, vertex_count, triangle_count, min_x, min_y, min_z, max_x, max_y, max_z, blob)
+  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
 // Stores the surface blob unless one with its sha256 is there; true when it already was.
@@ -39,8 +38,6 @@ Result<bool> insert_surface(Connection& c, const NewStructure& s) {
   ins.bind(3, s.surface.triangle_count);
   for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
   ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
-  ins.bind(11, s.surface.area_bound_mm2);
-  ins.bind(12, s.surface.perimeter_bound_mm);
   SOIQ_RETURN_IF_ERROR(ins.run());
   return sqlite3_changes64(c.handle()) == 0;
 }
@@ -54,7 +51,8 @@ constexpr char kStructureBySourceUidSql[] = R"sql(
 
 constexpr char kUpdateStructureSql[] = R"sql(
   UPDATE structures
-  SET study_pk = ?2, name = ?3, laterality = ?4, robust = ?5, surface_sha256 = ?6, source_series_uid = ?7
+  SET study_pk = ?2, name = ?3, laterality = ?4, robust = ?5, surface_sha256 = ?6, source_series_uid = ?7,
+      surface_area_bound_mm2 = ?8, surface_perimeter_bound_mm = ?9
   WHERE id = ?1)sql";
 
 // A re-imported structure (same source_uid) keeps its id: the stored structure with s.source_uid,
@@ -81,6 +79,8 @@ Result<std::optional<int64_t>> replace_by_source_uid(Connection& c, const NewStr
   up.bind(5, int64_t{s.robust});
   up.bind(6, s.surface.sha256);
   up.bind(7, s.source_series_uid);
+  up.bind(8, s.surface.area_bound_mm2);
+  up.bind(9, s.surface.perimeter_bound_mm);
   SOIQ_RETURN_IF_ERROR(up.run());
   if (old_sha != s.surface.sha256) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, old_sha));
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
@@ -108,8 +108,9 @@ Result<std::optional<int64_t>> structure_with_same_content(Connection& c, const 
 }
 
 constexpr char kInsertStructureSql[] = R"sql(
-  INSERT INTO structures(study_pk, name, laterality, robust, surface_sha256, source_series_uid, source_uid)
-  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)
+  INSERT INTO structures(study_pk, name, laterality, robust, surface_sha256, source_series_uid, source_uid,
+                         surface_area_bound_mm2, surface_perimeter_bound_mm)
+  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)
   RETURNING id)sql";
 
 // Inserts `s` as a new structure of the study; returns its id.
@@ -122,6 +123,8 @@ Result<int64_t> insert_structure_row(Connection& c, const NewStructure& s, int64
   ins.bind(5, s.surface.sha256);
   ins.bind(6, s.source_series_uid);
   ins.bind(7, s.source_uid);
+  ins.bind(8, s.surface.area_bound_mm2);
+  ins.bind(9, s.surface.perimeter_bound_mm);
   SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
   if (!row) return internal_error("insert of structure '" + s.name + "' returned no id");
   return ins.int64(0);

@@ -36,7 +36,8 @@ inline TriangleMesh tetrahedron(double offset) {
 // The SQL that takes a store of the latest schema back to version 3's tables, for the tests of
 // older files' migration (each test then drops what its own older version lacked too).
 inline constexpr char kBackToSchemaV3[] =
-    "ALTER TABLE surfaces DROP COLUMN perimeter_bound_mm; ALTER TABLE surfaces DROP COLUMN area_bound_mm2; ";
+    "ALTER TABLE structures DROP COLUMN surface_perimeter_bound_mm; "
+    "ALTER TABLE structures DROP COLUMN surface_area_bound_mm2; ";
 
 inline NewStructure new_structure(const std::string& patient_id, const std::string& study_uid, const std::string& name,
                                   double surface_offset = 0) {
