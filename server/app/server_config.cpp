@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <charconv>
+#include <map>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -21,15 +23,8 @@ Result<int64_t> parse_count(const std::string& text, const std::string& what, in
   return v;
 }
 
-// One option: its flag, its environment variable and where its value goes.
-struct Option {
-  const char* flag;
-  const char* env;
-  std::function<Status(const std::string& value, const std::string& what)> set;
-};
-
-// What --help and soiqd(8) say of each option, in the order of the parser's table below (a test
-// holds the two to the same flags).
+// Every option soiqd takes, as --help and soiqd(8) describe it and in that order; the parser
+// reads its flags from here (and each one's variable, env_of), so help and parser cannot differ.
 struct OptionText {
   const char* flag;
   const char* value;
@@ -57,6 +52,15 @@ constexpr OptionText kOptionTexts[] = {
     {"--pacs-timeout", "SECONDS", "30", "the PACS's connect, association and message timeout"},
 };
 
+// "--max-grid-voxels" -> "SOIQ_MAX_GRID_VOXELS".
+std::string env_of(const char* flag) {
+  std::string env = std::string("SOIQ_") + (flag + 2);
+  for (char& ch : env) ch = ch == '-' ? '_' : char(std::toupper(static_cast<unsigned char>(ch)));
+  return env;
+}
+
+using Setter = std::function<Status(const std::string& value, const std::string& what)>;
+
 std::string usage_text() {
   std::string out =
       "usage: soiqd [OPTION]...\n\n"
@@ -65,8 +69,7 @@ std::string usage_text() {
       "wins). SIGTERM or SIGINT stops it after the calls in progress (up to 10 s).\n\n"
       "Options:\n";
   for (const OptionText& o : kOptionTexts) {
-    std::string env = std::string("SOIQ_") + (o.flag + 2);
-    for (char& ch : env) ch = ch == '-' ? '_' : char(std::toupper(static_cast<unsigned char>(ch)));
+    const std::string env = env_of(o.flag);
     out += "  " + std::string(o.flag) + " " + o.value + "\n      " + o.meaning + "\n      default: " + o.default_text +
            "; environment: " + env + "\n";
   }
@@ -108,29 +111,32 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       return ok_status();
     };
   };
-  const Option options[] = {
-      {"--listen", "SOIQ_LISTEN", text(c.listen)},
-      {"--db", "SOIQ_DB", text(c.db_path)},
-      {"--port-file", "SOIQ_PORT_FILE", text(c.port_file)},
-      {"--max-upload-bytes", "SOIQ_MAX_UPLOAD_BYTES", count(c.max_upload_bytes, 1, int64_t(1) << 40)},
-      {"--max-grid-voxels", "SOIQ_MAX_GRID_VOXELS", count(c.max_grid_voxels, 1, int64_t(1) << 40)},
-      {"--memory-budget", "SOIQ_MEMORY_BUDGET",
+  // Where each option's value goes, by its flag in kOptionTexts.
+  const std::map<std::string_view, Setter> setters = {
+      {"--listen", text(c.listen)},
+      {"--db", text(c.db_path)},
+      {"--port-file", text(c.port_file)},
+      {"--max-upload-bytes", count(c.max_upload_bytes, 1, int64_t(1) << 40)},
+      {"--max-grid-voxels", count(c.max_grid_voxels, 1, int64_t(1) << 40)},
+      {"--memory-budget",
        [&c](const std::string& v, const std::string& what) -> Status {
          SOIQ_ASSIGN_OR_RETURN(c.memory_budget_bytes, parse_byte_size(v, what));
          return ok_status();
        }},
-      {"--workers", "SOIQ_WORKERS", count(c.workers, 1, 1024)},
-      {"--query-result-cap", "SOIQ_QUERY_RESULT_CAP", count(c.query_result_cap, 1, 10'000'000)},
-      {"--stage1-cap", "SOIQ_STAGE1_CAP", count(c.stage1_cap, 1, 100'000'000)},
-      {"--tls-cert", "SOIQ_TLS_CERT", text(c.tls_cert)},
-      {"--tls-key", "SOIQ_TLS_KEY", text(c.tls_key)},
-      {"--token-file", "SOIQ_TOKEN_FILE", text(c.token_file)},
-      {"--pacs", "SOIQ_PACS", text(c.pacs)},
-      {"--pacs-calling-ae", "SOIQ_PACS_CALLING_AE", text(c.pacs_calling_ae)},
-      {"--pacs-timeout", "SOIQ_PACS_TIMEOUT", count(c.pacs_timeout_seconds, 1, 3600)},
+      {"--workers", count(c.workers, 1, 1024)},
+      {"--query-result-cap", count(c.query_result_cap, 1, 10'000'000)},
+      {"--stage1-cap", count(c.stage1_cap, 1, 100'000'000)},
+      {"--tls-cert", text(c.tls_cert)},
+      {"--tls-key", text(c.tls_key)},
+      {"--token-file", text(c.token_file)},
+      {"--pacs", text(c.pacs)},
+      {"--pacs-calling-ae", text(c.pacs_calling_ae)},
+      {"--pacs-timeout", count(c.pacs_timeout_seconds, 1, 3600)},
   };
-  for (const Option& o : options) {
-    if (const char* v = getenv(o.env)) SOIQ_RETURN_IF_ERROR(o.set(v, std::string("environment variable ") + o.env));
+  auto setter = [&](const char* flag) -> const Setter& { return setters.at(flag); };
+  for (const OptionText& o : kOptionTexts) {
+    const std::string env = env_of(o.flag);
+    if (const char* v = getenv(env.c_str())) SOIQ_RETURN_IF_ERROR(setter(o.flag)(v, "environment variable " + env));
   }
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -138,9 +144,9 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       help = true;
       return c;
     }
-    const Option* match = nullptr;
+    const OptionText* match = nullptr;
     std::string value;
-    for (const Option& o : options) {
+    for (const OptionText& o : kOptionTexts) {
       const std::string flag = o.flag;
       if (arg == flag) {
         if (i + 1 >= argc) return invalid_argument(flag + " needs a value");
@@ -153,11 +159,10 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       if (match) break;
     }
     if (!match) {
-      std::vector<std::string> flags;
-      for (const Option& o : options) flags.emplace_back(o.flag);
-      return invalid_argument("unknown option '" + arg + "'" + did_you_mean(arg.substr(0, arg.find('=')), flags));
+      return invalid_argument("unknown option '" + arg + "'" +
+                              did_you_mean(arg.substr(0, arg.find('=')), server_option_flags()));
     }
-    SOIQ_RETURN_IF_ERROR(match->set(value, match->flag));
+    SOIQ_RETURN_IF_ERROR(setter(match->flag)(value, match->flag));
   }
   if (c.tls_cert.empty() != c.tls_key.empty())
     return invalid_argument("--tls-cert and --tls-key go together: give both or neither");

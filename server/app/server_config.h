@@ -43,7 +43,7 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
 // is made from it in the build.
 const char* server_usage();
 
-// The flags server_usage() describes, in its order (a test holds them to the parser's).
+// The flags soiqd takes, in the order server_usage() describes them.
 std::vector<std::string> server_option_flags();
 
 }  // namespace soiq::server
