@@ -158,6 +158,25 @@ struct StructureFilter {
   std::string laterality;
 };
 
+// Precompute (DESIGN.md "Queries"): soiqd computes the default features of every structure when it
+// arrives, off the request path, and the store keeps the shape values among them beside the
+// structure's stage-1 row, each with an index, so that stage 1 can filter the whole database on
+// them. The names are the catalogue's (core/features/feature_catalogue.h) and columns of the
+// store, in this order; the values are those of the feature cache's default context (soiqd's
+// precompute worker computes them through it, so a query's stage 2 reads the same numbers).
+inline const std::vector<std::string>& stored_feature_names() {
+  static const std::vector<std::string> kNames = {"voxel_volume_mm3", "surface_area_mm2", "sphericity",
+                                                  "elongation",       "flatness",         "maximum_3d_diameter_mm"};
+  return kNames;
+}
+
+// `name op value` on a stored feature; op is one of < <= > >= = != (NaN and unknown never hold).
+struct StoredFeatureCondition {
+  std::string name;
+  std::string op;
+  double value = 0;
+};
+
 // Stage 1 of a query (DESIGN.md "Queries"): all on indexed columns. Empty strings and unset
 // optionals do not filter. Dates are inclusive YYYYMMDD strings.
 struct Stage1Filter {
@@ -172,6 +191,11 @@ struct Stage1Filter {
   std::string laterality;
   // Also find each hit's contralateral twin (Candidate::twin), for asymmetry features.
   bool twins = false;
+  // Conditions on the stored default features (precompute, below), all of which must hold: a
+  // structure whose values are stored is kept only when they do; one whose values are not stored
+  // yet (queued, or its precompute failed) is kept, for stage 2 to decide. So the caller must
+  // evaluate the same conditions again in stage 2, and gets the same answer as without them.
+  std::vector<StoredFeatureCondition> stored_features;
 };
 
 // One stage-1 hit: the structure with its patient and study, everything stage 2 needs to decide
@@ -203,7 +227,22 @@ struct SurfaceFeatures {
 
 struct Counts {
   int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
+  int64_t precompute_queued = 0;               // structures waiting for their default features
+  int64_t precompute_failed = 0;               // structures whose precompute failed (queries compute them)
   std::vector<std::string> series_modalities;  // every modality a stored series has, sorted
+};
+
+// What soiqd's precompute worker found for one structure it took from the queue.
+struct Precomputed {
+  int64_t structure_id = 0;
+  std::string surface_sha256;   // the surface the values belong to
+  int definitions_version = 0;  // feature_definitions_version() they were computed under
+  // By stored_feature_names(); nullopt (or NaN) when the structure has no such value.
+  std::vector<std::optional<double>> values;
+  std::vector<CachedFeature> cache_entries;  // every value computed, for the feature cache
+  // Non-empty when the precompute failed (why, for `soiq info` and the log): the structure leaves
+  // the queue without stored values, and queries compute its features themselves.
+  std::string failure;
 };
 
 // Which blob get_blob reads: an image series' pixels (by series uid) or a surface (by sha256).
@@ -216,7 +255,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The store: 15 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// The store: 18 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
 // (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
 // single-record cases; backends implement only the virtual methods.
 class Store {
@@ -237,6 +276,13 @@ class Store {
   // Many surfaces' entries in one transaction (a query writes its results so, not one transaction
   // per structure). A surface deleted meanwhile is skipped: nothing would read its entries.
   virtual Status put_cached_features(const std::vector<SurfaceFeatures>& batch) = 0;
+  // Stores what the precompute worker found (values, cache entries; or the failure) and takes the
+  // structure out of the queue, in one transaction. When the structure is gone, or its surface is
+  // no longer `surface_sha256` (replaced meanwhile, and queued again), nothing is stored: OK.
+  virtual Status put_precomputed(const Precomputed& p) = 0;
+  // Every structure whose stored values were computed under another definitions version loses
+  // them and is queued again (soiqd calls it at start, before serving). Returns how many.
+  virtual Result<int64_t> requeue_precompute(int definitions_version) = 0;
 
   // --- reads (NOT_FOUND naming the id for an unknown one) --------------------------------------
   virtual Result<PatientRecord> get_patient(const std::string& patient_id) = 0;
@@ -255,6 +301,9 @@ class Store {
   // Every cached entry under each key (one round trip for many keys).
   virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) = 0;
   virtual Result<Counts> counts() = 0;
+  // Up to `limit` structures waiting for precompute, oldest first (a new structure, one replaced
+  // with a new surface, a structure of a study that gained an image). Failed ones are not listed.
+  virtual Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) = 0;
 
   // --- conveniences on the methods above -----------------------------------------------------
   Result<AddedStructure> add_structure(NewStructure s) {

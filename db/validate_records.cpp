@@ -1,5 +1,6 @@
 #include "db/validate_records.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "db/age_years.h"
@@ -95,6 +96,15 @@ Status validate_stage1_filter(const Stage1Filter& f) {
   SOIQ_RETURN_IF_ERROR(validate_date(f.study_date_to, "study_date_to"));
   for (const auto& age : {f.min_age_years, f.max_age_years}) {
     if (age && !std::isfinite(*age)) return invalid_argument("age bounds must be finite");
+  }
+  for (const StoredFeatureCondition& c : f.stored_features) {
+    const auto& names = stored_feature_names();
+    if (std::find(names.begin(), names.end(), c.name) == names.end())
+      return invalid_argument("'" + c.name + "' is not a stored feature");
+    static const std::vector<std::string> kOps = {"<", "<=", ">", ">=", "=", "!="};
+    if (std::find(kOps.begin(), kOps.end(), c.op) == kOps.end())
+      return invalid_argument("'" + c.op + "' is not a comparison (< <= > >= = !=)");
+    if (std::isnan(c.value)) return invalid_argument("a stored-feature condition on '" + c.name + "' compares with NaN");
   }
   if (f.min_age_years && f.max_age_years && *f.min_age_years > *f.max_age_years) {
     return invalid_argument("min_age_years " + std::to_string(*f.min_age_years) + " is above max_age_years " +

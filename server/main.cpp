@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
   if (!creds.ok()) return fail(creds.status());
 
   soiq::server::SoiqService service(**store, c, token);
+  if (const Status s = service.start_background_work(); !s.ok()) return fail(s);
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;

@@ -21,12 +21,14 @@ std::vector<CommandSpec> record_commands() {
   const OptionSpec description = {"--description", "TEXT", "", "the study's description"};
   const OptionSpec rows = {"--format", "table|json|csv", "table", "output format"};
   const OptionSpec output = {"-o", "OUT", "", "the file to write", "--output"};
+  const OptionSpec wait = {"--wait", "", "",
+                           "return once soiqd has computed the default features of what it queued (precompute)"};
   return {
       {"upload",
        CommandGroup::kRemote,
        {"upload MESH --patient ID --study UID --name NAME [--laterality L|R] [--sex M|F|O]",
         "       [--birth-date YYYYMMDD] [--study-date YYYYMMDD] [--modality MR] [--description D]",
-        "       [--ras] [--robust] [--quiet]"},
+        "       [--ras] [--robust] [--wait] [--quiet]"},
        "stores a surface model; prints its structure id and whether the surface was deduplicated",
        "Sends a surface model (.stl .obj .ply .vtk .vtp) with its patient and study to soiqd, which checks "
        "it, converts it and stores it. Prints the new structure id (with --quiet, only the id).",
@@ -40,7 +42,8 @@ std::vector<CommandSpec> record_commands() {
         {"--modality", "M", "", "the study's modality (MR, CT, PT)"},
         description,
         {"--ras", "", "LPS", "the file's coordinates are RAS, not LPS"},
-        {"--robust", "", "", "accept open or self-intersecting surfaces"}},
+        {"--robust", "", "", "accept open or self-intersecting surfaces"},
+        wait},
        {"soiq upload brain1.vtp --patient P1 --study 1.2.3 --name hippocampus --laterality L",
         "id=$(soiq upload --quiet brain1.vtp --patient P1 --study 1.2.3 --name hippocampus)"},
        run_upload_command},
@@ -63,13 +66,13 @@ std::vector<CommandSpec> record_commands() {
        run_upload_image_command},
       {"import",
        CommandGroup::kRemote,
-       {"import PATH... [--format table|json|csv]"},
+       {"import PATH... [--format table|json|csv] [--wait]"},
        "sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
        "Structure Set ROIs structures on their series' grid; prints what was imported, problems on stderr",
        "Sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
        "Structure Set ROIs structures on their series' grid. Prints what was imported; problems on stderr.",
-       {rows},
-       {"soiq import data/STS_002/"},
+       {rows, wait},
+       {"soiq import data/STS_002/", "soiq import --wait data/STS_002/"},
        run_import_command},
       {"export-seg",
        CommandGroup::kRemote,

@@ -6,6 +6,7 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/import_report.h"
+#include "client/cli/precompute_wait.h"
 #include "client/cli/progress_bar.h"
 #include "client/cli/record_args.h"
 #include "client/cli/remote_options.h"
@@ -20,6 +21,7 @@ namespace v1 = soiq::v1;
 struct ImportArgs {
   std::vector<std::string> paths;
   std::string format = "table";
+  bool wait = false;
 };
 
 Result<ImportArgs> parse(int argc, char** argv) {
@@ -29,6 +31,8 @@ Result<ImportArgs> parse(int argc, char** argv) {
     if (arg == "--format") {
       SOIQ_ASSIGN_OR_RETURN(a.format, option_value(argc, argv, i));
       SOIQ_RETURN_IF_ERROR(check_row_format(a.format));
+    } else if (arg == "--wait") {
+      a.wait = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
     } else {
@@ -56,6 +60,7 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
   }
   if (!r.ok()) return r.status();
   print_import_report(*r, a.format);
+  if (a.wait) return wait_for_precompute(c);
   return ok_status();
 }
 

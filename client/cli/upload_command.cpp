@@ -4,6 +4,7 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/precompute_wait.h"
 #include "client/cli/progress_bar.h"
 #include "client/cli/quiet.h"
 #include "client/cli/record_args.h"
@@ -16,6 +17,7 @@ namespace {
 struct UploadArgs {
   std::string mesh;
   soiq::v1::UploadSurfaceHeader header;
+  bool wait = false;
 };
 
 Result<UploadArgs> parse(int argc, char** argv) {
@@ -35,6 +37,8 @@ Result<UploadArgs> parse(int argc, char** argv) {
       a.header.set_coordinates(soiq::v1::RAS);
     } else if (arg == "--robust") {
       a.header.set_robust(true);
+    } else if (arg == "--wait") {
+      a.wait = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
     } else if (a.mesh.empty()) {
@@ -61,6 +65,7 @@ Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
   if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
   SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, uploaded);
   const soiq::v1::Structure& s = r.structure();
+  if (a.wait) SOIQ_RETURN_IF_ERROR(wait_for_precompute(c));
   if (quiet()) {
     std::printf("%lld\n", (long long)s.id());
     return ok_status();

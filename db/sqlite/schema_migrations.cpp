@@ -210,6 +210,49 @@ Status reencode_surface_blobs(Connection& c) {
   return ok_status();
 }
 
+// Version 5: precompute (db/store.h). A durable queue of the structures whose default features soiqd
+// has still to compute (a restart resumes it), every stored structure queued; the stored shape
+// values, by structure; and a copy of them in stage1_rows with an index each, so that a content
+// filter over the whole database is an index range, not a visit of every structure. features_stored
+// is 0 while a structure has no stored values: stage 1 keeps those rows for stage 2, through the
+// partial index (an OR of two index searches, see sqlite_store_stage1.cpp).
+constexpr char kSchemaV5[] = R"sql(
+CREATE TABLE precompute_queue (
+  structure_id INTEGER PRIMARY KEY REFERENCES structures(id) ON DELETE CASCADE,
+  failure TEXT NOT NULL DEFAULT ''  -- '' while queued; why it failed once it has
+);
+CREATE INDEX precompute_queue_waiting ON precompute_queue(structure_id) WHERE failure = '';
+
+CREATE TABLE stored_features (
+  structure_id INTEGER PRIMARY KEY REFERENCES structures(id) ON DELETE CASCADE,
+  definitions_version INTEGER NOT NULL,
+  voxel_volume_mm3 REAL,
+  surface_area_mm2 REAL,
+  sphericity REAL,
+  elongation REAL,
+  flatness REAL,
+  maximum_3d_diameter_mm REAL
+);
+CREATE INDEX stored_features_version ON stored_features(definitions_version);
+
+ALTER TABLE stage1_rows ADD COLUMN features_stored INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE stage1_rows ADD COLUMN voxel_volume_mm3 REAL;
+ALTER TABLE stage1_rows ADD COLUMN surface_area_mm2 REAL;
+ALTER TABLE stage1_rows ADD COLUMN sphericity REAL;
+ALTER TABLE stage1_rows ADD COLUMN elongation REAL;
+ALTER TABLE stage1_rows ADD COLUMN flatness REAL;
+ALTER TABLE stage1_rows ADD COLUMN maximum_3d_diameter_mm REAL;
+CREATE INDEX stage1_rows_features_unstored ON stage1_rows(features_stored) WHERE features_stored = 0;
+CREATE INDEX stage1_rows_voxel_volume_mm3 ON stage1_rows(voxel_volume_mm3);
+CREATE INDEX stage1_rows_surface_area_mm2 ON stage1_rows(surface_area_mm2);
+CREATE INDEX stage1_rows_sphericity ON stage1_rows(sphericity);
+CREATE INDEX stage1_rows_elongation ON stage1_rows(elongation);
+CREATE INDEX stage1_rows_flatness ON stage1_rows(flatness);
+CREATE INDEX stage1_rows_maximum_3d_diameter_mm ON stage1_rows(maximum_3d_diameter_mm);
+
+INSERT INTO precompute_queue(structure_id) SELECT id FROM structures;
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -217,6 +260,7 @@ const std::vector<Migration>& migrations() {
       {2, kSchemaV2},
       {3, kSchemaV3},
       {4, kSchemaV4, reencode_surface_blobs},
+      {5, kSchemaV5},
   };
   return kMigrations;
 }

@@ -13,6 +13,14 @@ namespace soiq::db {
 
 class SqlConditions {
  public:
+  struct NumberComparison {
+    std::string column;
+    std::string op;  // an SQL comparison operator
+    double value = 0;
+  };
+  // "(alternative OR (c1 op v1 AND c2 op v2 …))": the comparisons hold, or `alternative` (a
+  // parameterless condition) says they do not apply to the row.
+  void all_unless(const std::string& alternative, const std::vector<NumberComparison>& comparisons);
   // "column = value"
   void equal(const std::string& column, const std::string& value);
   // "column op value" for op in <, <=, >, >=

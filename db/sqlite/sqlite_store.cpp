@@ -68,7 +68,9 @@ constexpr char kCountsSql[] = R"sql(
          (SELECT count(*) FROM series),
          (SELECT count(*) FROM structures),
          (SELECT count(*) FROM surfaces),
-         (SELECT count(*) FROM feature_cache))sql";
+         (SELECT count(*) FROM feature_cache),
+         (SELECT count(*) FROM precompute_queue WHERE failure = ''),
+         (SELECT count(*) FROM precompute_queue WHERE failure <> ''))sql";
 
 // The distinct modalities of the series, by a skip-scan over the series_modality index: one index
 // seek per distinct value, not a pass over every series.
@@ -87,7 +89,8 @@ Result<Counts> SqliteStore::counts() {
     SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(kCountsSql));
     SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
     if (!row) return internal_error("count query returned no row");
-    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5), {}};
+    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5), st.int64(6), st.int64(7),
+               {}};
     SOIQ_ASSIGN_OR_RETURN(Statement modalities, c.prepare(kSeriesModalitiesSql));
     for (;;) {
       SOIQ_ASSIGN_OR_RETURN(const bool more, modalities.step());

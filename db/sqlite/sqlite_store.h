@@ -71,9 +71,15 @@ class SqliteStore : public Store {
   Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) override;
   Result<Counts> counts() override;
+  Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
+  Status put_precomputed(const Precomputed& p) override;
+  Result<int64_t> requeue_precompute(int definitions_version) override;
 
   // The schema version of the open database (latest_schema_version() after open).
   Result<int> schema_version();
+  // The EXPLAIN QUERY PLAN lines ("SEARCH r USING INDEX …") of stage1's id query for `f`: for the
+  // tests that every stage-1 filter is an index search, and for diagnosing a slow one.
+  Result<std::vector<std::string>> stage1_plan(const Stage1Filter& f, int64_t limit);
 
  private:
   SqliteStore() = default;

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "db/sqlite/sqlite_store.h"
+#include "db/sqlite/sqlite_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -79,8 +80,9 @@ Status check_entries(const std::string& surface_sha256, const std::vector<Cached
   return ok_status();
 }
 
-// Inside a write transaction: false (nothing written) when the surface is gone.
-Result<bool> upsert_entries(Connection& c, const std::string& surface_sha256,
+}  // namespace
+
+Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sha256,
                             const std::vector<CachedFeature>& entries) {
   {
     SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
@@ -99,12 +101,10 @@ Result<bool> upsert_entries(Connection& c, const std::string& surface_sha256,
   return true;
 }
 
-}  // namespace
-
 Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
   SOIQ_RETURN_IF_ERROR(check_entries(surface_sha256, entries));
   return write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(const bool stored, upsert_entries(c, surface_sha256, entries));
+    SOIQ_ASSIGN_OR_RETURN(const bool stored, upsert_cached_features(c, surface_sha256, entries));
     // The surface may have been deleted while its features were computed: nothing to cache then.
     if (!stored) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
     return ok_status();
@@ -116,7 +116,7 @@ Status SqliteStore::put_cached_features(const std::vector<SurfaceFeatures>& batc
   if (batch.empty()) return ok_status();
   return write([&](Connection& c) -> Status {
     for (const SurfaceFeatures& s : batch)
-      SOIQ_RETURN_IF_ERROR(upsert_entries(c, s.surface_sha256, s.entries).status());
+      SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, s.surface_sha256, s.entries).status());
     return ok_status();
   });
 }

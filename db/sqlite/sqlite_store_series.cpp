@@ -126,6 +126,8 @@ Result<bool> insert_series(Connection& c, const NewSeries& s) {
   SOIQ_ASSIGN_OR_RETURN(const std::optional<StoredSeries> old, stored_series(c, s, keys.patient_pk));
   SOIQ_RETURN_IF_ERROR(upsert_series_row(c, s.series, keys.study_pk));
   if (old && old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, old->image_sha256));
+  // A new image, or new pixels: the study's structures have intensities to compute on it.
+  if (!old || old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(queue_precompute_of_study(c, keys.study_pk));
   // The series' modality counts for its study's structures; a series moved from another
   // patient's study changes that patient's rows too.
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));

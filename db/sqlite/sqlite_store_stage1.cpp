@@ -29,10 +29,16 @@ constexpr char kStage1IdsSql[] = R"sql(
 constexpr char kStage1IdsOrderSql[] = R"sql(
   ORDER BY r.structure_id
   LIMIT )sql";
+// With conditions on stored features: "+" keeps SQLite from scanning the whole table in id order
+// (to spare a sort) where the OR of the unstored rows' partial index and a feature's index reads
+// only the rows that can match; the few it finds are then sorted.
+constexpr char kStage1IdsOrderUnindexedSql[] = R"sql(
+  ORDER BY +r.structure_id
+  LIMIT )sql";
 
-std::string stage1_ids_sql(const SqlConditions& where, bool twins, int64_t limit) {
-  return std::string(kStage1IdsSql) + (twins ? kTwinIdColumn : kNoTwinIdColumn) + kStage1RowsSql + where.sql() +
-         kStage1IdsOrderSql + std::to_string(limit);
+std::string stage1_ids_sql(const SqlConditions& where, const Stage1Filter& f, int64_t limit) {
+  return std::string(kStage1IdsSql) + (f.twins ? kTwinIdColumn : kNoTwinIdColumn) + kStage1RowsSql + where.sql() +
+         (f.stored_features.empty() ? kStage1IdsOrderSql : kStage1IdsOrderUnindexedSql) + std::to_string(limit);
 }
 
 constexpr char kStage1CountSql[] = R"sql(
@@ -66,15 +72,43 @@ SqlConditions stage1_conditions(const Stage1Filter& f) {
     where.compare("r.study_date", "<=", f.study_date_to);
     if (f.study_date_from.empty()) where.compare("r.study_date", ">", std::string());
   }
-  // The study's modality or any of its series', all in r.modalities as /MR/CT/.
+  // The study's modality or any of its series', all in r.modalities as /MR/CT/. Sex, laterality and
+  // modality have no index on purpose: each keeps a third of the rows or more, where reading the
+  // narrow table beats an index search, and an index would tempt SQLite (which has no statistics
+  // here) to drive the query by it rather than by a selective range.
   if (!f.modality.empty()) where.with_parameter("instr(r.modalities, '/' || ? || '/') > 0", f.modality);
   if (!f.study_description_glob.empty()) where.glob("r.description", f.study_description_glob);
   if (!f.structure_name_glob.empty()) where.glob("r.name_lower", ascii_lower(f.structure_name_glob));
   if (!f.laterality.empty()) where.equal("r.laterality", f.laterality);
+  // Rows without stored values pass (stage 2 decides them); the others must satisfy every
+  // condition. Names and operators are checked (validate_stage1_filter) and become code constants.
+  if (!f.stored_features.empty()) {
+    std::vector<SqlConditions::NumberComparison> all;
+    for (const StoredFeatureCondition& c : f.stored_features)
+      all.push_back({"r." + c.name, c.op == "!=" ? "<>" : c.op, c.value});
+    where.all_unless("r.features_stored = 0", all);
+  }
   return where;
 }
 
 }  // namespace
+
+Result<std::vector<std::string>> SqliteStore::stage1_plan(const Stage1Filter& f, int64_t limit) {
+  SOIQ_RETURN_IF_ERROR(validate_stage1_filter(f));
+  const SqlConditions where = stage1_conditions(f);
+  std::vector<std::string> plan;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("EXPLAIN QUERY PLAN " + stage1_ids_sql(where, f, limit + 1)));
+    where.bind(q);
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      plan.push_back(q.text(3));
+    }
+    return ok_status();
+  }));
+  return plan;
+}
 
 Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_t limit) {
   if (limit < 1) return invalid_argument("stage-1 limit must be >= 1, got " + std::to_string(limit));
@@ -87,7 +121,7 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
     // With twins, each hit's twin id comes from the same query (a self-join of structures).
     std::vector<std::pair<int64_t, std::optional<int64_t>>> ids;
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(stage1_ids_sql(where, f.twins, limit + 1)));
+      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(stage1_ids_sql(where, f, limit + 1)));
       where.bind(q);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());

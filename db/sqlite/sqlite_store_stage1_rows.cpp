@@ -10,16 +10,21 @@ constexpr char kDeleteStage1RowsSql[] = R"sql(
   DELETE FROM stage1_rows WHERE patient_pk = ?1)sql";
 
 // modalities is the study's modality and its series', each followed by '/', after a '/': /MR/CT/.
+// The stored features are copied from stored_features (the values of precompute, db/store.h).
 constexpr char kInsertStage1RowsSql[] = R"sql(
   INSERT INTO stage1_rows(structure_id, patient_pk, patient_id, sex, birth_date, age_years, study_date,
-                          modalities, description, name_lower, laterality)
+                          modalities, description, name_lower, laterality, features_stored,
+                          voxel_volume_mm3, surface_area_mm2, sphericity, elongation, flatness,
+                          maximum_3d_diameter_mm)
   SELECT s.id, p.pk, p.patient_id, p.sex, p.birth_date, st.age_years, st.study_date,
          '/' || st.modality || '/' ||
            coalesce((SELECT group_concat(se.modality || '/', '') FROM series se WHERE se.study_pk = st.pk), ''),
-         st.description, lower(s.name), s.laterality
+         st.description, lower(s.name), s.laterality, f.structure_id IS NOT NULL,
+         f.voxel_volume_mm3, f.surface_area_mm2, f.sphericity, f.elongation, f.flatness, f.maximum_3d_diameter_mm
   FROM structures s
   JOIN studies st ON st.pk = s.study_pk
   JOIN patients p ON p.pk = st.patient_pk
+  LEFT JOIN stored_features f ON f.structure_id = s.id
   WHERE p.pk = ?1)sql";
 
 }  // namespace

@@ -83,6 +83,8 @@ Result<std::optional<int64_t>> replace_by_source_uid(Connection& c, const NewStr
   up.bind(9, s.surface.perimeter_bound_mm);
   SOIQ_RETURN_IF_ERROR(up.run());
   if (old_sha != s.surface.sha256) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, old_sha));
+  // A new surface means new values; the same surface (a re-import of the same contours) keeps them.
+  SOIQ_RETURN_IF_ERROR(queue_precompute(c, id, old_sha != s.surface.sha256));
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
   if (old_patient_pk != keys.patient_pk) SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, old_patient_pk));
   return std::optional<int64_t>(id);
@@ -165,6 +167,7 @@ Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
     }
   }
   SOIQ_ASSIGN_OR_RETURN(const int64_t id, insert_structure_row(c, s, keys.study_pk));
+  SOIQ_RETURN_IF_ERROR(queue_precompute(c, id, false));
   SOIQ_RETURN_IF_ERROR(refresh_stage1_rows(c, keys.patient_pk));
   SOIQ_ASSIGN_OR_RETURN(out.structure, structure_by_id(c, id));
   return out;

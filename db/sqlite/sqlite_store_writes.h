@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/base/status.h"
 #include "db/sqlite/sqlite_connection.h"
@@ -36,6 +37,17 @@ Result<bool> insert_series(Connection& c, const NewSeries& s);
 
 // sqlite_store_stage1_rows.cpp: rewrites the stage-1 rows of every structure of the patient.
 Status refresh_stage1_rows(Connection& c, int64_t patient_pk);
+
+// sqlite_store_precompute.cpp: queue a structure for precompute (again: a failure is forgotten);
+// with `surface_changed`, its stored values go too (refresh its stage-1 rows after). And every
+// structure of a study, which gained or changed an image (their intensities are to compute).
+Status queue_precompute(Connection& c, int64_t structure_id, bool surface_changed);
+Status queue_precompute_of_study(Connection& c, int64_t study_pk);
+
+// sqlite_store_cache.cpp: writes feature-cache entries of the surface; false (nothing written)
+// when the surface is gone.
+Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sha256,
+                                    const std::vector<CachedFeature>& entries);
 
 // sqlite_store_deletes.cpp: delete the blob when nothing refers to it any more (a surface takes
 // its cached features with it).

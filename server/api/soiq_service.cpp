@@ -18,7 +18,17 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
       budget_(config.memory_budget_bytes),
       features_(store, config.max_grid_voxels, budget_),
       pool_(config.workers),
-      queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}) {}
+      queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}),
+      precompute_(store, features_) {}
+
+Status SoiqService::start_background_work() {
+  if (!config_.precompute) return ok_status();
+  return precompute_.start();
+}
+
+void SoiqService::queued_work() {
+  if (config_.precompute) precompute_.notify();
+}
 
 Status SoiqService::authorize(const grpc::ServerContext& ctx) const {
   if (token_.empty()) return ok_status();
@@ -58,6 +68,9 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_series(c.series);
     response->set_cached_features(c.cached_features);
     for (const std::string& m : c.series_modalities) response->add_series_modalities(m);
+    response->set_precompute_queued(c.precompute_queued);
+    response->set_precompute_failed(c.precompute_failed);
+    response->set_precompute_enabled(config_.precompute);
     if (config_.pacs_peer) response->set_pacs(dicom::describe_pacs_peer(*config_.pacs_peer));
     return ok_status();
   });

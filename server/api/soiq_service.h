@@ -11,6 +11,7 @@
 #include "db/store.h"
 #include "server/app/feature_engine.h"
 #include "server/app/memory_budget.h"
+#include "server/app/precompute_worker.h"
 #include "server/app/query_engine.h"
 #include "server/app/server_config.h"
 #include "server/util/worker_pool.h"
@@ -22,6 +23,8 @@ class SoiqService final : public v1::Soiq::Service {
  public:
   // `token` empty: no authentication.
   SoiqService(db::Store& store, const ServerConfig& config, std::string token);
+  // Starts precompute (unless --precompute off): call once, before serving.
+  Status start_background_work();
 
   grpc::Status UploadSurface(grpc::ServerContext* ctx, grpc::ServerReader<v1::UploadSurfaceRequest>* reader,
                              v1::UploadSurfaceResponse* response) override;
@@ -68,6 +71,8 @@ class SoiqService final : public v1::Soiq::Service {
 
  private:
   Status authorize(const grpc::ServerContext& ctx) const;
+  // After a write that queued structures for precompute.
+  void queued_work();
   // The configured PACS, or FAILED_PRECONDITION naming --pacs.
   Result<dicom::PacsPeer> pacs() const;
   // Every handler: authorize, run `body` (returns soiq::Status), log, and map once to gRPC.
@@ -85,6 +90,7 @@ class SoiqService final : public v1::Soiq::Service {
   FeatureEngine features_;
   WorkerPool pool_;  // after features_: destroyed (joined) first
   QueryEngine queries_;
+  PrecomputeWorker precompute_;  // last: stopped first, before what it uses
 };
 
 }  // namespace soiq::server

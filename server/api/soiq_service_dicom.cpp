@@ -103,6 +103,7 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
                             return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels,
                                                        budget_, [&] { return stop_status(*ctx); });
                           }));
+    queued_work();
     v1::ImportDicomResponse imported = to_proto(result);
     imported.set_bytes_received(pulled->bytes);
     v1::PacsPullEvent last;

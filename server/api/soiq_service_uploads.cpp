@@ -82,6 +82,7 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
     *response->mutable_structure() = to_proto(stored.added.structure);
     response->set_surface_already_stored(stored.added.surface_already_stored);
     response->set_defects(describe(stored.defects));
+    queued_work();
     return ok_status();
   });
 }
@@ -97,6 +98,7 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
                                                                    bytes, [&] { return stop_status(*ctx); }));
     *response->mutable_series() = to_proto(stored.series);
     response->set_replaced(stored.replaced);
+    queued_work();
     return ok_status();
   });
 }
@@ -113,6 +115,7 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
                           }));
     *response = to_proto(imported);
     response->set_bytes_received(files.bytes);
+    queued_work();
     return ok_status();
   });
 }

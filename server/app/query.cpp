@@ -1,5 +1,6 @@
 #include "server/app/query.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace soiq::server {
@@ -21,6 +22,47 @@ bool compare(double value, Comparison op, double threshold) {
       return value != threshold;
   }
   return false;
+}
+
+namespace {
+
+const char* sql_operator(Comparison op) {
+  switch (op) {
+    case Comparison::kLess:
+      return "<";
+    case Comparison::kLessOrEqual:
+      return "<=";
+    case Comparison::kGreater:
+      return ">";
+    case Comparison::kGreaterOrEqual:
+      return ">=";
+    case Comparison::kEqual:
+      return "=";
+    case Comparison::kNotEqual:
+      return "!=";
+  }
+  return "=";
+}
+
+}  // namespace
+
+std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q) {
+  const GridChoice precompute_grid;
+  const GridChoice& grid = q.ask.grid;
+  const bool same_grid = grid.kind == precompute_grid.kind && grid.spacing_mm == precompute_grid.spacing_mm &&
+                         grid.margin_voxels == precompute_grid.margin_voxels;
+  // A shell widens the grid's margin (grid_choice.h): another grid key, values precompute did not store.
+  const bool shell = std::any_of(q.ask.regions.begin(), q.ask.regions.end(),
+                                 [](const RegionSpec& r) { return r.kind == RegionKind::kShell; });
+  std::vector<db::StoredFeatureCondition> out;
+  if (!same_grid || shell || q.ask.fill_rule != FillRule::kNonZero) return out;
+  const std::vector<std::string>& stored = db::stored_feature_names();
+  for (const QueryPredicate& p : q.where) {
+    const QueryFeature& f = q.features.at(p.feature);
+    if (f.intensity || f.asymmetry || std::find(stored.begin(), stored.end(), f.name) == stored.end()) continue;
+    out.push_back({f.name, sql_operator(p.op), p.value});
+  }
+  return out;
 }
 
 }  // namespace soiq::server

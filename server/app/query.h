@@ -90,6 +90,14 @@ struct QuerySummary {
   double stage1_ms = 0, stage2_ms = 0, total_ms = 0;
 };
 
+// The query's predicates that stage 1 can check on the values precompute stored
+// (db::Stage1Filter::stored_features): plain comparisons (not asymmetries) of a stored feature, when
+// the query computes its features in the context precompute stored them in (the default grid, no
+// shell region, fill rule non-zero), so the stored value is the one stage 2 would compute. Stage 2
+// still evaluates every predicate: the rows are the same with or without these, only fewer
+// structures reach it.
+std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q);
+
 // Where a running query sends what it finds; a non-OK status (the client went away) stops it.
 struct QueryOutput {
   std::function<Status(const QueryProgress&)> progress;

@@ -64,7 +64,9 @@ class QueryRun {
   Result<QuerySummary> run(int64_t stage1_cap) {
     const Clock::time_point start = Clock::now();
     SOIQ_RETURN_IF_ERROR(image_refs_.check(store_, image_refs(q_.ask)));
-    SOIQ_ASSIGN_OR_RETURN(candidates_, store_.stage1(q_.stage1, stage1_cap));
+    db::Stage1Filter stage1 = q_.stage1;
+    stage1.stored_features = stored_feature_conditions(q_);
+    SOIQ_ASSIGN_OR_RETURN(candidates_, store_.stage1(stage1, stage1_cap));
     summary_.stage1_candidates = int64_t(candidates_.size());
     summary_.stage1_ms = ms_since(start);
     const Clock::time_point stage2_start = Clock::now();

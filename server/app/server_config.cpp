@@ -50,6 +50,9 @@ constexpr OptionText kOptionTexts[] = {
     {"--pacs", "AE@HOST:PORT", "none (the pacs calls are refused)", "the PACS of soiq pacs echo, find, pull and push"},
     {"--pacs-calling-ae", "AE", "SOIQ", "soiqd's AE title towards the PACS"},
     {"--pacs-timeout", "SECONDS", "30", "the PACS's connect, association and message timeout"},
+    {"--precompute", "on|off", "on",
+     "compute every new structure's default features in the background, at idle priority, so that "
+     "queries read them and stage 1 filters on them"},
 };
 
 // "--max-grid-voxels" -> "SOIQ_MAX_GRID_VOXELS".
@@ -132,6 +135,12 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--pacs", text(c.pacs)},
       {"--pacs-calling-ae", text(c.pacs_calling_ae)},
       {"--pacs-timeout", count(c.pacs_timeout_seconds, 1, 3600)},
+      {"--precompute",
+       [&c](const std::string& v, const std::string& what) -> Status {
+         if (v != "on" && v != "off") return invalid_argument(what + " must be on or off, got '" + v + "'");
+         c.precompute = v == "on";
+         return ok_status();
+       }},
   };
   auto setter = [&](const char* flag) -> const Setter& { return setters.at(flag); };
   for (const OptionText& o : kOptionTexts) {

@@ -2,7 +2,10 @@
 // The brute-force oracle of the stage-1 tests: which structures a Stage1Filter must select, decided
 // in C++ row by row, independently of the store's SQL.
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -57,7 +60,21 @@ struct Row {
   StudyRecord study;  // age_years as the store should have it
   std::set<std::string> series_modalities;
   std::string name, laterality;
+  // The precomputed values stored for it (by stored_feature_names()), if any.
+  std::optional<std::vector<std::optional<double>>> stored;
 };
+
+// `value op threshold` as stage 2 compares (server/app/query.h): NaN and unknown never hold.
+inline bool holds(const std::optional<double>& value, const std::string& op, double threshold) {
+  if (!value || std::isnan(*value)) return false;
+  const double v = *value;
+  if (op == "<") return v < threshold;
+  if (op == "<=") return v <= threshold;
+  if (op == ">") return v > threshold;
+  if (op == ">=") return v >= threshold;
+  if (op == "=") return v == threshold;
+  return v != threshold;
+}
 
 inline bool matches(const Row& r, const Stage1Filter& f) {
   const auto in_range = [](const std::string& v, const std::string& from, const std::string& to) {
@@ -77,7 +94,15 @@ inline bool matches(const Row& r, const Stage1Filter& f) {
   if (!f.structure_name_glob.empty() && !glob_match(lower(f.structure_name_glob).c_str(), lower(r.name).c_str())) {
     return false;
   }
-  return f.laterality.empty() || r.laterality == f.laterality;
+  if (!f.laterality.empty() && r.laterality != f.laterality) return false;
+  // Stored-feature conditions apply only where values are stored; the others pass, for stage 2.
+  if (!r.stored) return true;
+  const std::vector<std::string>& names = stored_feature_names();
+  for (const StoredFeatureCondition& c : f.stored_features) {
+    const size_t i = size_t(std::find(names.begin(), names.end(), c.name) - names.begin());
+    if (!holds(r.stored->at(i), c.op, c.value)) return false;
+  }
+  return true;
 }
 
 }  // namespace soiq::db::testing

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +38,12 @@ SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::st
   port_path_ = dir + "/soiqd-" + tag + ".port";
   std::vector<std::string> args = {
       binary.empty() ? SOIQD_BINARY : binary, "--db", db_path, "--listen", "127.0.0.1:0", "--port-file", port_path_};
+  // Precompute off unless asked: a test that counts what a query computed, or a process's peak
+  // memory, must not race soiqd's background worker. Precompute's own tests turn it on.
+  const bool precompute_given = std::any_of(extra_args.begin(), extra_args.end(), [](const std::string& a) {
+    return a.rfind("--precompute", 0) == 0;
+  });
+  if (!precompute_given) args.insert(args.end(), {"--precompute", "off"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = fork();
   if (pid_ == 0) {

@@ -15,7 +15,7 @@ namespace soiq::testing {
 class SoiqdProcess {
  public:
   // Starts `binary` (empty: this build's soiqd) with `--db db_path --listen 127.0.0.1:0` plus
-  // `extra_args`; waits (up to 60 s: a benchmark's database can be large) for the port. On failure
+  // `extra_args` (and --precompute off unless they say otherwise); waits (up to 60 s: a benchmark's database can be large) for the port. On failure
   // address() is empty and log() says why.
   SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args = {},
                const std::string& binary = "");

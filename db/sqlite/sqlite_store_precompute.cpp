@@ -1,0 +1,167 @@
+// SqliteStore's side of precompute (db/store.h): the durable queue, the stored default features and
+// their copy in stage1_rows (schema version 5, schema_migrations.cpp).
+#include <sqlite3.h>
+
+#include <cmath>
+
+#include "db/sqlite/sqlite_records.h"
+#include "db/sqlite/sqlite_store.h"
+#include "db/sqlite/sqlite_store_writes.h"
+#include "db/validate_records.h"
+
+namespace soiq::db {
+namespace {
+
+// Queued again clears an old failure: the structure or its images changed, so it may succeed now.
+constexpr char kQueueStructureSql[] = R"sql(
+  INSERT INTO precompute_queue(structure_id) VALUES (?1)
+  ON CONFLICT(structure_id) DO UPDATE SET failure = '')sql";
+
+constexpr char kForgetStoredFeaturesSql[] = R"sql(
+  DELETE FROM stored_features WHERE structure_id = ?1)sql";
+
+// "WHERE true": SQLite needs a WHERE between an INSERT's SELECT and its ON CONFLICT.
+constexpr char kQueueStudySql[] = R"sql(
+  INSERT INTO precompute_queue(structure_id) SELECT id FROM structures WHERE study_pk = ?1 AND true
+  ON CONFLICT(structure_id) DO UPDATE SET failure = '')sql";
+
+constexpr char kQueueSql[] = R"sql(
+  WHERE s.id IN (SELECT structure_id FROM precompute_queue WHERE failure = '' ORDER BY structure_id LIMIT ?1)
+  ORDER BY s.id)sql";
+
+// The structure as it is now, to tell whether the values still belong to it.
+constexpr char kStructureSurfaceSql[] = R"sql(
+  SELECT s.surface_sha256, st.patient_pk
+  FROM structures s JOIN studies st ON st.pk = s.study_pk
+  WHERE s.id = ?1)sql";
+
+constexpr char kStoreFeaturesSql[] = R"sql(
+  INSERT OR REPLACE INTO stored_features(structure_id, definitions_version, voxel_volume_mm3, surface_area_mm2,
+                                         sphericity, elongation, flatness, maximum_3d_diameter_mm)
+  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8))sql";
+
+// The same values in the structure's stage-1 row (rewriting the patient's rows would do too, but
+// this is one row).
+constexpr char kStage1FeaturesSql[] = R"sql(
+  UPDATE stage1_rows
+  SET features_stored = 1, voxel_volume_mm3 = ?2, surface_area_mm2 = ?3, sphericity = ?4, elongation = ?5,
+      flatness = ?6, maximum_3d_diameter_mm = ?7
+  WHERE structure_id = ?1)sql";
+
+constexpr char kDequeueSql[] = R"sql(
+  DELETE FROM precompute_queue WHERE structure_id = ?1)sql";
+
+constexpr char kFailSql[] = R"sql(
+  UPDATE precompute_queue SET failure = ?2 WHERE structure_id = ?1)sql";
+
+// Stale values: their structures are queued again, then the values and their stage-1 copies go.
+constexpr char kRequeueStaleSql[] = R"sql(
+  INSERT INTO precompute_queue(structure_id)
+  SELECT structure_id FROM stored_features WHERE definitions_version <> ?1 AND true
+  ON CONFLICT(structure_id) DO UPDATE SET failure = '')sql";
+constexpr char kUnstoreStaleRowsSql[] = R"sql(
+  UPDATE stage1_rows
+  SET features_stored = 0, voxel_volume_mm3 = NULL, surface_area_mm2 = NULL, sphericity = NULL, elongation = NULL,
+      flatness = NULL, maximum_3d_diameter_mm = NULL
+  WHERE structure_id IN (SELECT structure_id FROM stored_features WHERE definitions_version <> ?1))sql";
+constexpr char kDeleteStaleSql[] = R"sql(
+  DELETE FROM stored_features WHERE definitions_version <> ?1)sql";
+
+constexpr size_t kMaxFailureBytes = 1024;
+
+}  // namespace
+
+Status queue_precompute(Connection& c, int64_t structure_id, bool surface_changed) {
+  if (surface_changed) {
+    SOIQ_ASSIGN_OR_RETURN(Statement forget, c.prepare(kForgetStoredFeaturesSql));
+    forget.bind(1, structure_id);
+    SOIQ_RETURN_IF_ERROR(forget.run());
+  }
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kQueueStructureSql));
+  q.bind(1, structure_id);
+  return q.run();
+}
+
+Status queue_precompute_of_study(Connection& c, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kQueueStudySql));
+  q.bind(1, study_pk);
+  return q.run();
+}
+
+Result<std::vector<StructureRecord>> SqliteStore::precompute_queue(int64_t limit) {
+  if (limit < 1) return invalid_argument("precompute queue limit must be >= 1, got " + std::to_string(limit));
+  std::vector<StructureRecord> out;
+  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kQueueSql})));
+    q.bind(1, limit);
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      out.push_back(read_structure(q, 0));
+    }
+    return ok_status();
+  }));
+  return out;
+}
+
+Status SqliteStore::put_precomputed(const Precomputed& p) {
+  SOIQ_RETURN_IF_ERROR(validate_sha256(p.surface_sha256, "surface"));
+  const size_t n = stored_feature_names().size();
+  if (p.failure.empty() && p.values.size() != n) {
+    return invalid_argument("precomputed values: " + std::to_string(p.values.size()) + " given, " + std::to_string(n) +
+                            " stored features");
+  }
+  for (const CachedFeature& f : p.cache_entries) {
+    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
+  }
+  return write([&](Connection& c) -> Status {
+    {
+      SOIQ_ASSIGN_OR_RETURN(Statement now, c.prepare(kStructureSurfaceSql));
+      now.bind(1, p.structure_id);
+      SOIQ_ASSIGN_OR_RETURN(const bool found, now.step());
+      // Deleted meanwhile, or given a new surface (and queued again by that write): these values
+      // describe nothing stored.
+      if (!found || now.text(0) != p.surface_sha256) return ok_status();
+    }
+    if (!p.failure.empty()) {
+      SOIQ_ASSIGN_OR_RETURN(Statement fail, c.prepare(kFailSql));
+      fail.bind(1, p.structure_id);
+      fail.bind(2, p.failure.substr(0, kMaxFailureBytes));
+      return fail.run();
+    }
+    SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, p.surface_sha256, p.cache_entries).status());
+    // NaN is stored as NULL: neither satisfies any condition, as in stage 2 (server/app/query.h).
+    auto bind_value = [&](Statement& st, int index, size_t i) {
+      const bool known = p.values[i] && !std::isnan(*p.values[i]);
+      st.bind(index, known ? p.values[i] : std::nullopt);
+    };
+    SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(kStoreFeaturesSql));
+    store.bind(1, p.structure_id);
+    store.bind(2, int64_t{p.definitions_version});
+    for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
+    SOIQ_RETURN_IF_ERROR(store.run());
+    SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(kStage1FeaturesSql));
+    row.bind(1, p.structure_id);
+    for (size_t i = 0; i < n; ++i) bind_value(row, int(i + 2), i);
+    SOIQ_RETURN_IF_ERROR(row.run());
+    SOIQ_ASSIGN_OR_RETURN(Statement done, c.prepare(kDequeueSql));
+    done.bind(1, p.structure_id);
+    return done.run();
+  });
+}
+
+Result<int64_t> SqliteStore::requeue_precompute(int definitions_version) {
+  int64_t requeued = 0;
+  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+    for (const char* sql : {kRequeueStaleSql, kUnstoreStaleRowsSql, kDeleteStaleSql}) {
+      SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(sql));
+      st.bind(1, int64_t{definitions_version});
+      SOIQ_RETURN_IF_ERROR(st.run());
+      if (sql == kDeleteStaleSql) requeued = sqlite3_changes64(c.handle());
+    }
+    return ok_status();
+  }));
+  return requeued;
+}
+
+}  // namespace soiq::db

@@ -1,0 +1,185 @@
+#include "server/app/precompute_worker.h"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/features/feature_catalogue.h"
+#include "server/util/log.h"
+
+namespace soiq::server {
+namespace {
+
+// The intensity features of the default set.
+const std::vector<std::string> kIntensityNames = {"mean", "minimum", "maximum"};
+
+// Structures read from the queue at once: few, so that a structure deleted or replaced meanwhile
+// costs little, and a stop is quick.
+constexpr int64_t kBatch = 16;
+
+// The thread looks at the queue this often even without notify() (a write by another process on the
+// same database, a failure to write).
+constexpr auto kPoll = std::chrono::seconds(5);
+
+// SCHED_IDLE: the thread runs only when a core has nothing else to run. Were a query starved of
+// memory budget or of the write lock by a precompute that cannot run, its waiting frees the CPU
+// that the precompute needs: the wait ends. Best effort: without it the thread runs as any other.
+void lower_priority() {
+  sched_param none{};
+  none.sched_priority = 0;
+  (void)pthread_setschedparam(pthread_self(), SCHED_IDLE, &none);
+}
+
+}  // namespace
+
+PrecomputeWorker::~PrecomputeWorker() {
+  stopping_ = true;
+  notify();
+  if (thread_.joinable()) thread_.join();
+}
+
+Status PrecomputeWorker::start() {
+  SOIQ_ASSIGN_OR_RETURN(const int64_t stale, store_.requeue_precompute(feature_definitions_version()));
+  if (stale > 0) {
+    log_event("info", {{"event", "precompute_requeued"},
+                       {"structures", std::to_string(stale)},
+                       {"why", "feature definitions changed"}});
+  }
+  thread_ = std::thread([this] { loop(); });
+  return ok_status();
+}
+
+void PrecomputeWorker::notify() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    work_signalled_ = true;
+  }
+  wake_.notify_all();
+}
+
+Result<FeatureValues> PrecomputeWorker::values(const db::StructureRecord& structure,
+                                               const std::vector<db::SeriesRecord>& series, FeatureAsk ask,
+                                               db::Precomputed& out) {
+  SOIQ_RETURN_IF_ERROR(complete_feature_ask(ask));
+  SOIQ_ASSIGN_OR_RETURN(const FeaturePlan plan, features_.plan(structure, series, ask));
+  SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> cached, store_.cached_features({plan.cache_key}));
+  FeatureValues have;
+  for (db::CachedFeature& e : cached) have[e.entry] = std::move(e.value);
+  const bool complete =
+      std::all_of(plan.wants.begin(), plan.wants.end(), [&](const WantedValue& w) { return have.count(w.entry) > 0; });
+  if (complete) return have;
+  db::SurfaceFeatures computed;
+  SOIQ_ASSIGN_OR_RETURN(FeatureValues v, features_.compute(plan, ask, &stopping_, &computed));
+  for (db::CachedFeature& e : computed.entries) out.cache_entries.push_back(std::move(e));
+  return v;
+}
+
+Result<db::Precomputed> PrecomputeWorker::precompute(const db::StructureRecord& structure) {
+  db::Precomputed out;
+  out.structure_id = structure.id;
+  out.surface_sha256 = structure.surface.sha256;
+  out.definitions_version = feature_definitions_version();
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store_.list_series(structure.study_uid));
+
+  FeatureAsk shape;
+  shape.names = db::stored_feature_names();
+  // Every image at once first (one conversion); if that fails, the shape alone and then each image
+  // alone, so that one bad image costs only its own values.
+  Result<FeatureValues> shape_values = Status(StatusCode::kNotFound, "no image");
+  Status images_failed = ok_status();
+  if (!series.empty()) {
+    FeatureAsk all = shape;
+    all.names.insert(all.names.end(), kIntensityNames.begin(), kIntensityNames.end());
+    for (const db::SeriesRecord& s : series) all.images.push_back(s.series_uid);
+    shape_values = values(structure, series, all, out);
+    if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
+    if (!shape_values.ok()) images_failed = shape_values.status();
+  }
+  if (!shape_values.ok()) {
+    shape_values = values(structure, series, shape, out);
+    if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
+    if (!shape_values.ok()) {
+      out.failure = shape_values.status().to_string();
+      return out;
+    }
+    for (size_t i = 0; i < series.size() && series.size() > 1; ++i) {
+      FeatureAsk one;
+      one.names = kIntensityNames;
+      one.images = {series[i].series_uid};
+      const Result<FeatureValues> v = values(structure, series, one, out);
+      if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
+      if (!v.ok()) {
+        log_event("warn", {{"event", "precompute_image_failed"},
+                           {"structure", std::to_string(structure.id)},
+                           {"series", series[i].series_uid},
+                           {"error", v.status().to_string()}});
+      }
+    }
+    if (series.size() == 1) {
+      log_event("warn", {{"event", "precompute_image_failed"},
+                         {"structure", std::to_string(structure.id)},
+                         {"series", series[0].series_uid},
+                         {"error", images_failed.to_string()}});
+    }
+  }
+  for (const std::string& name : db::stored_feature_names()) {
+    const auto it = shape_values->find(feature_entry(name, "", "", Interpolation::kNearest));
+    if (it == shape_values->end() || it->second.size() != 1) {
+      out.values.push_back(std::nullopt);
+    } else {
+      out.values.push_back(it->second[0]);
+    }
+  }
+  return out;
+}
+
+void PrecomputeWorker::loop() {
+  lower_priority();
+  auto sleep = [&] {
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait_for(lock, kPoll, [&] { return work_signalled_ || stopping_.load(); });
+    work_signalled_ = false;
+  };
+  while (!stopping_) {
+    Result<std::vector<db::StructureRecord>> batch = store_.precompute_queue(kBatch);
+    if (!batch.ok()) {
+      log_event("warn", {{"event", "precompute_queue_unreadable"}, {"error", batch.status().to_string()}});
+      sleep();
+      continue;
+    }
+    if (batch->empty()) {
+      sleep();
+      continue;
+    }
+    for (const db::StructureRecord& s : *batch) {
+      if (stopping_) return;
+      Result<db::Precomputed> done = precompute(s);
+      if (stopping_) return;
+      if (!done.ok()) {
+        // The store could not be read for it: a failure like any other, so the queue moves on.
+        db::Precomputed failed;
+        failed.structure_id = s.id;
+        failed.surface_sha256 = s.surface.sha256;
+        failed.failure = done.status().to_string();
+        done = std::move(failed);
+      }
+      if (!done->failure.empty()) {
+        log_event("warn",
+                  {{"event", "precompute_failed"}, {"structure", std::to_string(s.id)}, {"error", done->failure}});
+      }
+      const Status stored = store_.put_precomputed(*done);
+      if (!stored.ok()) {
+        // A full disk, a busy database: the structure stays queued; try again after a pause.
+        log_event(
+            "warn",
+            {{"event", "precompute_not_stored"}, {"structure", std::to_string(s.id)}, {"error", stored.to_string()}});
+        sleep();
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace soiq::server

@@ -1,0 +1,63 @@
+#pragma once
+// Precompute (DESIGN.md "Queries"; db/store.h): one background thread takes structures from the
+// store's durable queue, computes their default features through the FeatureEngine, so that they
+// land in the feature cache under the very keys a query's stage 2 reads, and stores the shape values
+// among them where stage 1 filters on them (db::stored_feature_names()).
+//
+// The default features: those shape values on the default grid (GridChoice{}: axis-aligned, 1 mm,
+// the default margin), fill rule non-zero; and mean, minimum and maximum inside on every image of
+// the structure's study, nearest-neighbour, on the same grid.
+//
+// Why it is safe beside queries: the thread runs under SCHED_IDLE (it gets only CPU nothing else
+// wants); its conversions are admitted by the memory budget like any other; a query never waits
+// for it (a query computes what is missing itself). A structure whose shape features cannot be
+// computed is marked failed with the reason (queries then meet the same error and report it); an
+// image that fails (another frame of reference, ...) is logged and skipped, the others kept.
+//
+// Thread-safety: start() once; notify() from any thread; the destructor stops the thread and joins
+// it (work in flight is abandoned and stays queued, so the next start resumes it).
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "core/base/status.h"
+#include "db/store.h"
+#include "server/app/feature_engine.h"
+
+namespace soiq::server {
+
+class PrecomputeWorker {
+ public:
+  PrecomputeWorker(db::Store& store, FeatureEngine& features) : store_(store), features_(features) {}
+  ~PrecomputeWorker();
+  PrecomputeWorker(const PrecomputeWorker&) = delete;
+  PrecomputeWorker& operator=(const PrecomputeWorker&) = delete;
+
+  // Queues again the structures whose stored values are of an older feature definition, then
+  // starts the thread. Call before serving, so that stage 1 never filters on stale values.
+  Status start();
+  // Something was queued: look now rather than at the next poll.
+  void notify();
+  // What one structure's precompute found: the values to store, or the failure. Exposed for tests;
+  // the thread calls it for each queued structure.
+  Result<db::Precomputed> precompute(const db::StructureRecord& structure);
+
+ private:
+  void loop();
+  // Computes `ask` for the structure unless the feature cache holds all of it; appends the values
+  // computed to `out`'s cache entries and returns every value the plan wants.
+  Result<FeatureValues> values(const db::StructureRecord& structure, const std::vector<db::SeriesRecord>& series,
+                               FeatureAsk ask, db::Precomputed& out);
+
+  db::Store& store_;
+  FeatureEngine& features_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool work_signalled_ = false;
+  std::atomic<bool> stopping_{false};
+};
+
+}  // namespace soiq::server
