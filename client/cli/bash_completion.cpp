@@ -122,7 +122,9 @@ std::string bash_completion_script() {
          // Inside an expression: after NAME[ the regions; after asym( or an opening quote, the names.
          "      if [[ $cur == *\\[* && $cur != *\\]* ]]; then\n"
          "        local head=${cur%\\[*} tail=${cur##*\\[}\n"
-         "        [[ $tail == *,* ]] || COMPREPLY=($(compgen -P \"$head[\" -W \"" + join(region_words()) + "\" -- \"$tail\"))\n"
+         "        [[ $tail == *,* ]] || COMPREPLY=($(compgen -P \"$head[\" -W \"" +
+         join(region_words()) +
+         "\" -- \"$tail\"))\n"
          "        return\n"
          "      fi\n"
          "      local word=${cur##*[^a-z_0-9]}\n"

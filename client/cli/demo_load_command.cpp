@@ -8,6 +8,7 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/interrupt.h"
+#include "client/cli/precompute_wait.h"
 #include "client/cli/progress_bar.h"
 #include "client/cli/quiet.h"
 #include "client/cli/record_args.h"
@@ -134,14 +135,23 @@ Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
     return interrupted_by_user(std::to_string(loaded) + " of " + std::to_string(people.size()) +
                                " patients were loaded, each whole (" + std::to_string(structures) + " structures)");
   }
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto t1 = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(t1 - t0).count();
+  // The first queries of the demo then read stored values, and stage 1 can filter on them: what a
+  // user of a loaded soiqd sees.
+  const Result<bool> precomputed = wait_for_precompute(c);
+  if (interrupt.interrupted()) return interrupted_by_user("the patients were loaded; soiqd goes on precomputing");
+  SOIQ_RETURN_IF_ERROR(precomputed.status());
+  const double p = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if (quiet()) return ok_status();
   std::printf("\nloaded %zu patients, %zu MR images, %zu structures into soiqd at %s in %.1f s\n", people.size(),
               people.size(), structures, c.address().c_str(), s);
+  if (*precomputed) std::printf("precomputed their default features in %.1f s more\n", p);
   std::printf(
       "try:\n"
       "  soiq ls structures --name hippocampus\n"
       "  soiq query --name hippocampus --min-age 60 --select voxel_volume_mm3 --order-by voxel_volume_mm3\n"
+      "  soiq query --where 'voxel_volume_mm3>4000' --select sphericity\n"
       "  soiq query --name amygdala --sex F --series-modality MR --where 'mean[inside,MR]>200' "
       "--select 'mean[shell:3,MR]'\n"
       "  soiq query --name caudate --laterality L --select 'asym(voxel_volume_mm3)' --order-by "

@@ -60,7 +60,7 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
   }
   if (!r.ok()) return r.status();
   print_import_report(*r, a.format);
-  if (a.wait) return wait_for_precompute(c);
+  if (a.wait) return wait_option(c);
   return ok_status();
 }
 

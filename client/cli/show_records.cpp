@@ -87,8 +87,8 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("surfaces", std::to_string(i.surfaces()));
   line("cached_features", std::to_string(i.cached_features()));
   line("precompute", !i.precompute_enabled() ? "off (soiqd --precompute on)"
-                                               : std::to_string(i.precompute_queued()) + " queued, " +
-                                                     std::to_string(i.precompute_failed()) + " failed");
+                                             : std::to_string(i.precompute_queued()) + " queued, " +
+                                                   std::to_string(i.precompute_failed()) + " failed");
   line("max_upload_bytes", std::to_string(i.max_upload_bytes()));
   line("max_grid_voxels", std::to_string(i.max_grid_voxels()));
   line("max_conversions", std::to_string(i.max_concurrent_conversions()));

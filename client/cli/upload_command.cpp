@@ -65,7 +65,7 @@ Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
   if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
   SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, uploaded);
   const soiq::v1::Structure& s = r.structure();
-  if (a.wait) SOIQ_RETURN_IF_ERROR(wait_for_precompute(c));
+  if (a.wait) SOIQ_RETURN_IF_ERROR(wait_option(c));
   if (quiet()) {
     std::printf("%lld\n", (long long)s.id());
     return ok_status();

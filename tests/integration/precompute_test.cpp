@@ -1,0 +1,146 @@
+// Precompute through a real soiqd (server/app/precompute_worker.h): the queue drains in the
+// background, a query then reads every value from the feature cache, a content filter with no
+// structured filter keeps in stage 1 exactly the structures whose stored values satisfy it, and the
+// rows equal a brute-force evaluation of the predicate over every structure, stored or not. The
+// queue survives a restart.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+#include <thread>
+
+#include "tests/integration/cohort.h"
+
+namespace soiq::testing {
+namespace {
+
+class PrecomputeTest : public ServiceTest {
+ protected:
+  void SetUp() override { restart("on"); }
+
+  void restart(const std::string& precompute) {
+    start({"--precompute", precompute, "--workers", "2"});
+    client_ = std::make_unique<client::Client>(connect());
+  }
+
+  // Polls `soiq info` until the queue is empty (a minute at most).
+  v1::ServerInfo drained() {
+    for (int i = 0; i < 600; ++i) {
+      Result<v1::ServerInfo> info = client_->server_info();
+      EXPECT_TRUE(info.ok()) << info.status().to_string();
+      if (!info.ok() || info->precompute_queued() == 0) return info.ok() ? *info : v1::ServerInfo{};
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ADD_FAILURE() << "the precompute queue did not drain in a minute";
+    return {};
+  }
+
+  // Each structure's voxel volume as ComputeFeatures gives it on the default grid.
+  double volume(int64_t id) {
+    v1::FeaturesRequest req;
+    req.set_structure_id(id);
+    req.add_features("voxel_volume_mm3");
+    Result<v1::FeaturesResponse> r = client_->compute_features(req);
+    EXPECT_TRUE(r.ok()) << r.status().to_string();
+    return r.ok() && r->features_size() == 1 ? r->features(0).value(0) : -1;
+  }
+
+  struct Answer {
+    std::set<int64_t> ids;
+    v1::QuerySummary summary;
+  };
+  Answer query_larger_than(double threshold, bool with_mean = false) {
+    v1::QueryRequest q;
+    v1::Predicate* p = q.add_where();
+    p->mutable_feature()->set_name("voxel_volume_mm3");
+    p->set_op(v1::GT);
+    p->set_value(threshold);
+    if (with_mean) {
+      q.add_select()->set_name("mean");
+      q.mutable_select(0)->set_image("MR");
+    }
+    Answer a;
+    client::QueryHandlers h;
+    h.on_row = [&](const v1::QueryRow& r) {
+      a.ids.insert(r.structure().id());
+      return true;
+    };
+    Result<v1::QuerySummary> s = client_->query(q, h);
+    EXPECT_TRUE(s.ok()) << s.status().to_string();
+    if (s.ok()) a.summary = *s;
+    EXPECT_EQ(a.summary.failed(), 0);
+    return a;
+  }
+};
+
+TEST_F(PrecomputeTest, AContentFilterIsAnsweredFromStoredValuesAndEqualsTheBruteForce) {
+  const Cohort first = load_cohort(*this, *client_, dir_, 5);
+  ASSERT_EQ(first.structures.size(), 20u);
+  const v1::ServerInfo info = drained();
+  EXPECT_TRUE(info.precompute_enabled());
+  EXPECT_EQ(info.precompute_failed(), 0);
+  EXPECT_GT(info.cached_features(), 20 * 6);  // shape and intensity values of each structure
+
+  std::vector<double> volumes;
+  for (const CohortStructure& s : first.structures) volumes.push_back(volume(s.id));
+  std::vector<double> sorted = volumes;
+  std::sort(sorted.begin(), sorted.end());
+  const double threshold = sorted[sorted.size() / 2];  // about half match
+  std::set<int64_t> expected;
+  for (size_t i = 0; i < volumes.size(); ++i)
+    if (volumes[i] > threshold) expected.insert(first.structures[i].id);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_LT(expected.size(), first.structures.size());
+
+  // Stage 1 keeps only the matches, and stage 2 reads everything, the image's mean included, from
+  // what precompute stored.
+  Answer a = query_larger_than(threshold, true);
+  EXPECT_EQ(a.ids, expected);
+  EXPECT_EQ(a.summary.stage1_candidates(), int64_t(expected.size()));
+  EXPECT_EQ(a.summary.computed(), 0);
+  EXPECT_EQ(a.summary.cache_hits(), int64_t(expected.size()));
+
+  // Structures that arrive with precompute off are not stored: stage 1 hands them to stage 2,
+  // which decides them; the rows are still the brute force's. The first five patients' surfaces
+  // come again (new structures, same surfaces: stage 2 finds their values cached by surface).
+  restart("off");
+  const Cohort more = load_cohort(*this, *client_, dir_, 7);
+  ASSERT_EQ(more.structures.size(), 28u);
+  EXPECT_EQ(client_->server_info()->precompute_queued(), 28);
+  a = query_larger_than(threshold);
+  EXPECT_EQ(a.summary.stage1_candidates(), int64_t(expected.size()) + 28);
+  EXPECT_EQ(a.summary.computed(), 8);
+  std::set<int64_t> expected_all = expected;
+  for (const CohortStructure& s : more.structures)
+    if (volume(s.id) > threshold) expected_all.insert(s.id);
+  EXPECT_EQ(a.ids, expected_all);
+
+  // The queue is durable: with precompute on again, it drains.
+  restart("on");
+  EXPECT_EQ(drained().precompute_queued(), 0);
+  a = query_larger_than(threshold);
+  EXPECT_EQ(a.ids, expected_all);
+  EXPECT_EQ(a.summary.stage1_candidates(), int64_t(expected_all.size()));
+}
+
+TEST_F(PrecomputeTest, AQueryOnAnotherGridDoesNotUseTheStoredValues) {
+  const Cohort c = load_cohort(*this, *client_, dir_, 2);
+  drained();
+  v1::QueryRequest q;
+  v1::Predicate* p = q.add_where();
+  p->mutable_feature()->set_name("voxel_volume_mm3");
+  p->set_op(v1::GT);
+  p->set_value(1e12);  // nothing is that large
+  q.mutable_grid()->set_spacing_mm(0.5);
+  client::QueryHandlers h;
+  h.on_row = [](const v1::QueryRow&) { return true; };
+  Result<v1::QuerySummary> s = client_->query(q, h);
+  ASSERT_TRUE(s.ok()) << s.status().to_string();
+  // Values stored at 1 mm say nothing about 0.5 mm: every structure reaches stage 2.
+  EXPECT_EQ(s->stage1_candidates(), int64_t(c.structures.size()));
+  EXPECT_EQ(s->matched(), 0);
+}
+
+}  // namespace
+}  // namespace soiq::testing
