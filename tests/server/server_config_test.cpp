@@ -90,7 +90,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 15u);
+  EXPECT_EQ(flags.size(), 16u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
@@ -104,6 +104,16 @@ TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   }
   const Parsed typo = parse({"--lisen", "127.0.0.1:0"});
   EXPECT_TRUE(says(typo.config.status(), "did you mean '--listen'?")) << typo.config.status().message();
+}
+
+TEST(ServerConfig, PrecomputeIsOnUnlessTurnedOffAndTakesOnlyOnOrOff) {
+  EXPECT_TRUE(parse({}).config->precompute);
+  EXPECT_FALSE(parse({"--precompute", "off"}).config->precompute);
+  EXPECT_FALSE(parse({}, {{"SOIQ_PRECOMPUTE", "off"}}).config->precompute);
+  EXPECT_TRUE(parse({"--precompute=on"}, {{"SOIQ_PRECOMPUTE", "off"}}).config->precompute);
+  const Parsed bad = parse({"--precompute", "yes"});
+  ASSERT_FALSE(bad.config.ok());
+  EXPECT_TRUE(says(bad.config.status(), "--precompute must be on or off, got 'yes'")) << bad.config.status().message();
 }
 
 TEST(ServerConfig, HelpIsReportedNotAnError) {
