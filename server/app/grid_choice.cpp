@@ -36,9 +36,14 @@ Result<ResolvedGrid> resolve_grid(const GridChoice& choice, const db::StructureR
     for (double s : choice.spacing_mm) margin = std::max(margin, int(std::ceil(min_margin_mm / s)) + 1);
     SOIQ_ASSIGN_OR_RETURN(out.geometry,
                           grid_around_box({b[0], b[1], b[2]}, {b[3], b[4], b[5]}, choice.spacing_mm, margin));
+    // The grid's voxel centres are multiples of the spacing whatever the margin (grid_around_box), so
+    // a wider margin only adds voxels outside the surface's box: nothing inside, and every region
+    // asked fits either way (the margin grew for it). The values are the same, and so is the key:
+    // a query with a shell reads what precompute and narrower queries stored. (The margin is at
+    // least one voxel here, so the mask's marching-cubes surface never meets the grid's border.)
     char key[160];
-    std::snprintf(key, sizeof key, "axis:%.17g,%.17g,%.17g:m%d", choice.spacing_mm[0], choice.spacing_mm[1],
-                  choice.spacing_mm[2], margin);
+    std::snprintf(key, sizeof key, "axis:%.17g,%.17g,%.17g", choice.spacing_mm[0], choice.spacing_mm[1],
+                  choice.spacing_mm[2]);
     out.key = key;
   } else {
     SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(choice.series, study_series, structure.study_uid));

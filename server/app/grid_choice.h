@@ -11,7 +11,9 @@
 //   Errors: NOT_FOUND for an unknown series or no series of that modality in the study;
 //   FAILED_PRECONDITION when the study has several series of that modality (name one by uid);
 //   INVALID_ARGUMENT for a bad spacing or margin.
-// The returned key names the grid for the feature cache: equal keys, equal grids.
+// The returned key names the grid for the feature cache: equal keys, equal values. Two axis-aligned
+// grids of one spacing that differ only in a margin of at least one voxel share a key: same voxel
+// centres, same values (grid_choice.cpp says why).
 
 #include <string>
 #include <vector>

@@ -1,7 +1,8 @@
 #include "server/app/precompute_worker.h"
 
-#include <pthread.h>
-#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,14 +24,11 @@ constexpr int64_t kBatch = 16;
 // same database, a failure to write).
 constexpr auto kPoll = std::chrono::seconds(5);
 
-// SCHED_IDLE: the thread runs only when a core has nothing else to run. Were a query starved of
-// memory budget or of the write lock by a precompute that cannot run, its waiting frees the CPU
-// that the precompute needs: the wait ends. Best effort: without it the thread runs as any other.
-void lower_priority() {
-  sched_param none{};
-  none.sched_priority = 0;
-  (void)pthread_setschedparam(pthread_self(), SCHED_IDLE, &none);
-}
+// Nice 19: beside busy threads of normal priority the thread gets about 1.5 % of a core, so queries
+// and uploads barely notice it, yet it is never starved outright. (SCHED_IDLE would starve it for
+// as long as anything else runs, and a conversion it had started would hold its memory reservation,
+// or a write transaction, meanwhile.) Best effort: without it the thread runs as any other.
+void lower_priority() { (void)setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 19); }
 
 }  // namespace
 

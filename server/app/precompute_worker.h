@@ -8,9 +8,9 @@
 // the default margin), fill rule non-zero; and mean, minimum and maximum inside on every image of
 // the structure's study, nearest-neighbour, on the same grid.
 //
-// Why it is safe beside queries: the thread runs under SCHED_IDLE (it gets only CPU nothing else
-// wants); its conversions are admitted by the memory budget like any other; a query never waits
-// for it (a query computes what is missing itself). A structure whose shape features cannot be
+// Why it is safe beside queries: the thread runs at nice 19 (about 1.5 % of a core against busy
+// threads of normal priority, all of any idle core); its conversions are admitted by the memory budget like any other;
+// a query never waits for it (a query computes what is missing itself). A structure whose shape features cannot be
 // computed is marked failed with the reason (queries then meet the same error and report it); an
 // image that fails (another frame of reference, ...) is logged and skipped, the others kept.
 //

@@ -47,15 +47,14 @@ const char* sql_operator(Comparison op) {
 }  // namespace
 
 std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q) {
+  // Precompute's grid is GridChoice{}; any margin of a voxel or more gives the same values (a shell
+  // only widens it: grid_choice.h).
   const GridChoice precompute_grid;
   const GridChoice& grid = q.ask.grid;
-  const bool same_grid = grid.kind == precompute_grid.kind && grid.spacing_mm == precompute_grid.spacing_mm &&
-                         grid.margin_voxels == precompute_grid.margin_voxels;
-  // A shell widens the grid's margin (grid_choice.h): another grid key, values precompute did not store.
-  const bool shell = std::any_of(q.ask.regions.begin(), q.ask.regions.end(),
-                                 [](const RegionSpec& r) { return r.kind == RegionKind::kShell; });
+  const bool same_values = grid.kind == precompute_grid.kind && grid.spacing_mm == precompute_grid.spacing_mm &&
+                           grid.margin_voxels >= 1 && q.ask.fill_rule == FillRule::kNonZero;
   std::vector<db::StoredFeatureCondition> out;
-  if (!same_grid || shell || q.ask.fill_rule != FillRule::kNonZero) return out;
+  if (!same_values) return out;
   const std::vector<std::string>& stored = db::stored_feature_names();
   for (const QueryPredicate& p : q.where) {
     const QueryFeature& f = q.features.at(p.feature);

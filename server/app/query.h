@@ -92,8 +92,9 @@ struct QuerySummary {
 
 // The query's predicates that stage 1 can check on the values precompute stored
 // (db::Stage1Filter::stored_features): plain comparisons (not asymmetries) of a stored feature, when
-// the query computes its features in the context precompute stored them in (the default grid, no
-// shell region, fill rule non-zero), so the stored value is the one stage 2 would compute. Stage 2
+// the query computes its features in the context precompute stored them in (the default spacing,
+// a margin of a voxel or more, fill rule non-zero), so the stored value is the one stage 2 would
+// compute. Stage 2
 // still evaluates every predicate: the rows are the same with or without these, only fewer
 // structures reach it.
 std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q);

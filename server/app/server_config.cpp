@@ -51,7 +51,7 @@ constexpr OptionText kOptionTexts[] = {
     {"--pacs-calling-ae", "AE", "SOIQ", "soiqd's AE title towards the PACS"},
     {"--pacs-timeout", "SECONDS", "30", "the PACS's connect, association and message timeout"},
     {"--precompute", "on|off", "on",
-     "compute every new structure's default features in the background, at idle priority, so that "
+     "compute every new structure's default features in the background, at nice 19, so that "
      "queries read them and stage 1 filters on them"},
 };
 

@@ -32,7 +32,7 @@ struct ServerConfig {
   std::string pacs;  // AE@HOST:PORT as given
   std::string pacs_calling_ae = "SOIQ";
   int pacs_timeout_seconds = 30;
-  bool precompute = true;  // compute every structure's default features in the background
+  bool precompute = true;                    // compute every structure's default features in the background
   std::optional<dicom::PacsPeer> pacs_peer;  // parsed from the three above; nullopt without --pacs
 };
 
