@@ -276,10 +276,10 @@ class Store {
   // Many surfaces' entries in one transaction (a query writes its results so, not one transaction
   // per structure). A surface deleted meanwhile is skipped: nothing would read its entries.
   virtual Status put_cached_features(const std::vector<SurfaceFeatures>& batch) = 0;
-  // Stores what the precompute worker found (values, cache entries; or the failure) and takes the
-  // structure out of the queue, in one transaction. When the structure is gone, or its surface is
-  // no longer `surface_sha256` (replaced meanwhile, and queued again), nothing is stored: OK.
-  virtual Status put_precomputed(const Precomputed& p) = 0;
+  // Stores what the precompute worker found for each structure (values, cache entries; or the
+  // failure) and takes it out of the queue, all in one transaction. A structure that is gone, or
+  // whose surface is no longer `surface_sha256` (replaced meanwhile, and queued again), is skipped.
+  virtual Status put_precomputed(const std::vector<Precomputed>& batch) = 0;
   // Every structure whose stored values were computed under another definitions version loses
   // them and is queued again (soiqd calls it at start, before serving). Returns how many.
   virtual Result<int64_t> requeue_precompute(int definitions_version) = 0;
@@ -319,6 +319,7 @@ class Store {
     SOIQ_ASSIGN_OR_RETURN(const ImportedBatch done, import_batch(b));
     return bool(done.series_replaced.at(0));
   }
+  Status put_precomputed(const Precomputed& p) { return put_precomputed(std::vector<Precomputed>{p}); }
   Result<std::string> get_image_blob(const std::string& series_uid) { return get_blob(BlobKind::kImage, series_uid); }
   Result<std::string> get_surface_blob(const std::string& sha256) { return get_blob(BlobKind::kSurface, sha256); }
   Result<int64_t> delete_structure(int64_t id) { return remove({Removal::Kind::kStructure, id, ""}); }

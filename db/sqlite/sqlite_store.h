@@ -72,7 +72,8 @@ class SqliteStore : public Store {
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) override;
   Result<Counts> counts() override;
   Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
-  Status put_precomputed(const Precomputed& p) override;
+  Status put_precomputed(const std::vector<Precomputed>& batch) override;
+  using Store::put_precomputed;
   Result<int64_t> requeue_precompute(int definitions_version) override;
 
   // The schema version of the open database (latest_schema_version() after open).

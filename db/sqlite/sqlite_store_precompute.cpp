@@ -104,7 +104,9 @@ Result<std::vector<StructureRecord>> SqliteStore::precompute_queue(int64_t limit
   return out;
 }
 
-Status SqliteStore::put_precomputed(const Precomputed& p) {
+namespace {
+
+Status check_precomputed(const Precomputed& p) {
   SOIQ_RETURN_IF_ERROR(validate_sha256(p.surface_sha256, "surface"));
   const size_t n = stored_feature_names().size();
   if (p.failure.empty() && p.values.size() != n) {
@@ -114,39 +116,54 @@ Status SqliteStore::put_precomputed(const Precomputed& p) {
   for (const CachedFeature& f : p.cache_entries) {
     if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
   }
+  return ok_status();
+}
+
+// One structure's part of put_precomputed, inside its transaction.
+Status store_precomputed(Connection& c, const Precomputed& p) {
+  const size_t n = stored_feature_names().size();
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement now, c.prepare(kStructureSurfaceSql));
+    now.bind(1, p.structure_id);
+    SOIQ_ASSIGN_OR_RETURN(const bool found, now.step());
+    // Deleted meanwhile, or given a new surface (and queued again by that write): these values
+    // describe nothing stored.
+    if (!found || now.text(0) != p.surface_sha256) return ok_status();
+  }
+  if (!p.failure.empty()) {
+    SOIQ_ASSIGN_OR_RETURN(Statement fail, c.prepare(kFailSql));
+    fail.bind(1, p.structure_id);
+    fail.bind(2, p.failure.substr(0, kMaxFailureBytes));
+    return fail.run();
+  }
+  SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, p.surface_sha256, p.cache_entries).status());
+  // NaN is stored as NULL: neither satisfies any condition, as in stage 2 (server/app/query.h).
+  auto bind_value = [&](Statement& st, int index, size_t i) {
+    const bool known = p.values[i] && !std::isnan(*p.values[i]);
+    st.bind(index, known ? p.values[i] : std::nullopt);
+  };
+  SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(kStoreFeaturesSql));
+  store.bind(1, p.structure_id);
+  store.bind(2, int64_t{p.definitions_version});
+  for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
+  SOIQ_RETURN_IF_ERROR(store.run());
+  SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(kStage1FeaturesSql));
+  row.bind(1, p.structure_id);
+  for (size_t i = 0; i < n; ++i) bind_value(row, int(i + 2), i);
+  SOIQ_RETURN_IF_ERROR(row.run());
+  SOIQ_ASSIGN_OR_RETURN(Statement done, c.prepare(kDequeueSql));
+  done.bind(1, p.structure_id);
+  return done.run();
+}
+
+}  // namespace
+
+Status SqliteStore::put_precomputed(const std::vector<Precomputed>& batch) {
+  for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(check_precomputed(p));
+  if (batch.empty()) return ok_status();
   return write([&](Connection& c) -> Status {
-    {
-      SOIQ_ASSIGN_OR_RETURN(Statement now, c.prepare(kStructureSurfaceSql));
-      now.bind(1, p.structure_id);
-      SOIQ_ASSIGN_OR_RETURN(const bool found, now.step());
-      // Deleted meanwhile, or given a new surface (and queued again by that write): these values
-      // describe nothing stored.
-      if (!found || now.text(0) != p.surface_sha256) return ok_status();
-    }
-    if (!p.failure.empty()) {
-      SOIQ_ASSIGN_OR_RETURN(Statement fail, c.prepare(kFailSql));
-      fail.bind(1, p.structure_id);
-      fail.bind(2, p.failure.substr(0, kMaxFailureBytes));
-      return fail.run();
-    }
-    SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, p.surface_sha256, p.cache_entries).status());
-    // NaN is stored as NULL: neither satisfies any condition, as in stage 2 (server/app/query.h).
-    auto bind_value = [&](Statement& st, int index, size_t i) {
-      const bool known = p.values[i] && !std::isnan(*p.values[i]);
-      st.bind(index, known ? p.values[i] : std::nullopt);
-    };
-    SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(kStoreFeaturesSql));
-    store.bind(1, p.structure_id);
-    store.bind(2, int64_t{p.definitions_version});
-    for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
-    SOIQ_RETURN_IF_ERROR(store.run());
-    SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(kStage1FeaturesSql));
-    row.bind(1, p.structure_id);
-    for (size_t i = 0; i < n; ++i) bind_value(row, int(i + 2), i);
-    SOIQ_RETURN_IF_ERROR(row.run());
-    SOIQ_ASSIGN_OR_RETURN(Statement done, c.prepare(kDequeueSql));
-    done.bind(1, p.structure_id);
-    return done.run();
+    for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(store_precomputed(c, p));
+    return ok_status();
   });
 }
 
