@@ -13,10 +13,13 @@
 #include "bench/cold_breakdown.h"
 #include "bench/query_cohort.h"
 #include "bench/query_load.h"
+#include "bench/query_precompute.h"
 #include "bench/query_report.h"
 #include "bench/query_runs.h"
 #include "client/soiq_client.h"
 #include "core/geometry/mesh_defects.h"
+#include "core/voxelize/grid_around.h"
+#include "core/voxelize/voxelize_1d.h"
 #include "db/sqlite/sqlite_store.h"
 #include "tests/support/soiqd_process.h"
 
@@ -195,6 +198,33 @@ Status breakdown(const WorkDir& work, const std::string& pristine, QueryBenchFig
   return ok_status();
 }
 
+// The largest voxel volume of a background surface on the default grid (1 mm): the content filter's
+// threshold, so that it keeps matched structures only.
+Result<double> largest_background_volume(const QueryCohortSize& size) {
+  double largest = 0;
+  for (int b = 0; b < std::max(1, size.background_blobs); ++b) {
+    const TriangleMesh mesh = background_surface(b);
+    SOIQ_ASSIGN_OR_RETURN(const ImageGeometry g, grid_around(mesh, {1, 1, 1}, 2));
+    SOIQ_ASSIGN_OR_RETURN(const Voxelization v, voxelize_1d(mesh, g));
+    largest = std::max(largest, double(voxel_count(v.volume)));
+  }
+  return largest;
+}
+
+// With precompute on, on a copy of the loaded database (every structure queued); then the matched
+// patients' uploads again, to a fresh soiqd with precompute on.
+Status precompute(const Options& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
+                  const std::string& pristine, QueryBenchFigures& f) {
+  note("soiq-bench query: precompute, then queries on stored values\n");
+  SOIQ_ASSIGN_OR_RETURN(const double threshold, largest_background_volume(o.size));
+  SOIQ_ASSIGN_OR_RETURN(f.precompute,
+                        precompute_run(o.soiqd, o.workers, pristine, work.path() + "/pre.db", threshold, 10));
+  note("soiq-bench query: uploads with precompute on\n");
+  SOIQ_ASSIGN_OR_RETURN(f.ingest_precompute_on, ingest_with_precompute(o.soiqd, o.workers, work.path() + "/ingest.db",
+                                                                       work.path(), cohort, o.size));
+  return ok_status();
+}
+
 Status run(const Options& o) {
   const WorkDir work(o.dir);
   if (work.path().empty()) return internal_error("cannot create a work folder (set SOIQ_BENCH_TMP or --dir)");
@@ -208,6 +238,7 @@ Status run(const Options& o) {
   SOIQ_RETURN_IF_ERROR(stage1_in_process(o, pristine, f));
   SOIQ_RETURN_IF_ERROR(server_runs(o, work, pristine, f));
   SOIQ_RETURN_IF_ERROR(breakdown(work, pristine, f));
+  SOIQ_RETURN_IF_ERROR(precompute(o, cohort, work, pristine, f));
   print_query_report(f);
   return ok_status();
 }

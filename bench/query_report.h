@@ -7,6 +7,7 @@
 #include "bench/cold_breakdown.h"
 #include "bench/query_cohort.h"
 #include "bench/query_load.h"
+#include "bench/query_precompute.h"
 #include "bench/query_runs.h"
 
 namespace soiq::bench {
@@ -23,6 +24,8 @@ struct QueryBenchFigures {
   std::vector<ServerRun> runs;
   std::vector<Throughput> load;
   ColdBreakdown breakdown;
+  PrecomputeFigures precompute;
+  IngestFigures ingest_precompute_on;
 };
 
 void print_query_report(const QueryBenchFigures& f);
