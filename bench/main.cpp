@@ -9,6 +9,7 @@
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
 //   soiq-bench codec [--runs N] [--label LABEL_IMAGE]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
+//   soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
@@ -20,6 +21,7 @@
 #include "bench/cpu_probe.h"
 #include "bench/features_bench.h"
 #include "bench/import_bench.h"
+#include "bench/pacs_bench.h"
 #include "bench/query_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
@@ -41,6 +43,7 @@ int usage() {
                "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
                "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
                "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
+               "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
                "                  [--patients N] [--matched N]\n");
   return 2;
 }
@@ -51,11 +54,11 @@ int main(int argc, char** argv) {
   using namespace soiq::bench;
   if (argc < 2) return usage();
   const std::string command = argv[1];
-  const auto args =
-      parse_cli_args(argc, argv, 2,
-                     {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models",
-                      "--sts", "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label"},
-                     {"--json", "--small"});
+  const auto args = parse_cli_args(
+      argc, argv, 2,
+      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models", "--sts",
+       "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label", "--patient"},
+      {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
     return 2;
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
   if (command == "features") return run_features_bench(*args);
   if (command == "query") return run_query_bench(*args);
   if (command == "import") return run_import_bench(*args);
+  if (command == "pacs") return run_pacs_bench(*args);
   if (command == "codec") return run_surface_codec_bench(*args);
   return usage();
 }

@@ -1,0 +1,90 @@
+#include "bench/orthanc_process.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "dicom/pacs_echo.h"
+#include "tests/support/dcmqrscp_process.h"
+
+namespace soiq::bench {
+
+std::string OrthancProcess::start() {
+  const std::string binary = "/usr/sbin/Orthanc";
+  if (::access(binary.c_str(), X_OK) != 0)
+    return "not installed: /usr/sbin/Orthanc (Debian package orthanc; scripts/install-deps --bench-peers)";
+  const std::string storage = (dir_.path() / "storage").string();
+  port_ = dicom::testing::free_loopback_port();
+  const std::string config = (dir_.path() / "orthanc.json").string();
+  std::ofstream(config) << "{\n"
+                        << "  \"Name\": \"soiq-bench\",\n"
+                        << "  \"StorageDirectory\": \"" << storage << "\",\n"
+                        << "  \"IndexDirectory\": \"" << storage << "\",\n"
+                        << "  \"HttpServerEnabled\": false,\n"
+                        << "  \"DicomServerEnabled\": true,\n"
+                        << "  \"DicomAet\": \"" << kAeTitle << "\",\n"
+                        << "  \"DicomPort\": " << port_ << ",\n"
+                        << "  \"DicomCheckCalledAet\": false,\n"
+                        << "  \"DicomAlwaysAllowEcho\": true,\n"
+                        << "  \"DicomAlwaysAllowStore\": true,\n"
+                        << "  \"DicomAlwaysAllowFind\": true,\n"
+                        << "  \"DicomAlwaysAllowGet\": true,\n"
+                        << "  \"Plugins\": [],\n"
+                        << "  \"SaveJobs\": false\n"
+                        << "}\n";
+  pid_ = ::fork();
+  if (pid_ < 0) return "fork failed";
+  if (pid_ == 0) {
+    ::setpgid(0, 0);
+    const int fd = ::open((dir_.path() / "orthanc.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+    }
+    ::execl(binary.c_str(), binary.c_str(), config.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::setpgid(pid_, pid_);
+  dicom::PacsPeer probe = peer();
+  probe.timeout_seconds = 2;
+  for (int i = 0; i < 500; ++i) {  // 10 s
+    if (dicom::pacs_echo(probe).ok()) return "";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  stop();
+  return "Orthanc did not answer C-ECHO on port " + std::to_string(port_) + ":\n" +
+         dicom::testing::read_text(dir_.path() / "orthanc.log");
+}
+
+void OrthancProcess::stop() {
+  if (pid_ <= 0) return;
+  ::kill(-pid_, SIGTERM);
+  int status = 0;
+  bool reaped = false;
+  for (int i = 0; i < 250 && !reaped; ++i) {  // up to 5 s
+    reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
+    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (!reaped) {
+    ::kill(-pid_, SIGKILL);
+    ::waitpid(pid_, &status, 0);
+  }
+  pid_ = -1;
+}
+
+dicom::PacsPeer OrthancProcess::peer() const {
+  dicom::PacsPeer p;
+  p.called_ae = kAeTitle;
+  p.host = "127.0.0.1";
+  p.port = port_;
+  p.calling_ae = "SOIQ";
+  p.timeout_seconds = 30;
+  return p;
+}
+
+}  // namespace soiq::bench
