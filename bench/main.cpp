@@ -7,7 +7,7 @@
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
-//   soiq-bench codec [--runs N] [--label LABEL_IMAGE]
+//   soiq-bench codec [--runs N] [--label LABEL_IMAGE] [--image IMAGE]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
 //   soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   const auto args = parse_cli_args(
       argc, argv, 2,
       {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models", "--sts",
-       "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label", "--patient"},
+       "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label", "--patient", "--image"},
       {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/query_cohort.h"
 #include "client/cohort/deformed_ellipsoid.h"
 #include "client/cohort/split_mix_64.h"
 #include "core/base/triangle_mesh.h"
@@ -18,6 +19,7 @@
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
 #include "db/deflate.h"
+#include "db/image_blob.h"
 #include "db/surface_blob.h"
 
 namespace soiq::bench {
@@ -188,6 +190,40 @@ TriangleMesh float32_rounded(TriangleMesh m) {
   return m;
 }
 
+// The image blob's two versions (db/image_blob.h) on the query benchmark's MR image and, with
+// --image, a real one: what a cold query pays per study.
+void print_image_codecs(int runs, const std::string& path) {
+  std::vector<std::pair<std::string, Image>> images;
+  QueryCohortSize size;
+  for (const CohortPatient& p : query_cohort_patients(size, 20250409)) {
+    if (!p.matched) continue;
+    images.emplace_back("query-bench MR (synthetic)", matched_image(p, size));
+    break;
+  }
+  if (!path.empty()) {
+    Result<Image> image = read_image(path);
+    if (image.ok()) images.emplace_back(path, std::move(image).value());
+  }
+  std::printf(
+      "\n| image | voxels | codec | bytes | vs zlib | encode ms | decode ms |\n|---|---:|---|---:|---:|---:|---:|\n");
+  for (const auto& [name, image] : images) {
+    const size_t raw = image.voxels.size() * sizeof(float);
+    std::string v1, v2;
+    const double enc1 = median_ms(runs, [&] { v1 = *db::deflate_bytes(image.voxels.data(), raw); });
+    const double enc2 = median_ms(runs, [&] { v2 = db::encode_image(image)->blob; });
+    Image back1, back2;
+    const double dec1 = median_ms(runs, [&] { back1 = *db::decode_image(v1, image.geometry); });
+    const double dec2 = median_ms(runs, [&] { back2 = *db::decode_image(v2, image.geometry); });
+    for (const auto& [codec, blob, back, enc, dec] :
+         {std::tuple{"zlib (version 1 blobs)", &v1, &back1, enc1, dec1},
+          std::tuple{"soiq delta planes + lz4 + adler32 (version 2 blobs)", &v2, &back2, enc2, dec2}}) {
+      const bool lossless = std::memcmp(back->voxels.data(), image.voxels.data(), raw) == 0;
+      std::printf("| %s | %zu | %s%s | %zu | %.2f | %.2f | %.2f |\n", name.c_str(), image.voxels.size(), codec,
+                  lossless ? "" : " (NOT LOSSLESS)", blob->size(), double(blob->size()) / double(v1.size()), enc, dec);
+    }
+  }
+}
+
 }  // namespace
 
 int run_surface_codec_bench(const CliArgs& args) {
@@ -231,6 +267,7 @@ int run_surface_codec_bench(const CliArgs& args) {
                   dec);
     }
   }
+  print_image_codecs(runs, args.get("--image", ""));
   return 0;
 }
 

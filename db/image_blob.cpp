@@ -1,12 +1,17 @@
 #include "db/image_blob.h"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <bit>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "db/deflate.h"
+#include "db/delta_planes.h"
 #include "db/sha256.h"
 
 namespace soiq::db {
@@ -28,7 +33,34 @@ std::string canonical_geometry_text(const ImageGeometry& g) {
   return buf;
 }
 
+// Version 2: this magic, the Adler-32 of the raw voxel bytes (little-endian uint32), then the voxels'
+// float32 bit patterns in the delta-planes codec. The checksum is what zlib's stream had: a block
+// LZ4 could not shrink is stored as is, and a flipped bit in it would otherwise decode to a wrong
+// voxel without a word. Version 1 was the raw bytes deflated by zlib (a zlib stream never starts with
+// 'S'), and still decodes.
+constexpr char kPlanesMagic[8] = {'S', 'O', 'I', 'Q', 'I', 'M', 'G', '2'};
+
+uint32_t voxel_checksum(const std::vector<float>& voxels) {
+  // zlib's adler32 takes a uInt length: feed it in pieces.
+  uLong sum = adler32(0L, Z_NULL, 0);
+  const auto* bytes = reinterpret_cast<const Bytef*>(voxels.data());
+  size_t left = voxels.size() * sizeof(float);
+  while (left > 0) {
+    const uInt n = uInt(std::min<size_t>(left, size_t(1) << 30));
+    sum = adler32(sum, bytes, n);
+    bytes += n;
+    left -= n;
+  }
+  return uint32_t(sum);
+}
+
+bool has_planes_magic(const std::string& blob) {
+  return blob.size() >= sizeof kPlanesMagic && std::memcmp(blob.data(), kPlanesMagic, sizeof kPlanesMagic) == 0;
+}
+
 }  // namespace
+
+bool is_deflated_image_blob(const std::string& blob) { return !has_planes_magic(blob); }
 
 Result<EncodedImage> encode_image(const Image& image) {
   const auto& dims = image.geometry.dims;
@@ -43,7 +75,10 @@ Result<EncodedImage> encode_image(const Image& image) {
   hasher.update(text.data(), text.size());
   hasher.update(image.voxels.data(), bytes);
   out.sha256 = hasher.hex_digest();
-  SOIQ_ASSIGN_OR_RETURN(out.blob, deflate_bytes(image.voxels.data(), bytes));
+  out.blob.assign(kPlanesMagic, sizeof kPlanesMagic);
+  const uint32_t sum = voxel_checksum(image.voxels);
+  out.blob.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  append_delta_planes(image.voxels.data(), image.voxels.size(), 4, sizeof(float), out.blob);
   return out;
 }
 
@@ -56,6 +91,19 @@ Result<Image> decode_image(const std::string& blob, const ImageGeometry& geometr
     return data_loss("image grid " + describe(geometry) + " is too large for an image blob");
   }
   const size_t expected = size_t(geometry.voxel_count()) * sizeof(float);
+  if (has_planes_magic(blob)) {
+    Image image;
+    image.geometry = geometry;
+    image.voxels.resize(size_t(geometry.voxel_count()));
+    uint32_t sum = 0;
+    if (blob.size() < sizeof kPlanesMagic + sizeof sum) return data_loss("image blob is truncated");
+    std::memcpy(&sum, blob.data() + sizeof kPlanesMagic, sizeof sum);
+    size_t at = sizeof kPlanesMagic + sizeof sum;
+    SOIQ_RETURN_IF_ERROR(read_delta_planes(blob, at, image.voxels.size(), 4, sizeof(float), image.voxels.data()));
+    if (at != blob.size()) return data_loss("image blob has " + std::to_string(blob.size() - at) + " extra bytes");
+    if (voxel_checksum(image.voxels) != sum) return data_loss("image blob is corrupt (its checksum differs)");
+    return image;
+  }
   SOIQ_ASSIGN_OR_RETURN(std::string raw, inflate_bytes(blob, expected));
   if (raw.size() != expected) {
     return data_loss("image blob holds " + std::to_string(raw.size()) + " bytes but its grid " + describe(geometry) +

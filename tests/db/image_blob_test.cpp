@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
+
+#include "db/deflate.h"
 
 namespace soiq::db {
 namespace {
@@ -89,6 +92,34 @@ TEST(ImageBlob, TruncatedOrCorruptBlobIsDataLoss) {
     ASSERT_FALSE(d.ok());
     EXPECT_EQ(d.status().code(), StatusCode::kDataLoss) << d.status().to_string();
   }
+}
+
+// A blob stored before the delta-planes codec (version 1: the raw bytes deflated) still decodes.
+TEST(ImageBlob, AVersion1BlobStillDecodes) {
+  const Image img = random_image(5);
+  auto v1 = deflate_bytes(img.voxels.data(), img.voxels.size() * sizeof(float));
+  ASSERT_TRUE(v1.ok());
+  EXPECT_TRUE(is_deflated_image_blob(*v1));
+  EXPECT_FALSE(is_deflated_image_blob(encode_image(img)->blob));
+  auto d = decode_image(*v1, img.geometry);
+  ASSERT_TRUE(d.ok()) << d.status().to_string();
+  EXPECT_TRUE(same_bits(d->voxels, img.voxels));
+}
+
+// A CT-like image (smooth integers, as rescaled 12-bit pixels are): lossless, and smaller than raw.
+TEST(ImageBlob, ASmoothImageCompressesAndRoundTrips) {
+  Image img;
+  img.geometry.dims = {64, 64, 16};
+  for (int64_t k = 0; k < 16; ++k)
+    for (int64_t j = 0; j < 64; ++j)
+      for (int64_t i = 0; i < 64; ++i)
+        img.voxels.push_back(float(std::lround(200 * std::sin(0.1 * double(i)) * std::cos(0.07 * double(j)) + k)));
+  auto e = encode_image(img);
+  ASSERT_TRUE(e.ok());
+  EXPECT_LT(e->blob.size(), img.voxels.size() * sizeof(float) / 2);
+  auto d = decode_image(e->blob, img.geometry);
+  ASSERT_TRUE(d.ok()) << d.status().to_string();
+  EXPECT_TRUE(same_bits(d->voxels, img.voxels));
 }
 
 }  // namespace
