@@ -256,11 +256,7 @@ INSERT INTO precompute_queue(structure_id) SELECT id FROM structures;
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
-      {1, kSchemaV1},
-      {2, kSchemaV2},
-      {3, kSchemaV3},
-      {4, kSchemaV4, reencode_surface_blobs},
-      {5, kSchemaV5},
+      {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4, reencode_surface_blobs}, {5, kSchemaV5},
   };
   return kMigrations;
 }

@@ -23,13 +23,15 @@ void SqlConditions::compare(const std::string& column, const char* op, double va
   conditions_.push_back(column + " " + op + " " + next());
 }
 
-void SqlConditions::all_unless(const std::string& alternative, const std::vector<NumberComparison>& comparisons) {
+void SqlConditions::all_unless(const std::string& key, const std::string& table, const std::string& alternative,
+                               const std::vector<NumberComparison>& comparisons) {
   std::string all;
   for (const NumberComparison& c : comparisons) {
     params_.emplace_back(c.value);
     all += (all.empty() ? "" : " AND ") + c.column + " " + c.op + " " + next();
   }
-  conditions_.push_back("(" + alternative + " OR (" + all + "))");
+  conditions_.push_back(key + " IN (SELECT " + key + " FROM " + table + " WHERE " + alternative + " UNION ALL SELECT " +
+                        key + " FROM " + table + " WHERE " + all + ")");
 }
 
 void SqlConditions::glob(const std::string& column, const std::string& pattern) {

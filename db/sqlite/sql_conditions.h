@@ -18,9 +18,12 @@ class SqlConditions {
     std::string op;  // an SQL comparison operator
     double value = 0;
   };
-  // "(alternative OR (c1 op v1 AND c2 op v2 …))": the comparisons hold, or `alternative` (a
-  // parameterless condition) says they do not apply to the row.
-  void all_unless(const std::string& alternative, const std::vector<NumberComparison>& comparisons);
+  // "key IN (SELECT key FROM table WHERE alternative UNION ALL SELECT key FROM table WHERE c1 op v1
+  // AND c2 op v2 …)": the comparisons hold, or `alternative` (a parameterless condition) says they do
+  // not apply to the row. Two searches of `table`, each by its own index, whatever SQLite believes
+  // of the outer query's other conditions (sqlite_store_stage1.cpp says why).
+  void all_unless(const std::string& key, const std::string& table, const std::string& alternative,
+                  const std::vector<NumberComparison>& comparisons);
   // "column = value"
   void equal(const std::string& column, const std::string& value);
   // "column op value" for op in <, <=, >, >=

@@ -89,8 +89,8 @@ Result<Counts> SqliteStore::counts() {
     SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(kCountsSql));
     SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
     if (!row) return internal_error("count query returned no row");
-    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4), st.int64(5), st.int64(6), st.int64(7),
-               {}};
+    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4),
+               st.int64(5), st.int64(6), st.int64(7), {}};
     SOIQ_ASSIGN_OR_RETURN(Statement modalities, c.prepare(kSeriesModalitiesSql));
     for (;;) {
       SOIQ_ASSIGN_OR_RETURN(const bool more, modalities.step());

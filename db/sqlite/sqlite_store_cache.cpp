@@ -83,7 +83,7 @@ Status check_entries(const std::string& surface_sha256, const std::vector<Cached
 }  // namespace
 
 Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sha256,
-                            const std::vector<CachedFeature>& entries) {
+                                    const std::vector<CachedFeature>& entries) {
   {
     SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
     q.bind(1, surface_sha256);

@@ -30,8 +30,8 @@ constexpr char kStage1IdsOrderSql[] = R"sql(
   ORDER BY r.structure_id
   LIMIT )sql";
 // With conditions on stored features: "+" keeps SQLite from scanning the whole table in id order
-// (to spare a sort) where the OR of the unstored rows' partial index and a feature's index reads
-// only the rows that can match; the few it finds are then sorted.
+// (to spare a sort) where the searches of the unstored rows' partial index and of a feature's index
+// read only the rows that can match; the few it finds are then sorted.
 constexpr char kStage1IdsOrderUnindexedSql[] = R"sql(
   ORDER BY +r.structure_id
   LIMIT )sql";
@@ -82,11 +82,14 @@ SqlConditions stage1_conditions(const Stage1Filter& f) {
   if (!f.laterality.empty()) where.equal("r.laterality", f.laterality);
   // Rows without stored values pass (stage 2 decides them); the others must satisfy every
   // condition. Names and operators are checked (validate_stage1_filter) and become code constants.
+  // As two searches in a subquery rather than an OR in the main one: the statistics SQLite keeps
+  // (PRAGMA optimize at close) may date from before precompute stored anything, when the partial
+  // index held every row; the OR was then planned as a scan of the whole table.
   if (!f.stored_features.empty()) {
     std::vector<SqlConditions::NumberComparison> all;
     for (const StoredFeatureCondition& c : f.stored_features)
-      all.push_back({"r." + c.name, c.op == "!=" ? "<>" : c.op, c.value});
-    where.all_unless("r.features_stored = 0", all);
+      all.push_back({c.name, c.op == "!=" ? "<>" : c.op, c.value});
+    where.all_unless("structure_id", "stage1_rows", "features_stored = 0", all);
   }
   return where;
 }
