@@ -31,15 +31,6 @@ NewStructure imported_structure(const std::string& name, double surface_offset) 
   return s;
 }
 
-void exec(const std::string& path, const char* sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  EXPECT_EQ(sqlite3_exec(db, sql, nullptr, nullptr, &error), SQLITE_OK) << (error ? error : "");
-  sqlite3_free(error);
-  sqlite3_close(db);
-}
-
 TEST(SqliteStoreDicomRefs, SeriesReferencesRoundTrip) {
   TempDir dir;
   auto store = open_store(dir.file("s.db"));
@@ -133,14 +124,15 @@ TEST(SqliteStoreDicomRefs, VersionOneFileIsMigratedKeepingItsData) {
     id = added->structure.id;
   }
   // Turn the file back into version 1: exactly what a version-1 soiqd wrote.
-  exec(path,
-       (std::string(testing::kBackToSchemaV3) +
-        "DROP INDEX structures_source_uid; ALTER TABLE structures DROP COLUMN source_uid; ALTER TABLE structures "
-        "DROP COLUMN source_series_uid; ALTER TABLE series DROP COLUMN slice_instance_uids; ALTER TABLE series DROP "
-        "COLUMN sop_class_uid; ALTER TABLE series DROP COLUMN frame_of_reference_uid; ALTER TABLE studies DROP "
-        "COLUMN accession_number; ALTER TABLE studies DROP COLUMN study_id; ALTER TABLE studies DROP COLUMN "
-        "study_time; PRAGMA user_version = 1;")
-           .c_str());
+  testing::exec_sql(
+      path,
+      (std::string(testing::kBackToSchemaV3) +
+       "DROP INDEX structures_source_uid; ALTER TABLE structures DROP COLUMN source_uid; ALTER TABLE structures "
+       "DROP COLUMN source_series_uid; ALTER TABLE series DROP COLUMN slice_instance_uids; ALTER TABLE series DROP "
+       "COLUMN sop_class_uid; ALTER TABLE series DROP COLUMN frame_of_reference_uid; ALTER TABLE studies DROP "
+       "COLUMN accession_number; ALTER TABLE studies DROP COLUMN study_id; ALTER TABLE studies DROP COLUMN "
+       "study_time; PRAGMA user_version = 1;")
+          .c_str());
   auto store = open_store(path);
   ASSERT_NE(store, nullptr);
   auto got = store->get_structure(id);

@@ -24,12 +24,7 @@ using testing::open_store;
 using testing::TempDir;
 
 void set_user_version(const std::string& path, int version) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, (std::string("PRAGMA user_version = ") + std::to_string(version)).c_str(), nullptr,
-                         nullptr, nullptr),
-            SQLITE_OK);
-  sqlite3_close(db);
+  testing::exec_sql(path, "PRAGMA user_version = " + std::to_string(version));
 }
 
 TEST(SqliteStoreOpen, NewFileGetsTheLatestSchemaInWalMode) {

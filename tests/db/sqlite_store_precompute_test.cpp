@@ -2,7 +2,6 @@
 // put_precomputed stores and when it stores nothing, that the values survive every later write of
 // the patient, and the migration that queues what a version-4 file held.
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <cmath>
 
@@ -165,12 +164,7 @@ TEST_F(Precompute, AContentFilterIsSearchedByIndexWhateverTheStatisticsSay) {
     ASSERT_TRUE(a.ok());
     all.push_back(a->structure);
   }
-  {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(dir_.file("p.db").c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db, "ANALYZE", nullptr, nullptr, nullptr), SQLITE_OK);
-    sqlite3_close(db);
-  }
+  testing::exec_sql(dir_.file("p.db"), "ANALYZE");
   store_.reset();
   store_ = open_store(dir_.file("p.db"));
   for (const StructureRecord& s : all) ASSERT_TRUE(store_->put_precomputed(values_for(s, double(s.id))).ok());
@@ -193,14 +187,7 @@ TEST(PrecomputeMigration, EveryStructureOfAVersion4FileIsQueued) {
     ASSERT_TRUE(store->add_structure(new_structure("P1", "1.1", "A", 0)).ok());
     ASSERT_TRUE(store->add_structure(new_structure("P2", "2.1", "B", 2)).ok());
   }
-  {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db, (std::string(testing::kBackToSchemaV4) + "PRAGMA user_version = 4").c_str(), nullptr,
-                           nullptr, nullptr),
-              SQLITE_OK);
-    sqlite3_close(db);
-  }
+  testing::exec_sql(path, std::string(testing::kBackToSchemaV4) + "PRAGMA user_version = 4");
   auto store = open_store(path);
   ASSERT_TRUE(store);
   EXPECT_EQ(*store->schema_version(), latest_schema_version());

@@ -71,16 +71,9 @@ TEST(SqliteStoreStudyIdentity, VersionTwoFileIsMigratedKeepingItsStudies) {
     ASSERT_TRUE(store->put_series(new_series("P1", "1.2.3", "1.2.3.4", 1.0f)).ok());
   }
   // Exactly what a version-2 soiqd wrote.
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db,
-                         (std::string(testing::kBackToSchemaV3) +
-                          "ALTER TABLE studies DROP COLUMN accession_number; ALTER TABLE studies DROP COLUMN "
-                          "study_id; ALTER TABLE studies DROP COLUMN study_time; PRAGMA user_version = 2;")
-                             .c_str(),
-                         nullptr, nullptr, nullptr),
-            SQLITE_OK);
-  sqlite3_close(db);
+  testing::exec_sql(path, std::string(testing::kBackToSchemaV3) +
+                              "ALTER TABLE studies DROP COLUMN accession_number; ALTER TABLE studies DROP COLUMN "
+                              "study_id; ALTER TABLE studies DROP COLUMN study_time; PRAGMA user_version = 2;");
   auto store = open_store(path);
   ASSERT_NE(store, nullptr);
   EXPECT_EQ(*store->schema_version(), latest_schema_version());

@@ -3,6 +3,7 @@
 // valid store inputs.
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -83,6 +84,17 @@ inline NewSeries new_series(const std::string& patient_id, const std::string& st
   s.series.sha256 = encoded->sha256;
   s.image_blob = encoded->blob;
   return s;
+}
+
+// Runs `sql` on the SQLite file itself, as another program or an older soiqd would; an error fails
+// the test.
+inline void exec_sql(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << (error ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
