@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "db/image_blob.h"
 #include "db/sqlite/sqlite_statement.h"
 #include "db/surface_blob.h"
 
@@ -210,12 +211,12 @@ Status reencode_surface_blobs(Connection& c) {
   return ok_status();
 }
 
-// Version 5: precompute (db/store.h). A durable queue of the structures whose default features soiqd
-// has still to compute (a restart resumes it), every stored structure queued; the stored shape
-// values, by structure; and a copy of them in stage1_rows with an index each, so that a content
-// filter over the whole database is an index range, not a visit of every structure. features_stored
-// is 0 while a structure has no stored values: stage 1 keeps those rows for stage 2, through the
-// partial index (an OR of two index searches, see sqlite_store_stage1.cpp).
+// Version 5: precompute (db/store.h), and image blobs in the delta-planes codec (reencode_image_blobs). A durable queue
+// of the structures whose default features soiqd has still to compute (a restart resumes it), every stored structure
+// queued; the stored shape values, by structure; and a copy of them in stage1_rows with an index each, so that a
+// content filter over the whole database is an index range, not a visit of every structure. features_stored is 0 while
+// a structure has no stored values: stage 1 keeps those rows for stage 2, through the partial index (an OR of two index
+// searches, see sqlite_store_stage1.cpp).
 constexpr char kSchemaV5[] = R"sql(
 CREATE TABLE precompute_queue (
   structure_id INTEGER PRIMARY KEY REFERENCES structures(id) ON DELETE CASCADE,
@@ -253,10 +254,59 @@ CREATE INDEX stage1_rows_maximum_3d_diameter_mm ON stage1_rows(maximum_3d_diamet
 INSERT INTO precompute_queue(structure_id) SELECT id FROM structures;
 )sql";
 
+// Version 5's step SQL cannot say: each image blob of version 1 (zlib) in the delta-planes codec of
+// image_blob.h, which a cold query decodes several times faster. The sha256 is over the voxels and
+// the geometry, not the codec, and stays; the geometry comes from a series that holds the image.
+Status reencode_image_blobs(Connection& c) {
+  std::vector<std::string> shas;
+  {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("SELECT sha256 FROM image_blobs"));
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      shas.push_back(q.text(0));
+    }
+  }
+  SOIQ_ASSIGN_OR_RETURN(Statement read, c.prepare(R"sql(
+    SELECT b.blob, se.origin_x, se.origin_y, se.origin_z, se.spacing_x, se.spacing_y, se.spacing_z,
+           se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, se.d12, se.d20, se.d21, se.d22
+    FROM image_blobs b JOIN series se ON se.image_sha256 = b.sha256
+    WHERE b.sha256 = ? LIMIT 1)sql"));
+  SOIQ_ASSIGN_OR_RETURN(Statement write, c.prepare("UPDATE image_blobs SET blob = ? WHERE sha256 = ?"));
+  for (const std::string& sha : shas) {
+    read.reset();
+    read.bind(1, sha);
+    SOIQ_ASSIGN_OR_RETURN(const bool found, read.step());
+    if (!found) continue;  // no series holds it: nothing will read it
+    const std::string blob = read.blob(0);
+    if (!is_deflated_image_blob(blob)) continue;
+    ImageGeometry g;
+    for (int a = 0; a < 3; ++a) {
+      g.origin_mm[a] = read.real(1 + a);
+      g.spacing_mm[a] = read.real(4 + a);
+      g.dims[a] = read.int64(7 + a);
+      for (int b = 0; b < 3; ++b) g.direction[a][b] = read.real(10 + 3 * a + b);
+    }
+    Result<Image> image = decode_image(blob, g);
+    if (!image.ok()) return Status(image.status().code(), "image " + sha + ": " + image.status().message());
+    SOIQ_ASSIGN_OR_RETURN(const EncodedImage encoded, encode_image(*image));
+    if (encoded.sha256 != sha) return data_loss("image " + sha + " decodes to an image of sha256 " + encoded.sha256);
+    write.reset();
+    write.bind_blob(1, encoded.blob.data(), encoded.blob.size());
+    write.bind(2, sha);
+    SOIQ_RETURN_IF_ERROR(write.step().status());
+  }
+  return ok_status();
+}
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
-      {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4, reencode_surface_blobs}, {5, kSchemaV5},
+      {1, kSchemaV1},
+      {2, kSchemaV2},
+      {3, kSchemaV3},
+      {4, kSchemaV4, reencode_surface_blobs},
+      {5, kSchemaV5, reencode_image_blobs},
   };
   return kMigrations;
 }

@@ -2,9 +2,12 @@
 // put_precomputed stores and when it stores nothing, that the values survive every later write of
 // the patient, and the migration that queues what a version-4 file held.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <cmath>
 
+#include "db/deflate.h"
+#include "db/image_blob.h"
 #include "db/sqlite/schema_migrations.h"
 #include "tests/db/temp_store.h"
 
@@ -179,13 +182,30 @@ TEST_F(Precompute, AContentFilterIsSearchedByIndexWhateverTheStatisticsSay) {
   EXPECT_EQ(large(*store_).size(), 100u);  // ids 101..200: large() asks voxel_volume_mm3 > 100
 }
 
-TEST(PrecomputeMigration, EveryStructureOfAVersion4FileIsQueued) {
+TEST(SchemaMigration5, EveryStructureOfAVersion4FileIsQueuedAndEveryImageReencoded) {
   TempDir dir;
   const std::string path = dir.file("v4.db");
+  const NewSeries series = new_series("P1", "1.1", "1.1.7", 42.5f);
   {
     auto store = open_store(path);
     ASSERT_TRUE(store->add_structure(new_structure("P1", "1.1", "A", 0)).ok());
     ASSERT_TRUE(store->add_structure(new_structure("P2", "2.1", "B", 2)).ok());
+    ASSERT_TRUE(store->put_series(series).ok());
+  }
+  // The image as a version-4 soiqd stored it: its raw voxels deflated.
+  auto decoded = decode_image(series.image_blob, series.series.geometry);
+  ASSERT_TRUE(decoded.ok());
+  auto v1 = deflate_bytes(decoded->voxels.data(), decoded->voxels.size() * sizeof(float));
+  ASSERT_TRUE(v1.ok());
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    ASSERT_EQ(sqlite3_prepare_v2(db, "UPDATE image_blobs SET blob = ?", -1, &st, nullptr), SQLITE_OK);
+    sqlite3_bind_blob(st, 1, v1->data(), int(v1->size()), SQLITE_TRANSIENT);
+    ASSERT_EQ(sqlite3_step(st), SQLITE_DONE);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
   }
   testing::exec_sql(path, std::string(testing::kBackToSchemaV4) + "PRAGMA user_version = 4");
   auto store = open_store(path);
@@ -193,6 +213,10 @@ TEST(PrecomputeMigration, EveryStructureOfAVersion4FileIsQueued) {
   EXPECT_EQ(*store->schema_version(), latest_schema_version());
   EXPECT_EQ(queued_ids(*store).size(), 2u);
   EXPECT_EQ(large(*store).size(), 2u);
+  auto blob = store->get_image_blob("1.1.7");
+  ASSERT_TRUE(blob.ok());
+  EXPECT_FALSE(is_deflated_image_blob(*blob));
+  EXPECT_EQ(*blob, series.image_blob);  // what this version writes, bit for bit
 }
 
 }  // namespace
