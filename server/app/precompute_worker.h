@@ -5,8 +5,8 @@
 // among them where stage 1 filters on them (db::stored_feature_names()).
 //
 // The default features: those shape values on the default grid (GridChoice{}: axis-aligned, 1 mm,
-// the default margin), fill rule non-zero; and mean, minimum and maximum inside on every image of
-// the structure's study, nearest-neighbour, on the same grid.
+// the default margin), fill rule non-zero; and mean, minimum and maximum inside and in the 3 mm
+// shell around it, on every image of the structure's study, nearest-neighbour, on the same grid.
 //
 // Why it is safe beside queries: the thread runs at nice 19 (about 1.5 % of a core against busy
 // threads of normal priority, all of any idle core); its conversions are admitted by the memory budget like any other;

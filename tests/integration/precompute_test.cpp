@@ -103,8 +103,12 @@ TEST_F(PrecomputeTest, AContentFilterIsAnsweredFromStoredValuesAndEqualsTheBrute
   EXPECT_EQ(a.summary.computed(), 0);
   EXPECT_EQ(a.summary.cache_hits(), int64_t(expected.size()));
   // A shell widens the grid's margin but not its voxel centres: the stored values still hold, and
-  // stage 2 computes only the shell's mean, which precompute does not store.
+  // precompute stored the 3 mm shell's mean too; a 5 mm shell is computed.
   a = query_larger_than(threshold, true, "shell:3");
+  EXPECT_EQ(a.ids, expected);
+  EXPECT_EQ(a.summary.stage1_candidates(), int64_t(expected.size()));
+  EXPECT_EQ(a.summary.computed(), 0);
+  a = query_larger_than(threshold, true, "shell:5");
   EXPECT_EQ(a.ids, expected);
   EXPECT_EQ(a.summary.stage1_candidates(), int64_t(expected.size()));
   EXPECT_EQ(a.summary.computed(), int64_t(expected.size()));
