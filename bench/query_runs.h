@@ -34,7 +34,7 @@ Result<Timed> timed_query(const client::Client& c, const v1::QueryRequest& r);
 Result<client::Client> connect(const std::string& address);
 
 struct ServerRun {
-  Timed stage1, cold;
+  Timed stage1, stage1_again, cold;  // stage 1 first on the fresh server, then once more
   std::vector<Timed> warm;
 };
 // A fresh soiqd (`soiqd`, --workers `workers`) on a fresh copy `db` of the loaded database

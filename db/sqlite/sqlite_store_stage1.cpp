@@ -1,5 +1,7 @@
 // SqliteStore::stage1: the structured half of a query (DESIGN.md "Queries") as one SQL query over
 // indexed columns.
+#include <map>
+
 #include "db/sqlite/glob_range.h"
 #include "db/sqlite/sql_conditions.h"
 #include "db/sqlite/sqlite_records.h"
@@ -48,9 +50,19 @@ std::string stage1_count_sql(const SqlConditions& where) {
   return std::string(kStage1CountSql) + kStage1RowsSql + where.sql();
 }
 
-// One candidate's records by structure id, after SELECT and their column lists.
+// One candidate's structure by id, after SELECT and its column lists, with the keys of its study
+// and patient; then those by key.
 constexpr char kCandidateByIdSql[] = R"sql(
   WHERE s.id = ?1)sql";
+constexpr char kStudyAndPatientKeyColumns[] = R"sql(
+  st.pk, p.pk)sql";
+constexpr char kPatientByKeySql[] = R"sql(
+  FROM patients p
+  WHERE p.pk = ?1)sql";
+constexpr char kStudyByKeySql[] = R"sql(
+  FROM studies st
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE st.pk = ?1)sql";
 
 // Every condition is on stage1_rows (alias r), so the query reads one narrow table and joins the
 // records only for the rows it returns.
@@ -141,25 +153,43 @@ Result<std::vector<Candidate>> SqliteStore::stage1(const Stage1Filter& f, int64_
       return resource_exhausted("stage 1 matches " + std::to_string(total) + " structures, more than the limit of " +
                                 std::to_string(limit) + "; narrow the stage-1 filter");
     }
-    // Then each record by key (one cached statement, a few index probes per row).
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns, kPatientColumns, kStudyColumns},
-                                                            {kStructureFrom, kCandidateByIdSql})));
+    // Then each record by key: the structure (a few index probes), and its patient and study once
+    // per query however many of their structures it keeps (each has count subqueries).
+    SOIQ_ASSIGN_OR_RETURN(Statement structure, c.prepare(select_sql({kStructureColumns, kStudyAndPatientKeyColumns},
+                                                                    {kStructureFrom, kCandidateByIdSql})));
+    SOIQ_ASSIGN_OR_RETURN(Statement patient, c.prepare(select_sql({kPatientColumns}, {kPatientByKeySql})));
+    SOIQ_ASSIGN_OR_RETURN(Statement study, c.prepare(select_sql({kStudyColumns}, {kStudyByKeySql})));
+    std::map<int64_t, PatientRecord> patients;
+    std::map<int64_t, StudyRecord> studies;
+    auto read_one = [](Statement& q, int64_t key, const std::string& what) -> Status {
+      q.reset();
+      q.bind(1, key);
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) return internal_error(what + " vanished in a read");
+      return ok_status();
+    };
     out.reserve(ids.size());
     for (const auto& [id, twin_id] : ids) {
-      q.bind(1, id);
-      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-      if (!row) return internal_error("stage1_rows names structure " + std::to_string(id) + " that does not exist");
+      SOIQ_RETURN_IF_ERROR(read_one(structure, id, "structure " + std::to_string(id)));
       Candidate cand;
-      cand.structure = read_structure(q, 0);
-      cand.patient = read_patient(q, kStructureColumnCount);
-      cand.study = read_study(q, kStructureColumnCount + kPatientColumnCount);
-      q.reset();
+      cand.structure = read_structure(structure, 0);
+      const int64_t study_pk = structure.int64(kStructureColumnCount);
+      const int64_t patient_pk = structure.int64(kStructureColumnCount + 1);
+      auto p = patients.find(patient_pk);
+      if (p == patients.end()) {
+        SOIQ_RETURN_IF_ERROR(read_one(patient, patient_pk, "the patient of structure " + std::to_string(id)));
+        p = patients.emplace(patient_pk, read_patient(patient, 0)).first;
+      }
+      auto st = studies.find(study_pk);
+      if (st == studies.end()) {
+        SOIQ_RETURN_IF_ERROR(read_one(study, study_pk, "the study of structure " + std::to_string(id)));
+        st = studies.emplace(study_pk, read_study(study, 0)).first;
+      }
+      cand.patient = p->second;
+      cand.study = st->second;
       if (twin_id) {
-        q.bind(1, *twin_id);
-        SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
-        if (!found) return internal_error("twin structure " + std::to_string(*twin_id) + " vanished in a read");
-        cand.twin = read_structure(q, 0);
-        q.reset();
+        SOIQ_RETURN_IF_ERROR(read_one(structure, *twin_id, "twin structure " + std::to_string(*twin_id)));
+        cand.twin = read_structure(structure, 0);
       }
       out.push_back(std::move(cand));
     }
