@@ -132,18 +132,18 @@ Status decode(std::string_view in, size_t& at, size_t count, size_t stride, uint
     const size_t n = std::min(kPerBlock, count - from);
     const size_t raw = n * kWidth;
     uint32_t header;
-    if (in.size() - at < sizeof header) return data_loss("surface blob is truncated (a block header is missing)");
+    if (in.size() - at < sizeof header) return data_loss("blob is truncated (a block header is missing)");
     std::memcpy(&header, in.data() + at, sizeof header);
     at += sizeof header;
     const size_t size = header & ~kStoredFlag;
     if (size > in.size() - at || size > size_t(LZ4_compressBound(int(kBlockBytes))))
-      return data_loss("surface blob is truncated (a block says " + std::to_string(size) + " bytes)");
+      return data_loss("blob is truncated (a block says " + std::to_string(size) + " bytes)");
     const uint8_t* shuffled = reinterpret_cast<const uint8_t*>(in.data() + at);
     if (header & kStoredFlag) {
-      if (size != raw) return data_loss("surface blob has a stored block of the wrong size");
+      if (size != raw) return data_loss("blob has a stored block of the wrong size");
     } else {
       const int got = LZ4_decompress_safe(in.data() + at, reinterpret_cast<char*>(planes), int(size), int(raw));
-      if (got != int(raw)) return data_loss("surface blob has a corrupt block");
+      if (got != int(raw)) return data_loss("blob has a corrupt block");
       shuffled = planes;
     }
     at += size;

@@ -99,7 +99,8 @@ Result<Image> decode_image(const std::string& blob, const ImageGeometry& geometr
     if (blob.size() < sizeof kPlanesMagic + sizeof sum) return data_loss("image blob is truncated");
     std::memcpy(&sum, blob.data() + sizeof kPlanesMagic, sizeof sum);
     size_t at = sizeof kPlanesMagic + sizeof sum;
-    SOIQ_RETURN_IF_ERROR(read_delta_planes(blob, at, image.voxels.size(), 4, sizeof(float), image.voxels.data()));
+    const Status read = read_delta_planes(blob, at, image.voxels.size(), 4, sizeof(float), image.voxels.data());
+    if (!read.ok()) return Status(read.code(), "image " + read.message());
     if (at != blob.size()) return data_loss("image blob has " + std::to_string(blob.size() - at) + " extra bytes");
     if (voxel_checksum(image.voxels) != sum) return data_loss("image blob is corrupt (its checksum differs)");
     return image;

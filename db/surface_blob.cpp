@@ -92,13 +92,14 @@ Result<TriangleMesh> decode_planes(const std::string& blob) {
   mesh.vertices_mm.resize(nv);
   mesh.triangles.resize(nt);
   size_t at = kPlanesHeaderSize;
-  for (int a = 0; a < 3; ++a) {
-    SOIQ_RETURN_IF_ERROR(read_delta_planes(blob, at, nv, 8, sizeof(Vec3), nv ? &mesh.vertices_mm[0][a] : nullptr));
-  }
-  for (int k = 0; k < 3; ++k) {
-    SOIQ_RETURN_IF_ERROR(
-        read_delta_planes(blob, at, nt, 4, sizeof(mesh.triangles[0]), nt ? &mesh.triangles[0][k] : nullptr));
-  }
+  // The codec's errors speak of "blob": say which.
+  auto planes = [&](size_t count, int width, size_t stride, void* values) -> Status {
+    const Status read = read_delta_planes(blob, at, count, width, stride, values);
+    return read.ok() ? read : Status(read.code(), "surface " + read.message());
+  };
+  for (int a = 0; a < 3; ++a) SOIQ_RETURN_IF_ERROR(planes(nv, 8, sizeof(Vec3), nv ? &mesh.vertices_mm[0][a] : nullptr));
+  for (int k = 0; k < 3; ++k)
+    SOIQ_RETURN_IF_ERROR(planes(nt, 4, sizeof(mesh.triangles[0]), nt ? &mesh.triangles[0][k] : nullptr));
   if (at != blob.size()) return data_loss("surface blob has " + std::to_string(blob.size() - at) + " extra bytes");
   SOIQ_RETURN_IF_ERROR(check_indices(mesh));
   return mesh;
