@@ -87,16 +87,21 @@ class FeatureEngineTest : public ::testing::Test {
   void SetUp() override {
     id_ = testing::add_stored_box(*store_, {kLo[0], kLo[1], kLo[2]}, {kHi[0], kHi[1], kHi[2]}, "box");
     ASSERT_GT(id_, 0);
+    add_series("1.2.840.1", "PT", std::vector<float>(14 * 10 * 8, kImageValue));
+  }
+
+  // An image of the box's study on the 1 mm grid of 14 x 10 x 8 voxels from (-1, -1, -1).
+  void add_series(const std::string& uid, const std::string& modality, std::vector<float> voxels) {
     db::NewSeries s;
     s.patient.patient_id = "P1";
     s.study.study_uid = "S1";
-    s.series.series_uid = "1.2.840.1";
+    s.series.series_uid = uid;
     s.series.study_uid = "S1";
-    s.series.modality = "PT";
+    s.series.modality = modality;
     Image image;
     image.geometry.dims = {14, 10, 8};
     image.geometry.origin_mm = {-1, -1, -1};
-    image.voxels.assign(14 * 10 * 8, kImageValue);
+    image.voxels = std::move(voxels);
     s.series.geometry = image.geometry;
     Result<db::EncodedImage> encoded = db::encode_image(image);
     ASSERT_TRUE(encoded.ok()) << encoded.status().to_string();
@@ -181,21 +186,9 @@ TEST_F(FeatureEngineTest, ValuesOnTheImageGridAreTheHandCountAndAreCached) {
 // margin, every shape value and every intensity value of every region, on an image that varies
 // everywhere, is bitwise the same.
 TEST_F(FeatureEngineTest, AnAxisAlignedGridsMarginChangesNoValueAndNotTheCacheKey) {
-  db::NewSeries s;
-  s.patient.patient_id = "P1";
-  s.study.study_uid = "S1";
-  s.series.series_uid = "1.2.840.2";
-  s.series.modality = "MR";
-  Image image;
-  image.geometry.dims = {14, 10, 8};
-  image.geometry.origin_mm = {-1, -1, -1};
-  for (int64_t i = 0; i < 14 * 10 * 8; ++i) image.voxels.push_back(float((i * 7919) % 1000) / 7.0f);
-  s.series.geometry = image.geometry;
-  Result<db::EncodedImage> encoded = db::encode_image(image);
-  ASSERT_TRUE(encoded.ok());
-  s.series.sha256 = encoded->sha256;
-  s.image_blob = encoded->blob;
-  ASSERT_TRUE(store_->put_series(std::move(s)).ok());
+  std::vector<float> varying;
+  for (int64_t i = 0; i < 14 * 10 * 8; ++i) varying.push_back(float((i * 7919) % 1000) / 7.0f);
+  add_series("1.2.840.2", "MR", varying);
 
   std::vector<std::string> names = shape_feature_names();
   for (const char* n : {"mean", "minimum", "maximum", "median", "p90", "voxel_count"}) names.emplace_back(n);
