@@ -61,21 +61,7 @@ std::string OrthancProcess::start() {
          dicom::testing::read_text(dir_.path() / "orthanc.log");
 }
 
-void OrthancProcess::stop() {
-  if (pid_ <= 0) return;
-  ::kill(-pid_, SIGTERM);
-  int status = 0;
-  bool reaped = false;
-  for (int i = 0; i < 250 && !reaped; ++i) {  // up to 5 s
-    reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
-    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  if (!reaped) {
-    ::kill(-pid_, SIGKILL);
-    ::waitpid(pid_, &status, 0);
-  }
-  pid_ = -1;
-}
+void OrthancProcess::stop() { dicom::testing::stop_process_group(pid_, std::chrono::seconds(5)); }
 
 dicom::PacsPeer OrthancProcess::peer() const {
   dicom::PacsPeer p;

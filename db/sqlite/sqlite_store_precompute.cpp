@@ -3,6 +3,9 @@
 #include <sqlite3.h>
 
 #include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "db/sqlite/sqlite_records.h"
 #include "db/sqlite/sqlite_store.h"
@@ -29,24 +32,44 @@ constexpr char kQueueSql[] = R"sql(
   WHERE s.id IN (SELECT structure_id FROM precompute_queue WHERE failure = '' ORDER BY structure_id LIMIT ?1)
   ORDER BY s.id)sql";
 
-// The structure as it is now, to tell whether the values still belong to it.
+// The structure's surface now, to tell whether the values still belong to it.
 constexpr char kStructureSurfaceSql[] = R"sql(
-  SELECT s.surface_sha256, st.patient_pk
-  FROM structures s JOIN studies st ON st.pk = s.study_pk
-  WHERE s.id = ?1)sql";
+  SELECT surface_sha256 FROM structures WHERE id = ?1)sql";
 
-constexpr char kStoreFeaturesSql[] = R"sql(
-  INSERT OR REPLACE INTO stored_features(structure_id, definitions_version, voxel_volume_mm3, surface_area_mm2,
-                                         sphericity, elongation, flatness, maximum_3d_diameter_mm)
-  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8))sql";
+// The stored features' columns, written out once from stored_feature_names(): "a, b, …", or each
+// as "a = <value(i)>, …" (i from 0).
+std::string feature_columns() {
+  std::string out;
+  for (const std::string& n : stored_feature_names()) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+template <typename Value>
+std::string feature_assignments(const Value& value) {
+  std::string out;
+  const std::vector<std::string>& names = stored_feature_names();
+  for (size_t i = 0; i < names.size(); ++i) out += ", " + names[i] + " = " + value(i);
+  return out;
+}
+
+// ?1 the structure, ?2 the definitions version, then the values.
+const std::string& store_features_sql() {
+  static const std::string sql = [] {
+    std::string values;
+    for (size_t i = 0; i < stored_feature_names().size(); ++i) values += ", ?" + std::to_string(i + 3);
+    return "INSERT OR REPLACE INTO stored_features(structure_id, definitions_version, " + feature_columns() +
+           ") VALUES (?1, ?2" + values + ")";
+  }();
+  return sql;
+}
 
 // The same values in the structure's stage-1 row (rewriting the patient's rows would do too, but
-// this is one row).
-constexpr char kStage1FeaturesSql[] = R"sql(
-  UPDATE stage1_rows
-  SET features_stored = 1, voxel_volume_mm3 = ?2, surface_area_mm2 = ?3, sphericity = ?4, elongation = ?5,
-      flatness = ?6, maximum_3d_diameter_mm = ?7
-  WHERE structure_id = ?1)sql";
+// this is one row): ?1 the structure, then the values.
+const std::string& stage1_features_sql() {
+  static const std::string sql = "UPDATE stage1_rows SET features_stored = 1" +
+                                 feature_assignments([](size_t i) { return "?" + std::to_string(i + 2); }) +
+                                 " WHERE structure_id = ?1";
+  return sql;
+}
 
 constexpr char kDequeueSql[] = R"sql(
   DELETE FROM precompute_queue WHERE structure_id = ?1)sql";
@@ -59,11 +82,13 @@ constexpr char kRequeueStaleSql[] = R"sql(
   INSERT INTO precompute_queue(structure_id)
   SELECT structure_id FROM stored_features WHERE definitions_version <> ?1 AND true
   ON CONFLICT(structure_id) DO UPDATE SET failure = '')sql";
-constexpr char kUnstoreStaleRowsSql[] = R"sql(
-  UPDATE stage1_rows
-  SET features_stored = 0, voxel_volume_mm3 = NULL, surface_area_mm2 = NULL, sphericity = NULL, elongation = NULL,
-      flatness = NULL, maximum_3d_diameter_mm = NULL
-  WHERE structure_id IN (SELECT structure_id FROM stored_features WHERE definitions_version <> ?1))sql";
+// ?1 the definitions version that stays.
+const std::string& unstore_stale_rows_sql() {
+  static const std::string sql =
+      "UPDATE stage1_rows SET features_stored = 0" + feature_assignments([](size_t) { return std::string("NULL"); }) +
+      " WHERE structure_id IN (SELECT structure_id FROM stored_features WHERE definitions_version <> ?1)";
+  return sql;
+}
 constexpr char kDeleteStaleSql[] = R"sql(
   DELETE FROM stored_features WHERE definitions_version <> ?1)sql";
 
@@ -142,12 +167,12 @@ Status store_precomputed(Connection& c, const Precomputed& p) {
     const bool known = p.values[i] && !std::isnan(*p.values[i]);
     st.bind(index, known ? p.values[i] : std::nullopt);
   };
-  SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(kStoreFeaturesSql));
+  SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(store_features_sql()));
   store.bind(1, p.structure_id);
   store.bind(2, int64_t{p.definitions_version});
   for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
   SOIQ_RETURN_IF_ERROR(store.run());
-  SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(kStage1FeaturesSql));
+  SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(stage1_features_sql()));
   row.bind(1, p.structure_id);
   for (size_t i = 0; i < n; ++i) bind_value(row, int(i + 2), i);
   SOIQ_RETURN_IF_ERROR(row.run());
@@ -170,12 +195,13 @@ Status SqliteStore::put_precomputed(const std::vector<Precomputed>& batch) {
 Result<int64_t> SqliteStore::requeue_precompute(int definitions_version) {
   int64_t requeued = 0;
   SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    for (const char* sql : {kRequeueStaleSql, kUnstoreStaleRowsSql, kDeleteStaleSql}) {
+    for (const std::string_view sql : {std::string_view(kRequeueStaleSql), std::string_view(unstore_stale_rows_sql()),
+                                       std::string_view(kDeleteStaleSql)}) {
       SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(sql));
       st.bind(1, int64_t{definitions_version});
       SOIQ_RETURN_IF_ERROR(st.run());
-      if (sql == kDeleteStaleSql) requeued = sqlite3_changes64(c.handle());
     }
+    requeued = sqlite3_changes64(c.handle());  // of the last statement: the values deleted
     return ok_status();
   }));
   return requeued;

@@ -93,6 +93,26 @@ inline int run_tool(const std::vector<std::string>& argv, const std::filesystem:
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// Stops a server started in its own process group (`pid` its leader; -1 afterwards): SIGTERM, up to
+// `grace` for it to exit, then SIGKILL; and SIGKILL to the group after, for children that outlived
+// their parent (dcmqrscp's association processes).
+inline void stop_process_group(pid_t& pid, std::chrono::milliseconds grace) {
+  if (pid <= 0) return;
+  ::kill(-pid, SIGTERM);
+  int status = 0;
+  bool reaped = false;
+  for (auto waited = std::chrono::milliseconds(0); waited < grace && !reaped; waited += std::chrono::milliseconds(20)) {
+    reaped = ::waitpid(pid, &status, WNOHANG) == pid;
+    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (!reaped) {
+    ::kill(-pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  ::kill(-pid, SIGKILL);
+  pid = -1;
+}
+
 class DcmqrscpProcess {
  public:
   static constexpr const char* kAeTitle = "SOIQTEST";
@@ -188,22 +208,7 @@ class DcmqrscpProcess {
     if (pid_ > 0) ::kill(-pid_, SIGKILL);
   }
 
-  void stop() {
-    if (pid_ <= 0) return;
-    ::kill(-pid_, SIGTERM);
-    int status = 0;
-    bool reaped = false;
-    for (int i = 0; i < 100 && !reaped; ++i) {  // up to 2 s
-      reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
-      if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (!reaped) {
-      ::kill(-pid_, SIGKILL);
-      ::waitpid(pid_, &status, 0);
-    }
-    ::kill(-pid_, SIGKILL);  // association children that outlived their parent
-    pid_ = -1;
-  }
+  void stop() { stop_process_group(pid_, std::chrono::seconds(2)); }
 
   std::string output() const { return read_text(log_path()); }
 
