@@ -10,9 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "bench/smoothed_structure.h"
 #include "core/features/structure_features.h"
 #include "core/io/read_image.h"
 #include "core/io/read_mesh.h"
+#include "core/voxelize/grid_around.h"
 #include "core/voxelize/voxelize_1d.h"
 #include "tests/support/simulated_models.h"
 
@@ -30,6 +32,9 @@ struct Row {
   size_t feature_count = 0;
   // Both again with two threads (simulated models only).
   std::optional<double> conversion_2_ms, features_2_ms;
+  // Every shape feature but the two convex-hull densities (so no hull: the diameter alone), one
+  // thread (simulated and smoothed surfaces only).
+  std::optional<double> shape_no_hull_ms;
 };
 
 // Folds "resample PET inside" and the like into the part's kind, so rows share columns; the
@@ -124,55 +129,87 @@ Status print_region_table(const std::string& dir, int runs) {
   return ok_status();
 }
 
+// One row of a stored surface: its conversion onto `grid` and every feature (inside and a 3 mm
+// shell on a ramp image over the grid), with one thread and then two.
+Status surface_row(const std::string& name, TriangleMesh mesh, const ImageGeometry& grid, int runs,
+                   std::vector<Row>& rows) {
+  const Image ramp = ramp_image(grid);
+  Row row;
+  row.name = name;
+  row.triangles = mesh.triangles.size();
+  VoxelizeOptions options;
+  options.known_defects = mesh_defects(mesh);  // the defect check belongs to loading the mesh
+  // Conversion and features interleaved run by run, so both see the same machine load.
+  FeatureRequest request;
+  request.images = {{"ramp", &ramp}};
+  request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};
+  double best = 1e300;
+  StructureInput input;
+  input.surface = std::move(mesh);
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, grid, options));
+    best = std::min(best, ms_since(t0));
+    input.volume = std::move(out.volume);
+    SOIQ_RETURN_IF_ERROR(measure(row, input, request, 1));
+  }
+  row.conversion_ms = best;
+  FeatureRequest no_hull;
+  for (const FeatureDef& f : feature_catalogue()) {
+    if (f.family == FeatureFamily::kIntensity || f.needs.has(FeatureNeed::kConvexHull)) continue;
+    no_hull.names.emplace_back(f.name);
+    if (f.family == FeatureFamily::kSurface) no_hull.names.push_back("mask_" + std::string(f.name));
+  }
+  double best_no_hull = 1e300;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SOIQ_RETURN_IF_ERROR(structure_features(input, no_hull).status());
+    best_no_hull = std::min(best_no_hull, ms_since(t0));
+  }
+  row.shape_no_hull_ms = best_no_hull;
+  // Two threads for both: the conversion's slabs, and the independent feature parts at once.
+  options.threads = request.threads = 2;
+  double best_conversion = 1e300, best_features = 1e300;
+  for (int r = 0; r < runs; ++r) {
+    auto t0 = std::chrono::steady_clock::now();
+    SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, grid, options));
+    best_conversion = std::min(best_conversion, ms_since(t0));
+    input.volume = std::move(out.volume);
+    t0 = std::chrono::steady_clock::now();
+    SOIQ_RETURN_IF_ERROR(structure_features(input, request).status());
+    best_features = std::min(best_features, ms_since(t0));
+  }
+  row.conversion_2_ms = best_conversion, row.features_2_ms = best_features;
+  rows.push_back(std::move(row));
+  return ok_status();
+}
+
 Status simulated_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
   for (const SimModel& model : simulated_models()) {
     const std::string base = dir + "/" + model.name;
     if (!std::filesystem::exists(base + "_S1.vtp")) continue;
     SOIQ_ASSIGN_OR_RETURN(TriangleMesh lattice_mesh, read_mesh(base + "_S1.vtp"));
     SOIQ_ASSIGN_OR_RETURN(Image v1, read_image(base + "_V1.nii.gz"));
-    const Image ramp = ramp_image(v1.geometry);
+    SOIQ_RETURN_IF_ERROR(surface_row(model.name, lattice_mesh, v1.geometry, runs, rows));
     // SM1 also with its surface in general position (one extra row).
-    for (const bool jitter : {false, true}) {
-      if (jitter && model.name != "SM1") continue;
-      TriangleMesh mesh = jitter ? jittered(lattice_mesh) : lattice_mesh;
-      Row row;
-      row.name = model.name + (jitter ? " S1 jittered 0.05 mm" : "");
-      row.triangles = mesh.triangles.size();
-      VoxelizeOptions options;
-      options.known_defects = mesh_defects(mesh);  // the defect check belongs to loading the mesh
-      // Conversion and features interleaved run by run, so both see the same machine load.
-      FeatureRequest request;
-      request.images = {{"ramp", &ramp}};
-      request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};
-      double best = 1e300;
-      StructureInput input;
-      input.surface = std::move(mesh);
-      for (int r = 0; r < runs; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, v1.geometry, options));
-        best = std::min(best, ms_since(t0));
-        input.volume = std::move(out.volume);
-        SOIQ_RETURN_IF_ERROR(measure(row, input, request, 1));
-      }
-      row.conversion_ms = best;
-      // Two threads for both: the conversion's slabs, and the independent feature parts at once.
-      options.threads = request.threads = 2;
-      double best_conversion = 1e300, best_features = 1e300;
-      for (int r = 0; r < runs; ++r) {
-        auto t0 = std::chrono::steady_clock::now();
-        SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, v1.geometry, options));
-        best_conversion = std::min(best_conversion, ms_since(t0));
-        input.volume = std::move(out.volume);
-        t0 = std::chrono::steady_clock::now();
-        SOIQ_RETURN_IF_ERROR(structure_features(input, request).status());
-        best_features = std::min(best_features, ms_since(t0));
-      }
-      row.conversion_2_ms = best_conversion, row.features_2_ms = best_features;
-      rows.push_back(std::move(row));
+    if (model.name == "SM1") {
+      SOIQ_RETURN_IF_ERROR(
+          surface_row(model.name + " S1 jittered 0.05 mm", jittered(lattice_mesh), v1.geometry, runs, rows));
     }
     std::fprintf(stderr, "features: %s done\n", model.name.c_str());
   }
   return ok_status();
+}
+
+// A real structure as other tools export it: STS_002's tumour (its CT mask), smoothed and refined
+// to at least 100k triangles (smoothed_structure.h), converted on a 1 mm grid around it.
+Status smoothed_row(const std::string& sts_dir, int runs, std::vector<Row>& rows) {
+  const std::string path = sts_dir + "/STS_002/CT_mask.nii.gz";
+  if (!std::filesystem::exists(path)) return ok_status();
+  SOIQ_ASSIGN_OR_RETURN(const Image image, read_image(path));
+  SOIQ_ASSIGN_OR_RETURN(TriangleMesh mesh, smoothed_structure(mask_from_image(image), 100000));
+  SOIQ_ASSIGN_OR_RETURN(const ImageGeometry grid, grid_around(mesh, Vec3{1, 1, 1}, 2));
+  return surface_row("STS_002 tumour, smoothed surface", std::move(mesh), grid, runs, rows);
 }
 
 Status sts_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
@@ -214,6 +251,7 @@ int run_features_bench(const CliArgs& args) {
   }
   std::vector<Row> rows;
   Status s = models.empty() ? ok_status() : simulated_rows(models, *runs, rows);
+  if (s.ok() && !sts.empty()) s = smoothed_row(sts, *runs, rows);
   if (s.ok() && !sts.empty()) s = sts_rows(sts, *runs, rows);
   if (!s.ok()) {
     std::fprintf(stderr, "soiq-bench features: %s\n", s.to_string().c_str());
@@ -272,6 +310,24 @@ int run_features_bench(const CliArgs& args) {
     if (!r.conversion_2_ms) continue;
     std::printf("| %s | %.1f | %.1f | %.1f | %.1f |\n", r.name.c_str(), *r.conversion_ms, *r.conversion_2_ms,
                 r.features_ms, *r.features_2_ms);
+  }
+  std::printf(
+      "\nOne thread, as ratios to the conversion: \"shape\" and \"features\" from the first table; \"shape, no "
+      "hull\" asks every shape feature but the two convex-hull densities, so the exact hull is skipped and the "
+      "maximum 3D diameter is found without it (surface_shape.h, HullPart).\n\n");
+  std::printf(
+      "| structure | conversion ms | features / conversion | shape / conversion | shape, no hull ms | shape, no "
+      "hull / conversion |\n|---|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows) {
+    if (!r.conversion_ms || !r.shape_no_hull_ms) continue;
+    double shape_ms = 0;
+    for (const std::string& part : shape_parts) {
+      const auto it = r.part_ms.find(part);
+      if (it != r.part_ms.end()) shape_ms += it->second;
+    }
+    const double c = *r.conversion_ms;
+    std::printf("| %s | %.1f | %.1fx | %.1fx | %.1f | %.1fx |\n", r.name.c_str(), c, r.features_ms / c, shape_ms / c,
+                *r.shape_no_hull_ms, *r.shape_no_hull_ms / c);
   }
   if (!models.empty()) {
     if (const Status t = print_region_table(models, *runs); !t.ok()) {

@@ -63,8 +63,8 @@ const std::array kCatalogue = std::to_array<FeatureDef>({
      [](const FeatureSources& s) { return V{s.surface->spherical_disproportion}; }},
     {"asphericity", F::kSurface, "", "(A^3 / (36 pi V^2))^(1/3) - 1 (IBSI 25C7)", 1, N::kSurface, 1,
      [](const FeatureSources& s) { return V{s.surface->asphericity}; }},
-    {"maximum_3d_diameter_mm", F::kSurface, "mm", "largest distance between two surface vertices (IBSI L0JK)", 1, kHull,
-     1, [](const FeatureSources& s) { return V{s.surface->maximum_3d_diameter_mm}; }},
+    {"maximum_3d_diameter_mm", F::kSurface, "mm", "largest distance between two surface vertices (IBSI L0JK)", 1,
+     N::kSurface | N::kDiameter3d, 1, [](const FeatureSources& s) { return V{s.surface->maximum_3d_diameter_mm}; }},
     {"volume_density_aabb", F::kSurface, "", "V / volume of the vertices' box along the grid axes (IBSI PBX1)", 1,
      N::kSurface, 1, [](const FeatureSources& s) { return V{s.surface->volume_density_aabb}; }},
     {"area_density_aabb", F::kSurface, "", "A / area of that box (IBSI R59B)", 1, N::kSurface, 1,
@@ -147,6 +147,7 @@ std::string feature_needs(const FeatureDef& f) {
   if (f.needs.has(N::kVoxels)) add("voxels");
   if (f.needs.has(N::kSurface)) add("surface");
   if (f.needs.has(N::kConvexHull)) add("convex hull");
+  if (f.needs.has(N::kDiameter3d)) add("3D diameter");
   if (f.needs.has(N::kImageOnGrid)) {
     add("image on the structure's grid");
   } else if (f.needs.has(N::kImage)) {

@@ -49,11 +49,12 @@ struct FeatureSources {
 enum class FeatureNeed : uint8_t {
   kVoxels = 1 << 0,        // the structure's voxels on its grid
   kSurface = 1 << 1,       // a surface: the stored one, else the mask's marching-cubes surface
-  kConvexHull = 1 << 2,    // that surface's convex hull or its diameter (computed only when asked)
+  kConvexHull = 1 << 2,    // that surface's convex hull: its volume and area (computed only when asked)
   kImage = 1 << 3,         // an image in the structure's frame of reference
   kImageOnGrid = 1 << 4,   // that image on the structure's own grid (comes with kImage)
   kRegion = 1 << 5,        // a region of the structure: inside, shell or core
   kInsideRegion = 1 << 6,  // the inside region only (comes with kRegion)
+  kDiameter3d = 1 << 7,    // that surface's largest vertex distance (computed only when asked)
 };
 
 // A set of FeatureNeed, written in the table as FeatureNeed::kSurface | FeatureNeed::kConvexHull.

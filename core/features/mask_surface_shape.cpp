@@ -85,6 +85,9 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
       candidates.push_back(grid.index_to_physical({0.5 * double(x), 0.5 * double(y), 0.5 * double(z)}));
     }
   }
+  if (hull_part == HullPart::kDiameterOnly) {
+    return surface_shape_from_measures(volume, area, skipped_hull(), point_set_diameter(candidates), extent);
+  }
   SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(candidates));
   std::vector<Vec3> hull_points;
   hull_points.reserve(hull.vertex_indices.size());

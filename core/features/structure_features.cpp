@@ -57,10 +57,11 @@ struct Ask {
       if (f.family == family && f.needs.has(need) && wanted(std::string(prefix) + std::string(f.name))) return true;
     return false;
   }
-  // The hull is computed only for a wanted feature that reads it.
+  // The hull is computed only for a wanted feature that reads it, the diameter likewise.
   HullPart hull_part(std::string_view prefix) const {
-    return any_wanted_needing(FeatureFamily::kSurface, FeatureNeed::kConvexHull, prefix) ? HullPart::kCompute
-                                                                                         : HullPart::kSkip;
+    if (any_wanted_needing(FeatureFamily::kSurface, FeatureNeed::kConvexHull, prefix)) return HullPart::kCompute;
+    if (any_wanted_needing(FeatureFamily::kSurface, FeatureNeed::kDiameter3d, prefix)) return HullPart::kDiameterOnly;
+    return HullPart::kSkip;
   }
 };
 

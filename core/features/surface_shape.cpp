@@ -54,6 +54,10 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   // The hull of the shortlist only: it is the vertices' hull (hull_vertex_candidates.h).
   std::vector<Vec3> candidates;
   for (const int64_t v : hull_vertex_candidates(points)) candidates.push_back(points[size_t(v)]);
+  if (hull_part == HullPart::kDiameterOnly) {
+    return surface_shape_from_measures(measures.volume_mm3, measures.area_mm2, skipped_hull(),
+                                       point_set_diameter(candidates), hi - lo);
+  }
   if (candidates.size() < 4) candidates = points;  // a degenerate set: convex_hull names the problem
   SOIQ_ASSIGN_OR_RETURN(const ConvexHull hull, convex_hull(candidates));
   // The farthest pair of a set is a pair of its hull's vertices.

@@ -58,12 +58,14 @@ struct SurfaceShape {
   double area_density_convex_hull = 0;
 };
 
-// Whether the convex hull and the diameter are computed (maximum_3d_diameter_mm,
-// convex_hull_volume_mm3/area_mm2, volume/area_density_convex_hull). They cost ~100x the rest on a
-// near-convex surface of 10k-100k triangles, so a caller that needs none of them skips them
-// (feature_catalogue.h: FeatureNeed::kConvexHull); those fields are then NaN and nothing else
-// changes, bit for bit.
-enum class HullPart { kCompute, kSkip };
+// Whether the convex hull (convex_hull_volume_mm3/area_mm2, volume/area_density_convex_hull) and
+// the diameter (maximum_3d_diameter_mm) are computed. The exact hull of a smooth surface in general
+// position costs ~10x its conversion (every vertex of a convex patch is a hull corner), so a caller
+// that needs none of them skips them (feature_catalogue.h: FeatureNeed::kConvexHull, kDiameter3d),
+// and one that needs the diameter alone gets it without the hull: point_set_diameter over the
+// hull shortlist, the same largest distance (a pair of hull corners reaches it). Skipped fields
+// are NaN and nothing else changes, bit for bit.
+enum class HullPart { kCompute, kDiameterOnly, kSkip };
 
 Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axes = identity3(),
                                    HullPart hull = HullPart::kCompute);

@@ -17,9 +17,9 @@ namespace {
 struct Face {
   int32_t v[3];
   int32_t adj[3];
-  Vec3 origin;  // the position of v0
-  Vec3 normal;  // n = u x v with u = v1 - v0, v = v2 - v0 (rounded), unnormalised
-  Vec3 minors;  // |u_y v_z| + |u_z v_y|, and cyclically: the height filter's error scale
+  Vec3 origin;   // the position of v0
+  Vec3 normal;   // n = u x v with u = v1 - v0, v = v2 - v0 (rounded), unnormalised
+  double bound;  // the height filter's error bound for any input point (side())
   int32_t outside = -1, furthest = -1;
   double furthest_distance = 0;
   uint32_t mark = 0;  // visit epoch of the visibility search
@@ -29,7 +29,13 @@ struct Face {
 class Quickhull {
  public:
   explicit Quickhull(const std::vector<Vec3>& p)
-      : p_(p), next_(p.size(), -1), lattice_(dyadic_lattice_exponent(p).has_value()) {}
+      : p_(p), next_(p.size(), -1), lattice_(dyadic_lattice_exponent(p).has_value()) {
+    Vec3 lo = p[0], hi = p[0];
+    for (const Vec3& q : p) {
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], q[a]), hi[a] = std::max(hi[a], q[a]);
+    }
+    extent_ = hi - lo;
+  }
 
   Status run() {
     SOIQ_RETURN_IF_ERROR(initial_tetrahedron());
@@ -60,19 +66,16 @@ class Quickhull {
   // differences u, v, w perturb each of the determinant's six terms by at most 3 eps relative,
   // n's components carry at most 3 eps of their two products, and the dot product adds 3 eps of
   // sum |n_i w_i|; together under 10 eps of that sum, 16 leaves room for the bound's own
-  // rounding. Within the bound the exact predicate decides.
+  // rounding. Within the bound the exact predicate decides. |w_i| never exceeds the points'
+  // extent along axis i (rounding is monotone), so one bound per face serves every point: the
+  // test in the hot loop is a dot product and two compares.
   int side(const Face& f, int32_t q, double& height) const {
     const Vec3 w = p_[size_t(q)] - f.origin;
     height = dot(f.normal, w);
-    if (!lattice_) {
-      constexpr double kHeightError = 16 * 1.1102230246251565e-16;  // 16 eps, eps = 2^-53
-      const double bound = kHeightError * (f.minors[0] * std::fabs(w[0]) + f.minors[1] * std::fabs(w[1]) +
-                                           f.minors[2] * std::fabs(w[2]));
-      if (height > bound) return 1;
-      if (height < -bound) return -1;
-      return orient(f.v[0], f.v[1], f.v[2], q);
-    }
-    return (height > 0) - (height < 0);
+    if (height > f.bound) return 1;
+    if (height < -f.bound) return -1;
+    if (!lattice_) return orient(f.v[0], f.v[1], f.v[2], q);
+    return 0;
   }
   bool above(const Face& f, int32_t q) const {
     double height = 0;
@@ -85,8 +88,15 @@ class Quickhull {
     f.origin = p_[size_t(a)];
     const Vec3 u = p_[size_t(b)] - f.origin, v = p_[size_t(c)] - f.origin;
     f.normal = cross(u, v);
-    f.minors = {std::fabs(u[1] * v[2]) + std::fabs(u[2] * v[1]), std::fabs(u[2] * v[0]) + std::fabs(u[0] * v[2]),
-                std::fabs(u[0] * v[1]) + std::fabs(u[1] * v[0])};
+    if (lattice_) {
+      f.bound = 0;  // h is exact
+    } else {
+      constexpr double kHeightError = 16 * 1.1102230246251565e-16;  // 16 eps, eps = 2^-53
+      const Vec3 minors = {std::fabs(u[1] * v[2]) + std::fabs(u[2] * v[1]),
+                           std::fabs(u[2] * v[0]) + std::fabs(u[0] * v[2]),
+                           std::fabs(u[0] * v[1]) + std::fabs(u[1] * v[0])};
+      f.bound = kHeightError * (minors[0] * extent_[0] + minors[1] * extent_[1] + minors[2] * extent_[2]);
+    }
     // Dead faces are reused, so memory follows the hull's size, not the number of points added.
     if (!free_faces_.empty()) {
       const int32_t slot = free_faces_.back();
@@ -118,6 +128,7 @@ class Quickhull {
   const std::vector<Vec3>& p_;
   std::vector<int32_t> next_;  // outside-set links, by point
   bool lattice_;               // on a small dyadic lattice (dyadic_lattice.h): plain doubles are exact
+  Vec3 extent_;                // of the points' bounding box: bounds every |q - origin| component
   std::vector<Face> faces_;
   std::vector<int32_t> pending_;  // faces that got a non-empty outside set; a stack, newest first
                                   // (a reused slot may be listed again: checked when popped)

@@ -66,7 +66,8 @@ TEST(FeatureCatalogue, NeedsFollowTheFamilyAndRefinementsComeWithWhatTheyRefine)
 TEST(FeatureCatalogue, NeedsReadAsWords) {
   EXPECT_EQ(feature_needs(*find_shape_feature("centroid_mm")), "voxels");
   EXPECT_EQ(feature_needs(*find_shape_feature("sphericity")), "surface");
-  EXPECT_EQ(feature_needs(*find_shape_feature("maximum_3d_diameter_mm")), "surface, convex hull");
+  EXPECT_EQ(feature_needs(*find_shape_feature("maximum_3d_diameter_mm")), "surface, 3D diameter");
+  EXPECT_EQ(feature_needs(*find_shape_feature("volume_density_convex_hull")), "surface, convex hull");
   EXPECT_EQ(feature_needs(*find_intensity_feature("mean")), "image, region");
   EXPECT_EQ(feature_needs(*find_intensity_feature("centre_of_mass_shift_mm")),
             "image on the structure's grid, inside region");
@@ -126,8 +127,8 @@ void expect_same_hull_free(const SurfaceShape& a, const SurfaceShape& b) {
   EXPECT_EQ(a.area_density_aabb, b.area_density_aabb);
 }
 
-void expect_hull_skipped(const SurfaceShape& s) {
-  EXPECT_TRUE(std::isnan(s.maximum_3d_diameter_mm));
+void expect_hull_skipped(const SurfaceShape& s, bool diameter_too = true) {
+  EXPECT_EQ(std::isnan(s.maximum_3d_diameter_mm), diameter_too);
   EXPECT_TRUE(std::isnan(s.volume_density_convex_hull));
   EXPECT_TRUE(std::isnan(s.area_density_convex_hull));
   EXPECT_TRUE(std::isnan(s.convex_hull_volume_mm3));
@@ -137,10 +138,15 @@ TEST(FeatureCatalogue, SkippingTheHullChangesNoOtherValue) {
   const TriangleMesh mesh = uv_sphere({1.5, -2, 3}, 9.7, 14, 27);
   const auto full = surface_shape(mesh, identity3(), HullPart::kCompute);
   const auto lean = surface_shape(mesh, identity3(), HullPart::kSkip);
-  ASSERT_TRUE(full.ok() && lean.ok());
+  const auto diameter = surface_shape(mesh, identity3(), HullPart::kDiameterOnly);
+  ASSERT_TRUE(full.ok() && lean.ok() && diameter.ok());
   expect_same_hull_free(*full, *lean);
   expect_hull_skipped(*lean);
   EXPECT_FALSE(std::isnan(full->maximum_3d_diameter_mm));
+  // The diameter without the hull: the same value, the hull's fields skipped.
+  expect_same_hull_free(*full, *diameter);
+  expect_hull_skipped(*diameter, false);
+  EXPECT_EQ(diameter->maximum_3d_diameter_mm, full->maximum_3d_diameter_mm);
 
   const auto grid = grid_around(mesh, {0.7, 0.7, 0.7}, 2);
   ASSERT_TRUE(grid.ok());
@@ -150,9 +156,13 @@ TEST(FeatureCatalogue, SkippingTheHullChangesNoOtherValue) {
   ASSERT_TRUE(sweep.ok());
   const auto mask_full = mask_surface_shape(*sweep, *grid, marching_cubes_table(), HullPart::kCompute);
   const auto mask_lean = mask_surface_shape(*sweep, *grid, marching_cubes_table(), HullPart::kSkip);
-  ASSERT_TRUE(mask_full.ok() && mask_lean.ok());
+  const auto mask_diameter = mask_surface_shape(*sweep, *grid, marching_cubes_table(), HullPart::kDiameterOnly);
+  ASSERT_TRUE(mask_full.ok() && mask_lean.ok() && mask_diameter.ok());
   expect_same_hull_free(*mask_full, *mask_lean);
   expect_hull_skipped(*mask_lean);
+  expect_same_hull_free(*mask_full, *mask_diameter);
+  expect_hull_skipped(*mask_diameter, false);
+  EXPECT_EQ(mask_diameter->maximum_3d_diameter_mm, mask_full->maximum_3d_diameter_mm);
 }
 
 TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsked) {
@@ -176,10 +186,11 @@ TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsk
   EXPECT_EQ(got, expected);
 
   FeatureRequest lean;
-  lean.names = {"sphericity", "mask_surface_area_mm2"};
+  // The diameters alone are computed without the hulls (HullPart::kDiameterOnly): same values.
+  lean.names = {"sphericity", "mask_surface_area_mm2", "maximum_3d_diameter_mm", "mask_maximum_3d_diameter_mm"};
   const auto some = structure_features({v->volume, mesh}, lean);
   ASSERT_TRUE(some.ok());
-  ASSERT_EQ(some->features.size(), 2u);
+  ASSERT_EQ(some->features.size(), 4u);
   for (const Feature& f : some->features) {
     const auto same =
         std::find_if(all->features.begin(), all->features.end(), [&](const Feature& g) { return g.name == f.name; });

@@ -45,5 +45,29 @@ TEST(PointSetDiameter, EqualsAllPairsOnRandomSets) {
   }
 }
 
+TEST(PointSetDiameter, EqualsAllPairsWhereTheDistanceFilterDropsMostPoints) {
+  // Elongated clouds (the filter keeps their two ends), thin shells (it keeps the outer layer) and
+  // a cloud with one far outlier (it keeps the outlier and the far side): the filter by distance
+  // from the box centre must never drop a point of the longest pair.
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  for (int trial = 0; trial < 30; ++trial) {
+    const size_t n = size_t(50 + trial * 61);
+    std::vector<Vec3> p(n);
+    for (auto& q : p) {
+      q = {g(rng), g(rng), g(rng)};
+      if (trial % 3 == 0) q[0] *= 12;  // a cigar
+      if (trial % 3 == 1) {            // a shell of radius 50, jittered
+        q = (50 / norm(q)) * q;
+        for (double& x : q) x += jitter(rng);
+      }
+    }
+    if (trial % 3 == 2) p[n / 2] = {40, -3, 7};            // one outlier
+    for (auto& q : p) q = q + Vec3{-120.5, 310.25, 1002};  // patient coordinates, far from 0
+    EXPECT_EQ(point_set_diameter(p), all_pairs(p)) << "trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace soiq
