@@ -3,31 +3,16 @@
 #include <vtkCellArray.h>
 #include <vtkIdList.h>
 #include <vtkLoopSubdivisionFilter.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
 #include "core/io/marching_cubes.h"
+#include "core/io/vtk_poly_data.h"
 
 namespace soiq::bench {
 
 namespace {
-
-vtkSmartPointer<vtkPolyData> to_polydata(const TriangleMesh& mesh) {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  for (const Vec3& p : mesh.vertices_mm) points->InsertNextPoint(p.data());
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (const auto& t : mesh.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    cells->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(cells);
-  return poly;
-}
 
 Result<TriangleMesh> from_polydata(vtkPolyData* poly) {
   TriangleMesh mesh;
@@ -50,7 +35,7 @@ Result<TriangleMesh> smoothed_structure(const Mask& mask, size_t min_triangles) 
   SOIQ_ASSIGN_OR_RETURN(const TriangleMesh surface, marching_cubes(mask));
   if (surface.triangles.empty()) return invalid_argument("smoothed structure: the mask is empty");
   auto smooth = vtkSmartPointer<vtkWindowedSincPolyDataFilter>::New();
-  smooth->SetInputData(to_polydata(surface));
+  smooth->SetInputData(to_vtk_poly_data(surface));
   smooth->SetNumberOfIterations(20);
   smooth->SetPassBand(0.05);
   smooth->NormalizeCoordinatesOn();

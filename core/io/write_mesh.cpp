@@ -1,13 +1,11 @@
 #include "core/io/write_mesh.h"
 
 #include <unistd.h>
-#include <vtkCellArray.h>
 #include <vtkDataWriter.h>
 #include <vtkErrorCode.h>
 #include <vtkNew.h>
 #include <vtkOBJWriter.h>
 #include <vtkPLYWriter.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
 #include <vtkSTLWriter.h>
@@ -25,27 +23,11 @@
 #include "core/io/header_text.h"
 #include "core/io/vtk_messages.h"
 #include "core/io/vtk_ply_lock.h"
+#include "core/io/vtk_poly_data.h"
 #include "core/io/write_file_bytes.h"
 
 namespace soiq {
 namespace {
-
-vtkSmartPointer<vtkPolyData> to_poly_data(const TriangleMesh& mesh) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();  // keep LPS coordinates exact where the format stores doubles
-  points->SetNumberOfPoints(vtkIdType(mesh.vertices_mm.size()));
-  for (size_t i = 0; i < mesh.vertices_mm.size(); ++i) points->SetPoint(vtkIdType(i), mesh.vertices_mm[i].data());
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(vtkIdType(mesh.triangles.size()), vtkIdType(3 * mesh.triangles.size()));
-  for (const auto& t : mesh.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    polys->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  return poly;
-}
 
 vtkSmartPointer<vtkWriter> make_writer(const std::string& ext, const std::string& file) {
   if (ext == ".stl") {
@@ -118,7 +100,7 @@ Status write_mesh(const TriangleMesh& mesh, const std::string& path) {
   // ever appears under the real name.
   const std::string tmp = dir + ".tmp" + std::to_string(::getpid()) + "-" + path.substr(dir.size());
   VtkMessages messages;
-  vtkSmartPointer<vtkPolyData> poly = to_poly_data(mesh);
+  vtkSmartPointer<vtkPolyData> poly = to_vtk_poly_data(mesh);
   const unsigned long code = write_with(ext, tmp, poly);
   if (code != vtkErrorCode::NoError || messages.has_error()) {
     std::remove(tmp.c_str());
