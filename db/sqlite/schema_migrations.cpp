@@ -299,6 +299,27 @@ Status reencode_image_blobs(Connection& c) {
   return ok_status();
 }
 
+// Version 6: stage 1's range indexes carry every other structured filter column. A query driven
+// by an age, study-date, birth-date or structure-name range then tests its other conditions (sex,
+// modality, laterality, the other ranges) inside the index and reads no stage1_rows row at all: the
+// ids are the index's rowids. Measured over 10^5 patients (age 60-75 keeps 19,706 index entries,
+// 1,000 of which match): 16 ms with a table row read per entry, 2 ms covered. The indexes keep
+// their names, so the plans the tests check read the same.
+constexpr char kSchemaV6[] = R"sql(
+DROP INDEX stage1_rows_age;
+CREATE INDEX stage1_rows_age
+  ON stage1_rows(age_years, study_date, birth_date, sex, laterality, modalities);
+DROP INDEX stage1_rows_study_date;
+CREATE INDEX stage1_rows_study_date
+  ON stage1_rows(study_date, age_years, birth_date, sex, laterality, modalities);
+DROP INDEX stage1_rows_birth_date;
+CREATE INDEX stage1_rows_birth_date
+  ON stage1_rows(birth_date, age_years, study_date, sex, laterality, modalities);
+DROP INDEX stage1_rows_name_lower;
+CREATE INDEX stage1_rows_name_lower
+  ON stage1_rows(name_lower, age_years, study_date, birth_date, sex, laterality, modalities);
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -307,6 +328,7 @@ const std::vector<Migration>& migrations() {
       {3, kSchemaV3},
       {4, kSchemaV4, reencode_surface_blobs},
       {5, kSchemaV5, reencode_image_blobs},
+      {6, kSchemaV6},
   };
   return kMigrations;
 }
