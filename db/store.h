@@ -298,8 +298,11 @@ class Store {
   // Stage 1, ordered by structure id. More than `limit` candidates is RESOURCE_EXHAUSTED
   // (the message gives the count and says to narrow the filter).
   virtual Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) = 0;
-  // Every cached entry under each key (one round trip for many keys).
-  virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) = 0;
+  // The cached entries under each key (one round trip for many keys): those named in `entries`,
+  // or every one when it is empty. A query wants a few of the ~75 entries a key holds; the others
+  // are not copied out of the database.
+  virtual Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
+                                                             const std::vector<std::string>& entries) = 0;
   virtual Result<Counts> counts() = 0;
   // Up to `limit` structures waiting for precompute, oldest first (a new structure, one replaced
   // with a new surface, a structure of a study that gained an image). Failed ones are not listed.
@@ -320,6 +323,9 @@ class Store {
     return bool(done.series_replaced.at(0));
   }
   Status put_precomputed(const Precomputed& p) { return put_precomputed(std::vector<Precomputed>{p}); }
+  Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) {
+    return cached_features(keys, {});
+  }
   Result<std::string> get_image_blob(const std::string& series_uid) { return get_blob(BlobKind::kImage, series_uid); }
   Result<std::string> get_surface_blob(const std::string& sha256) { return get_blob(BlobKind::kSurface, sha256); }
   Result<int64_t> delete_structure(int64_t id) { return remove({Removal::Kind::kStructure, id, ""}); }

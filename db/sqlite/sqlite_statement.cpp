@@ -87,6 +87,16 @@ std::string Statement::text(int col) const {
   return p == nullptr ? std::string() : std::string(p, size_t(sqlite3_column_bytes(stmt_, col)));
 }
 
+std::string_view Statement::text_view(int col) const {
+  const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, col));
+  return p == nullptr ? std::string_view() : std::string_view(p, size_t(sqlite3_column_bytes(stmt_, col)));
+}
+
+std::string_view Statement::blob_view(int col) const {
+  const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, col));
+  return p == nullptr ? std::string_view() : std::string_view(p, size_t(sqlite3_column_bytes(stmt_, col)));
+}
+
 std::string Statement::blob(int col) const {
   const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, col));
   return p == nullptr ? std::string() : std::string(p, size_t(sqlite3_column_bytes(stmt_, col)));

@@ -47,6 +47,9 @@ class Statement {
   std::optional<double> optional_real(int col) const;
   std::string text(int col) const;
   std::string blob(int col) const;
+  // The same without a copy: valid until the next step, reset or finalisation.
+  std::string_view text_view(int col) const;
+  std::string_view blob_view(int col) const;
 
  private:
   void note_bind(int rc, int i);

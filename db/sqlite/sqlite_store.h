@@ -69,10 +69,12 @@ class SqliteStore : public Store {
   Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
   Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
   Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
-  Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys) override;
+  Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
+                                                     const std::vector<std::string>& entries) override;
   Result<Counts> counts() override;
   Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
   Status put_precomputed(const std::vector<Precomputed>& batch) override;
+  using Store::cached_features;
   using Store::put_precomputed;
   Result<int64_t> requeue_precompute(int definitions_version) override;
 

@@ -1,6 +1,8 @@
 // SqliteStore's feature cache: values are little-endian float64 arrays keyed by (key, entry).
 #include <bit>
 #include <cstring>
+#include <string_view>
+#include <unordered_set>
 
 #include "db/sqlite/sqlite_store.h"
 #include "db/sqlite/sqlite_store_writes.h"
@@ -31,9 +33,12 @@ std::string in_list_sql(size_t n) {
 
 }  // namespace
 
-Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vector<std::string>& keys) {
+Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vector<std::string>& keys,
+                                                                const std::vector<std::string>& entries) {
   std::vector<CachedFeature> out;
   if (keys.empty()) return out;
+  // Rows of other entries are stepped over without a copy: only their entry text is looked at.
+  const std::unordered_set<std::string_view> wanted(entries.begin(), entries.end());
   SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
     for (size_t begin = 0; begin < keys.size(); begin += kMaxKeysPerQuery) {
       const size_t count = std::min(kMaxKeysPerQuery, keys.size() - begin);
@@ -43,8 +48,10 @@ Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vecto
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
         if (!row) break;
-        CachedFeature f{q.text(0), q.text(1), {}};
-        const std::string bytes = q.blob(2);
+        const std::string_view entry = q.text_view(1);
+        if (!wanted.empty() && !wanted.count(entry)) continue;
+        CachedFeature f{q.text(0), std::string(entry), {}};
+        const std::string_view bytes = q.blob_view(2);
         if (bytes.size() % sizeof(double) != 0) {
           return data_loss("cached feature '" + f.entry + "' under key '" + f.key + "' has " +
                            std::to_string(bytes.size()) + " bytes, not a whole number of float64");

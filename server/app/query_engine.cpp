@@ -106,7 +106,7 @@ class QueryRun {
   // Each subject's plan, then the cache for every plan in one round trip. Subjects answered by the
   // cache (or that cannot be planned) are ready; the others are returned, to compute.
   Result<std::vector<size_t>> plan_and_read_cache() {
-    std::vector<std::string> keys;
+    std::vector<std::string> keys, entries;
     for (Subject& s : subjects_) {
       if (q_.ask.names.empty()) {
         s.ready = true;
@@ -121,13 +121,17 @@ class QueryRun {
       }
       s.plan = std::move(plan).value();
       keys.push_back(s.plan->cache_key);
+      for (const WantedValue& w : s.plan->wants) entries.push_back(w.entry);
     }
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    for (auto* list : {&keys, &entries}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
     std::map<std::string, FeatureValues> cached;
     if (!keys.empty()) {
-      SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> entries, store_.cached_features(keys));
-      for (auto& e : entries) cached[e.key][e.entry] = std::move(e.value);
+      // Only the entries some plan wants: a key holds every value its context ever computed.
+      SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> found, store_.cached_features(keys, entries));
+      for (auto& e : found) cached[e.key][e.entry] = std::move(e.value);
     }
     std::vector<size_t> misses;
     for (size_t i = 0; i < subjects_.size(); ++i) {

@@ -40,6 +40,29 @@ TEST_F(SqliteStoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
   EXPECT_TRUE((*empty)[0].value.empty());
 }
 
+// A query reads only the entries its plans want; an empty list reads every one.
+TEST_F(SqliteStoreWriteCache, CachedFeaturesReadOnlyTheNamedEntries) {
+  auto a = store_->add_structure(new_structure("P1", "S1", "a"));
+  ASSERT_TRUE(a.ok());
+  const std::string sha = a->structure.surface.sha256;
+  ASSERT_TRUE(store_
+                  ->put_cached_features(sha, {{"k1", "volume", {1}},
+                                              {"k1", "area", {2}},
+                                              {"k1", "mean|inside|x", {3, 4}},
+                                              {"k2", "volume", {5}},
+                                              {"k2", "area", {6}}})
+                  .ok());
+  auto some = store_->cached_features({"k1", "k2"}, {"volume", "mean|inside|x", "not cached"});
+  ASSERT_TRUE(some.ok()) << some.status().to_string();
+  std::vector<std::string> got;
+  for (const CachedFeature& f : *some) got.push_back(f.key + " " + f.entry);
+  EXPECT_EQ(got, (std::vector<std::string>{"k1 mean|inside|x", "k1 volume", "k2 volume"}));
+  EXPECT_EQ((*some)[0].value, (std::vector<double>{3, 4}));
+  auto all = store_->cached_features({"k1", "k2"}, {});
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(all->size(), 5u);
+}
+
 // A query's results in one transaction: every known surface's entries stored, a surface deleted
 // meanwhile skipped without failing the others, a malformed entry refusing the whole batch.
 TEST_F(SqliteStoreWriteCache, ABatchStoresEverySurfacesEntriesAndSkipsAGoneSurface) {
