@@ -21,6 +21,7 @@
 #include "core/voxelize/grid_around.h"
 #include "core/voxelize/voxelize_1d.h"
 #include "db/sqlite/sqlite_store.h"
+#include "server/util/malloc_tuning.h"
 #include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
@@ -246,6 +247,8 @@ Status run(const Options& o) {
 }  // namespace
 
 int run_query_bench(const CliArgs& args) {
+  // The in-process parts (stage 1, where the cold time goes) allocate as soiqd does.
+  server::keep_freed_blocks_for_reuse();
   Result<Options> o = parse(args);
   if (!o.ok()) {
     std::fprintf(stderr, "soiq-bench query: %s\n", o.status().message().c_str());

@@ -23,6 +23,7 @@
 #include "server/app/server_config.h"
 #include "server/util/listen_check.h"
 #include "server/util/log.h"
+#include "server/util/malloc_tuning.h"
 
 namespace {
 
@@ -76,6 +77,7 @@ int fail(const Status& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  soiq::server::keep_freed_blocks_for_reuse();
   bool help = false;
   Result<soiq::server::ServerConfig> config = soiq::server::parse_server_config(argc, argv, help, std::getenv);
   if (!config.ok()) {
