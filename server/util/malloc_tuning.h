@@ -11,10 +11,11 @@
 // memory mapped. That memory is reused, not leaked, and is outside the memory budget
 // (server/app/memory_budget.h), which counts the bytes in use.
 //
-// Call once, first thing in main(), before any thread starts. A no-op elsewhere than glibc.
+// Call once, first thing in main(), before any thread starts. Returns whether glibc took both
+// settings; false (and nothing done) elsewhere than glibc.
 
 namespace soiq::server {
 
-void keep_freed_blocks_for_reuse();
+bool keep_freed_blocks_for_reuse();
 
 }  // namespace soiq::server
