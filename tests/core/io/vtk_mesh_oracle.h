@@ -9,7 +9,6 @@
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPLYWriter.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkSTLWriter.h>
@@ -21,30 +20,16 @@
 #include "core/base/triangle_mesh.h"
 #include "core/io/file_extension.h"
 #include "core/io/vtk_ply_lock.h"
+#include "core/io/vtk_poly_data.h"
 
 namespace soiq::testing_io {
-
-inline vtkSmartPointer<vtkPolyData> vtk_poly_data(const TriangleMesh& mesh) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (const Vec3& p : mesh.vertices_mm) points->InsertNextPoint(p.data());
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : mesh.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    polys->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  return poly;
-}
 
 // An ASCII STL written by vtkSTLWriter (write_mesh writes binary only).
 inline bool write_ascii_stl_with_vtk(const TriangleMesh& mesh, const std::string& path) {
   vtkNew<vtkSTLWriter> w;
   w->SetFileName(path.c_str());
   w->SetFileTypeToASCII();
-  w->SetInputData(vtk_poly_data(mesh));
+  w->SetInputData(to_vtk_poly_data(mesh));
   return w->Write() == 1;
 }
 
@@ -63,7 +48,7 @@ inline bool write_ply_with_vtk(const TriangleMesh& mesh, const std::string& path
       w->SetDataByteOrderToLittleEndian();
     }
   }
-  w->SetInputData(vtk_poly_data(mesh));
+  w->SetInputData(to_vtk_poly_data(mesh));
   return w->Write() == 1;
 }
 

@@ -29,7 +29,7 @@ namespace {
 
 // A sphere whose polygons are partly strips, so both cell sections are exercised.
 vtkSmartPointer<vtkPolyData> sphere_with_strips(bool double_points) {
-  auto sphere = testing_io::vtk_poly_data(uv_sphere({1.25, -3.5, 7.0}, 10.3, 7, 13));
+  auto sphere = to_vtk_poly_data(uv_sphere({1.25, -3.5, 7.0}, 10.3, 7, 13));
   if (!double_points) {
     vtkNew<vtkPoints> single;
     single->SetDataTypeToFloat();
