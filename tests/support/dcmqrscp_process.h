@@ -28,90 +28,18 @@
 
 #include "dicom/pacs_echo.h"
 #include "dicom/pacs_peer.h"
+#include "tests/support/child_process.h"
 #include "tests/support/temp_dir.h"
 
 namespace soiq::dicom::testing {
 
 using soiq::testing::TempDir;
 
-// The absolute path of `name` on PATH, or "" when it is not there.
-inline std::string find_on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return "";
-}
-
-// A loopback port nobody listens on right now (bind to port 0, read it, close).
-inline int free_loopback_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  if (fd < 0) return 0;
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  addr.sin_port = 0;
-  socklen_t len = sizeof addr;
-  int port = 0;
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0)
-    port = ntohs(addr.sin_port);
-  ::close(fd);
-  return port;
-}
-
-inline std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs argv[0] with stdout+stderr into `log`; returns its exit status (-1 if it could not run).
-// The child gets its own process group so a test's kill of dcmqrscp never reaches it.
-inline int run_tool(const std::vector<std::string>& argv, const std::filesystem::path& log) {
-  const pid_t pid = ::fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    ::setpgid(0, 0);
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    ::setenv("TCP_NODELAY", "1", 1);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execv(args[0], args.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  if (::waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// Stops a server started in its own process group (`pid` its leader; -1 afterwards): SIGTERM, up to
-// `grace` for it to exit, then SIGKILL; and SIGKILL to the group after, for children that outlived
-// their parent (dcmqrscp's association processes).
-inline void stop_process_group(pid_t& pid, std::chrono::milliseconds grace) {
-  if (pid <= 0) return;
-  ::kill(-pid, SIGTERM);
-  int status = 0;
-  bool reaped = false;
-  for (auto waited = std::chrono::milliseconds(0); waited < grace && !reaped; waited += std::chrono::milliseconds(20)) {
-    reaped = ::waitpid(pid, &status, WNOHANG) == pid;
-    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  if (!reaped) {
-    ::kill(-pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-  }
-  ::kill(-pid, SIGKILL);
-  pid = -1;
-}
+using soiq::testing::find_on_path;
+using soiq::testing::free_loopback_port;
+using soiq::testing::read_text;
+using soiq::testing::run_tool;
+using soiq::testing::stop_process_group;
 
 class DcmqrscpProcess {
  public:
