@@ -68,6 +68,13 @@ Result<PgResult> PgConnection::exec(const std::string& sql, const std::vector<Pg
   return PgResult(r);
 }
 
+bool PgConnection::healthy() const { return PQstatus(c_.get()) == CONNECTION_OK; }
+
+bool PgConnection::reset() {
+  PQreset(c_.get());
+  return healthy();
+}
+
 Status PgConnection::run(const std::string& sql, std::string_view what) {
   PGresult* r = PQexec(c_.get(), sql.c_str());
   const ExecStatusType s = r != nullptr ? PQresultStatus(r) : PGRES_FATAL_ERROR;
@@ -84,8 +91,8 @@ Status pg_transaction(PgConnection& c, const std::function<Status()>& body, bool
   for (int attempt = 0; attempt < std::max(1, attempts); ++attempt) {
     if (attempt > 0) {
       std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int64_t>(
-          wait.count() / 2, wait.count())(rng)));  // jitter: concurrent retries do not collide again
-      wait *= 2;
+          wait.count() / 2, wait.count())(rng)));                   // jitter: concurrent retries do not collide again
+      wait = std::min(wait * 2, std::chrono::microseconds(50000));  // at most 50 ms apart
     }
     SOIQ_RETURN_IF_ERROR(c.run(serializable ? "BEGIN ISOLATION LEVEL SERIALIZABLE" : "BEGIN", "begin a transaction"));
     last = body();

@@ -46,6 +46,11 @@ class PgConnection {
   // Statements without parameters or rows (DDL, BEGIN, COMMIT), several separated by ';'.
   Status run(const std::string& sql, std::string_view what);
 
+  // Whether the connection is up; reset() reconnects with the same parameters (after the server
+  // restarted or the network dropped it) and says whether that worked.
+  bool healthy() const;
+  bool reset();
+
  private:
   explicit PgConnection(PGconn* c) : c_(c, &PQfinish) {}
   Status failure(PGresult* r, std::string_view what) const;
@@ -55,7 +60,7 @@ class PgConnection {
 
 // Runs `body` in one transaction (READ COMMITTED unless `serializable`) and commits it; on a
 // serialization failure or deadlock rolls back and runs it again, up to `attempts` times in all,
-// after a short random wait that doubles each time. Any other failure rolls back and is returned.
+// after a short random wait that doubles each time (up to 50 ms). Any other failure rolls back and is returned.
 Status pg_transaction(PgConnection& c, const std::function<Status()>& body, bool serializable = false,
                       int attempts = 5);
 

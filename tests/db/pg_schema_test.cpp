@@ -16,42 +16,13 @@
 
 #include "db/postgres/pg_connection.h"
 #include "db/postgres/pg_error.h"
+#include "tests/db/pg_database.h"
 #include "tests/db/temp_store.h"
-#include "tests/support/postgres_process.h"
 
 namespace soiq::db {
 namespace {
 
 using testing::contains;
-
-class PgTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    server_ = new soiq::testing::PostgresProcess;
-    why_ = server_->start();
-  }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
-  void SetUp() override {
-    ASSERT_EQ(why_, "");
-    // A database of its own per test.
-    static std::atomic<int> next{0};
-    database_ = "t" + std::to_string(next++);
-    auto admin = PgConnection::open(server_->conninfo("postgres"));
-    ASSERT_TRUE(admin.ok()) << admin.status().to_string();
-    ASSERT_TRUE(admin->run("CREATE DATABASE " + database_, "create a test database").ok());
-  }
-  Result<PgConnection> connect() const { return PgConnection::open(server_->conninfo(database_)); }
-
-  static soiq::testing::PostgresProcess* server_;
-  static std::string why_;
-  std::string database_;
-};
-
-soiq::testing::PostgresProcess* PgTest::server_ = nullptr;
-std::string PgTest::why_;
 
 TEST(PgStatus, SqlStatesMapToTheirCodes) {
   EXPECT_EQ(pg_status("40001", "could not serialize", "x").code(), StatusCode::kAborted);
