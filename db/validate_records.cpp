@@ -104,7 +104,8 @@ Status validate_stage1_filter(const Stage1Filter& f) {
     static const std::vector<std::string> kOps = {"<", "<=", ">", ">=", "=", "!="};
     if (std::find(kOps.begin(), kOps.end(), c.op) == kOps.end())
       return invalid_argument("'" + c.op + "' is not a comparison (< <= > >= = !=)");
-    if (std::isnan(c.value)) return invalid_argument("a stored-feature condition on '" + c.name + "' compares with NaN");
+    if (std::isnan(c.value))
+      return invalid_argument("a stored-feature condition on '" + c.name + "' compares with NaN");
   }
   if (f.min_age_years && f.max_age_years && *f.min_age_years > *f.max_age_years) {
     return invalid_argument("min_age_years " + std::to_string(*f.min_age_years) + " is above max_age_years " +
@@ -123,6 +124,14 @@ Status validate_structure_filter(const StructureFilter& f) {
   SOIQ_RETURN_IF_ERROR(validate_text(f.study_uid, "study_uid", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(f.name_glob, "structure name glob", kMaxNameBytes));
   return validate_laterality(f.laterality);
+}
+
+Status validate_cache_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
+  SOIQ_RETURN_IF_ERROR(validate_sha256(surface_sha256, "surface"));
+  for (const CachedFeature& f : entries) {
+    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
+  }
+  return ok_status();
 }
 
 }  // namespace soiq::db

@@ -33,5 +33,7 @@ Status validate_study(const StudyRecord& s, const std::string& patient_id);
 Status validate_stage1_filter(const Stage1Filter& f);
 Status validate_patient_filter(const PatientFilter& f);
 Status validate_structure_filter(const StructureFilter& f);
+// A surface's feature-cache entries: the surface's sha256, and a key and an entry name for each.
+Status validate_cache_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries);
 
 }  // namespace soiq::db

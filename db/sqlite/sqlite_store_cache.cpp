@@ -77,18 +77,6 @@ constexpr char kUpsertCachedFeatureSql[] = R"sql(
 
 }  // namespace
 
-namespace {
-
-Status check_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
-  SOIQ_RETURN_IF_ERROR(validate_sha256(surface_sha256, "surface"));
-  for (const CachedFeature& f : entries) {
-    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
-  }
-  return ok_status();
-}
-
-}  // namespace
-
 Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sha256,
                                     const std::vector<CachedFeature>& entries) {
   {
@@ -109,7 +97,7 @@ Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sh
 }
 
 Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
-  SOIQ_RETURN_IF_ERROR(check_entries(surface_sha256, entries));
+  SOIQ_RETURN_IF_ERROR(validate_cache_entries(surface_sha256, entries));
   return write([&](Connection& c) -> Status {
     SOIQ_ASSIGN_OR_RETURN(const bool stored, upsert_cached_features(c, surface_sha256, entries));
     // The surface may have been deleted while its features were computed: nothing to cache then.
@@ -119,7 +107,7 @@ Status SqliteStore::put_cached_features(const std::string& surface_sha256, const
 }
 
 Status SqliteStore::put_cached_features(const std::vector<SurfaceFeatures>& batch) {
-  for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(check_entries(s.surface_sha256, s.entries));
+  for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(validate_cache_entries(s.surface_sha256, s.entries));
   if (batch.empty()) return ok_status();
   return write([&](Connection& c) -> Status {
     for (const SurfaceFeatures& s : batch)

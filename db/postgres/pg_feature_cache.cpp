@@ -1,0 +1,90 @@
+#include "db/postgres/pg_feature_cache.h"
+
+#include <bit>
+#include <cstring>
+#include <map>
+#include <string_view>
+#include <utility>
+
+#include "db/validate_records.h"
+
+namespace soiq::db {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "cached values are stored as little-endian float64");
+
+constexpr char kCachedSql[] = R"sql(
+  SELECT key, entry, value FROM feature_cache
+  WHERE key = ANY($1::text[]) AND (cardinality($2::text[]) = 0 OR entry = ANY($2::text[]))
+  ORDER BY key, entry)sql";
+
+// One row per entry from four parallel arrays; a surface that is gone keeps none of its rows.
+constexpr char kUpsertSql[] = R"sql(
+  INSERT INTO feature_cache(key, entry, surface_sha256, value)
+  SELECT k, e, s, v FROM unnest($1::text[], $2::text[], $3::text[], $4::bytea[]) AS u(k, e, s, v)
+  WHERE EXISTS (SELECT 1 FROM surfaces WHERE sha256 = u.s)
+  ON CONFLICT (key, entry) DO UPDATE SET surface_sha256 = excluded.surface_sha256, value = excluded.value)sql";
+
+}  // namespace
+
+std::string pg_array_literal(const std::vector<std::string>& values) {
+  std::string out = "{";
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) out += ',';
+    out += '"';
+    for (const char ch : values[i]) {
+      if (ch == '"' || ch == '\\') out += '\\';
+      out += ch;
+    }
+    out += '"';
+  }
+  return out + "}";
+}
+
+Result<std::vector<CachedFeature>> pg_cached_features(PgConnection& c, const std::vector<std::string>& keys,
+                                                      const std::vector<std::string>& entries) {
+  std::vector<CachedFeature> out;
+  if (keys.empty()) return out;
+  SOIQ_ASSIGN_OR_RETURN(
+      PgResult r, c.exec(kCachedSql, {pg_array_literal(keys), pg_array_literal(entries)}, "read cached features"));
+  out.reserve(size_t(r.rows()));
+  for (int i = 0; i < r.rows(); ++i) {
+    CachedFeature f{r.text(i, 0), r.text(i, 1), {}};
+    const std::string bytes = r.bytes(i, 2);
+    if (bytes.size() % sizeof(double) != 0) {
+      return data_loss("cached feature '" + f.entry + "' under key '" + f.key + "' has " +
+                       std::to_string(bytes.size()) + " bytes, not a whole number of float64");
+    }
+    f.value.resize(bytes.size() / sizeof(double));
+    if (!bytes.empty()) std::memcpy(f.value.data(), bytes.data(), bytes.size());
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+Status pg_put_cached_features(PgConnection& c, const std::vector<SurfaceFeatures>& batch) {
+  for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(validate_cache_entries(s.surface_sha256, s.entries));
+  // One INSERT may not touch a row twice: an entry given twice keeps its last value, as the
+  // row-by-row upserts of the SQLite store do.
+  std::map<std::pair<std::string_view, std::string_view>, std::pair<const std::string*, const CachedFeature*>> rows;
+  for (const SurfaceFeatures& s : batch) {
+    for (const CachedFeature& f : s.entries) rows[{f.key, f.entry}] = {&s.surface_sha256, &f};
+  }
+  std::vector<std::string> keys, names, surfaces, values;
+  for (const auto& [id, row] : rows) {
+    const CachedFeature& f = *row.second;
+    keys.push_back(f.key);
+    names.push_back(f.entry);
+    surfaces.push_back(*row.first);
+    values.push_back(*pg_bytea_param(
+        std::string_view(reinterpret_cast<const char*>(f.value.data()), f.value.size() * sizeof(double))));
+  }
+  if (keys.empty()) return ok_status();
+  return c
+      .exec(kUpsertSql,
+            {pg_array_literal(keys), pg_array_literal(names), pg_array_literal(surfaces), pg_array_literal(values)},
+            "store cached features")
+      .status();
+}
+
+}  // namespace soiq::db
