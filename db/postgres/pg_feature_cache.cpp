@@ -1,17 +1,14 @@
 #include "db/postgres/pg_feature_cache.h"
 
-#include <bit>
-#include <cstring>
 #include <map>
 #include <string_view>
 #include <utility>
 
+#include "db/cached_value.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
 namespace {
-
-static_assert(std::endian::native == std::endian::little, "cached values are stored as little-endian float64");
 
 constexpr char kCachedSql[] = R"sql(
   SELECT key, entry, value FROM feature_cache
@@ -50,13 +47,7 @@ Result<std::vector<CachedFeature>> pg_cached_features(PgConnection& c, const std
   out.reserve(size_t(r.rows()));
   for (int i = 0; i < r.rows(); ++i) {
     CachedFeature f{r.text(i, 0), r.text(i, 1), {}};
-    const std::string bytes = r.bytes(i, 2);
-    if (bytes.size() % sizeof(double) != 0) {
-      return data_loss("cached feature '" + f.entry + "' under key '" + f.key + "' has " +
-                       std::to_string(bytes.size()) + " bytes, not a whole number of float64");
-    }
-    f.value.resize(bytes.size() / sizeof(double));
-    if (!bytes.empty()) std::memcpy(f.value.data(), bytes.data(), bytes.size());
+    SOIQ_RETURN_IF_ERROR(set_cached_value(f, r.bytes(i, 2)));
     out.push_back(std::move(f));
   }
   return out;
@@ -76,8 +67,7 @@ Status pg_put_cached_features(PgConnection& c, const std::vector<SurfaceFeatures
     keys.push_back(f.key);
     names.push_back(f.entry);
     surfaces.push_back(*row.first);
-    values.push_back(*pg_bytea_param(
-        std::string_view(reinterpret_cast<const char*>(f.value.data()), f.value.size() * sizeof(double))));
+    values.push_back(*pg_bytea_param(cached_value_bytes(f.value)));
   }
   if (keys.empty()) return ok_status();
   return c

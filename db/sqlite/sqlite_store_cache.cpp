@@ -1,17 +1,14 @@
 // SqliteStore's feature cache: values are little-endian float64 arrays keyed by (key, entry).
-#include <bit>
-#include <cstring>
 #include <string_view>
 #include <unordered_set>
 
+#include "db/cached_value.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/sqlite/sqlite_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
 namespace {
-
-static_assert(std::endian::native == std::endian::little, "cached values are stored as little-endian float64");
 
 // Keys go into `key IN (?1, …, ?n)` with n a power of two up to this, the last key repeated as
 // padding: at most 9 statement shapes in the cache, and few round trips for many keys.
@@ -51,13 +48,7 @@ Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vecto
         const std::string_view entry = q.text_view(1);
         if (!wanted.empty() && !wanted.count(entry)) continue;
         CachedFeature f{q.text(0), std::string(entry), {}};
-        const std::string_view bytes = q.blob_view(2);
-        if (bytes.size() % sizeof(double) != 0) {
-          return data_loss("cached feature '" + f.entry + "' under key '" + f.key + "' has " +
-                           std::to_string(bytes.size()) + " bytes, not a whole number of float64");
-        }
-        f.value.resize(bytes.size() / sizeof(double));
-        if (!bytes.empty()) std::memcpy(f.value.data(), bytes.data(), bytes.size());
+        SOIQ_RETURN_IF_ERROR(set_cached_value(f, q.blob_view(2)));
         out.push_back(std::move(f));
       }
     }
@@ -90,7 +81,8 @@ Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sh
     up.bind(1, f.key);
     up.bind(2, f.entry);
     up.bind(3, surface_sha256);
-    up.bind_blob(4, f.value.data(), f.value.size() * sizeof(double));
+    const std::string_view bytes = cached_value_bytes(f.value);
+    up.bind_blob(4, bytes.data(), bytes.size());
     SOIQ_RETURN_IF_ERROR(up.run());
   }
   return true;
