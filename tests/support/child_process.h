@@ -5,6 +5,7 @@
 
 #include <arpa/inet.h>
 #include <fcntl.h>
+#include <grp.h>
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
@@ -18,6 +19,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace soiq::testing {
@@ -57,29 +59,51 @@ inline std::string read_text(const std::filesystem::path& p) {
   return s.str();
 }
 
-// Runs argv[0] with stdout+stderr into `log`; returns its exit status (-1 if it could not run).
-// The child gets its own process group, so a test's kill of a server's group never reaches it, and
-// TCP_NODELAY=1 in its environment (DCMTK's tools read it: Nagle's algorithm off).
-inline int run_tool(const std::vector<std::string>& argv, const std::filesystem::path& log) {
+// How a child runs: as whom (0: as the caller), and what its environment gains.
+struct ChildOptions {
+  uid_t uid = 0;
+  gid_t gid = 0;
+  std::vector<std::pair<std::string, std::string>> env;
+};
+
+// Starts argv[0] with stdout+stderr into `log`, in its own process group (so a test's kill of a
+// server's group never reaches it), as options.uid when it is not 0 (the log is handed to it too).
+// Returns its pid, or -1 when it cannot fork.
+inline pid_t spawn_in_own_group(const std::vector<std::string>& argv, const std::filesystem::path& log,
+                                const ChildOptions& options = {}) {
   const pid_t pid = ::fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    ::setpgid(0, 0);
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    ::setenv("TCP_NODELAY", "1", 1);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execv(args[0], args.data());
-    ::_exit(127);
+  if (pid != 0) return pid;
+  ::setpgid(0, 0);
+  const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    if (options.uid != 0 && ::fchown(fd, options.uid, options.gid) != 0) ::_exit(126);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
   }
+  if (options.uid != 0 && (::setgroups(0, nullptr) != 0 || ::setgid(options.gid) != 0 || ::setuid(options.uid) != 0))
+    ::_exit(126);
+  for (const auto& [name, value] : options.env) ::setenv(name.c_str(), value.c_str(), 1);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  ::execv(args[0], args.data());
+  ::_exit(127);
+}
+
+// spawn_in_own_group, then waits: the exit status, or -1 if it could not run.
+inline int run_to_exit(const std::vector<std::string>& argv, const std::filesystem::path& log,
+                       const ChildOptions& options = {}) {
+  const pid_t pid = spawn_in_own_group(argv, log, options);
+  if (pid < 0) return -1;
   int status = 0;
   if (::waitpid(pid, &status, 0) != pid) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A DCMTK tool run to completion, with TCP_NODELAY=1 in its environment (DCMTK reads it: Nagle's
+// algorithm off).
+inline int run_tool(const std::vector<std::string>& argv, const std::filesystem::path& log) {
+  return run_to_exit(argv, log, ChildOptions{0, 0, {{"TCP_NODELAY", "1"}}});
 }
 
 // Stops a server started in its own process group (`pid` its leader; -1 afterwards): SIGTERM, up to

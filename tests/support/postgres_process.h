@@ -9,8 +9,6 @@
 // system user the Debian package creates, and the folder is handed to it. The destructor asks for a
 // fast shutdown (SIGINT), then kills the group.
 
-#include <fcntl.h>
-#include <grp.h>
 #include <libpq-fe.h>
 #include <pwd.h>
 #include <signal.h>
@@ -54,17 +52,17 @@ class PostgresProcess {
       if (::chown(root.c_str(), uid_, gid_) != 0) return "cannot hand " + root.string() + " to the postgres user";
     }
     const std::filesystem::path data = root / "data";
-    const int init = run_as_server_user({(bin / "initdb").string(), "-D", data.string(), "-U", kUser, "-A", "trust",
-                                         "-E", "UTF8", "--locale=C", "--no-sync"},
-                                        root / "initdb.log");
+    const int init = run_to_exit({(bin / "initdb").string(), "-D", data.string(), "-U", kUser, "-A", "trust", "-E",
+                                  "UTF8", "--locale=C", "--no-sync"},
+                                 root / "initdb.log", as_server_user());
     if (init != 0) return "initdb failed (" + std::to_string(init) + "): " + read_text(root / "initdb.log");
     // The port can be taken between our probe and the server's bind: try a few.
     for (int attempt = 0; attempt < 3; ++attempt) {
       port_ = free_loopback_port();
-      pid_ = spawn({(bin / "postgres").string(), "-D", data.string(), "-p", std::to_string(port_), "-k", root.string(),
-                    "-c", "listen_addresses=127.0.0.1", "-c", "fsync=off", "-c", "synchronous_commit=off", "-c",
-                    "full_page_writes=off"},
-                   root / "postgres.log");
+      pid_ = spawn_in_own_group({(bin / "postgres").string(), "-D", data.string(), "-p", std::to_string(port_), "-k",
+                                 root.string(), "-c", "listen_addresses=127.0.0.1", "-c", "fsync=off", "-c",
+                                 "synchronous_commit=off", "-c", "full_page_writes=off"},
+                                root / "postgres.log", as_server_user());
       if (pid_ < 0) return "cannot start postgres";
       for (int i = 0; i < 400; ++i) {  // up to 20 s
         if (PQping(conninfo("postgres").c_str()) == PQPING_OK) return "";
@@ -105,32 +103,7 @@ class PostgresProcess {
     return found.empty() ? std::filesystem::path() : found.back();
   }
 
-  // Forks argv with stdout+stderr into `log`, in its own process group, as the server's user.
-  pid_t spawn(const std::vector<std::string>& argv, const std::filesystem::path& log) const {
-    const pid_t pid = ::fork();
-    if (pid != 0) return pid;
-    ::setpgid(0, 0);
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      if (uid_ != 0 && ::fchown(fd, uid_, gid_) != 0) ::_exit(126);
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    if (uid_ != 0 && (::setgroups(0, nullptr) != 0 || ::setgid(gid_) != 0 || ::setuid(uid_) != 0)) ::_exit(126);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execv(args[0], args.data());
-    ::_exit(127);
-  }
-
-  int run_as_server_user(const std::vector<std::string>& argv, const std::filesystem::path& log) const {
-    const pid_t pid = spawn(argv, log);
-    if (pid < 0) return -1;
-    int status = 0;
-    if (::waitpid(pid, &status, 0) != pid) return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  ChildOptions as_server_user() const { return ChildOptions{uid_, gid_, {}}; }
 
   TempDir dir_;
   uid_t uid_ = 0;
