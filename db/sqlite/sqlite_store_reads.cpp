@@ -1,9 +1,9 @@
 // SqliteStore's reads of single records and pages. Each method is one read transaction, so a page
 // and its counts come from one snapshot.
 #include "db/page_token.h"
-#include "db/sqlite/glob_range.h"
-#include "db/sqlite/sql_conditions.h"
-#include "db/sqlite/sqlite_records.h"
+#include "db/sql/glob_range.h"
+#include "db/sql/sql_conditions.h"
+#include "db/sql/record_sql.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/validate_records.h"
 
@@ -44,7 +44,7 @@ namespace {
 // after them.
 constexpr char kPatientPageFromSql[] = R"sql(
   FROM patients p
-  WHERE 1)sql";
+  WHERE true)sql";
 constexpr char kPatientPageOrderSql[] = R"sql(
   ORDER BY p.patient_id
   LIMIT)sql";

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "db/sqlite/sqlite_records.h"
+#include "db/sql/record_sql.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/sqlite/sqlite_store_writes.h"
 #include "db/validate_records.h"

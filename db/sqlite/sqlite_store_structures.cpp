@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "db/sqlite/sqlite_records.h"
+#include "db/sql/record_sql.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/sqlite/sqlite_store_writes.h"
 #include "db/validate_records.h"

@@ -1,4 +1,4 @@
-#include "db/sqlite/glob_range.h"
+#include "db/sql/glob_range.h"
 
 #include <gtest/gtest.h>
 
@@ -24,6 +24,21 @@ TEST(GlobRange, TrailingFfBytesAreDroppedBeforeIncrementing) {
 }
 
 TEST(GlobRange, AsciiLowerLeavesOtherBytesAlone) { EXPECT_EQ(ascii_lower("HiPPo_L\xc3\x89"), "hippo_l\xc3\x89"); }
+
+TEST(GlobRegex, WildcardsBecomeRegexAndEverythingElseIsLiteral) {
+  EXPECT_EQ(glob_regex("hippo*"), "^hippo.*$");
+  EXPECT_EQ(glob_regex("a?c"), "^a.c$");
+  EXPECT_EQ(glob_regex("a.b+c(d)|e$^{1}\\"), "^a\\.b\\+c\\(d\\)\\|e\\$\\^\\{1\\}\\\\$");
+}
+
+TEST(GlobRegex, BracketSetsKeepSQLitesMeaning) {
+  EXPECT_EQ(glob_regex("[abc]x"), "^[abc]x$");
+  EXPECT_EQ(glob_regex("[^a-z]"), "^[^a-z]$");
+  EXPECT_EQ(glob_regex("[]x]"), "^[]x]$");  // a ']' first is a member
+  EXPECT_EQ(glob_regex("[^]x]"), "^[^]x]$");
+  EXPECT_EQ(glob_regex("[\\[]"), "^[\\\\\\[]$");  // '\' and '[' members escaped for an ARE
+  EXPECT_EQ(glob_regex("ab[c"), "a^");            // unterminated: matches nothing, as in SQLite
+}
 
 }  // namespace
 }  // namespace soiq::db

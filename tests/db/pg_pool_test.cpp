@@ -79,7 +79,7 @@ TEST_F(PgTest, ConflictingSerializableTransactionsAreRetriedUntilEachCommits) {
               return c.exec("UPDATE counter SET n = $1", {std::to_string(r.int64(0, 0) + 1)}, "write the counter")
                   .status();
             },
-            /*serializable=*/true, /*attempts=*/200);
+            PgIsolation::kSerializable, /*attempts=*/200);
         if (!s.ok()) ++failed;
       }
     });

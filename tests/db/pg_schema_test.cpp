@@ -55,7 +55,7 @@ TEST_F(PgTest, StatementsTakeParametersAndFailWithTheirSqlState) {
   ASSERT_TRUE(c.ok());
   ASSERT_TRUE(c->run("CREATE TABLE t (id bigint PRIMARY KEY, name text, b bytea)", "create t").ok());
   const std::string bytes("\0\x01\xff zero", 8);
-  ASSERT_TRUE(c->exec("INSERT INTO t VALUES ($1, $2, $3)", {"1", std::nullopt, pg_bytea_param(bytes)}, "insert").ok());
+  ASSERT_TRUE(c->exec("INSERT INTO t VALUES ($1, $2, $3)", {"1", std::nullopt, pg_binary_param(bytes)}, "insert").ok());
   auto row = c->exec("SELECT id, name, b FROM t WHERE id = $1", {"1"}, "select");
   ASSERT_TRUE(row.ok());
   ASSERT_EQ(row->rows(), 1);

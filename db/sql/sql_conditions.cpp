@@ -1,12 +1,12 @@
-#include "db/sqlite/sql_conditions.h"
+#include "db/sql/sql_conditions.h"
 
-#include "db/sqlite/glob_range.h"
+#include "db/sql/glob_range.h"
 
 namespace soiq::db {
 
 std::string SqlConditions::next() {
   // Appending rather than "?" + to_string(): GCC 12 reports a false -Wrestrict on the latter.
-  std::string p = "?";
+  std::string p = dialect_ == SqlDialect::kSqlite ? "?" : "$";
   p += std::to_string(params_.size());
   return p;
 }
@@ -34,41 +34,42 @@ void SqlConditions::all_unless(const std::string& key, const std::string& table,
                         key + " FROM " + table + " WHERE " + all + ")");
 }
 
-void SqlConditions::glob(const std::string& column, const std::string& pattern) {
-  params_.emplace_back(pattern);
-  conditions_.push_back(column + " GLOB " + next());
-  const GlobRange range = glob_range(pattern);
-  if (!range.lower.empty()) compare(column, ">=", range.lower);
-  if (range.upper) compare(column, "<", *range.upper);
+namespace {
+
+bool ascii(const std::string& s) {
+  for (const char c : s) {
+    if (static_cast<unsigned char>(c) >= 0x80) return false;
+  }
+  return true;
 }
 
-void SqlConditions::with_parameter(const std::string& condition, const std::string& value) {
-  params_.emplace_back(value);
-  std::string out;
-  for (char ch : condition) {
-    if (ch == '?') {
-      out += next();
-    } else {
-      out += ch;
-    }
+}  // namespace
+
+void SqlConditions::glob(const std::string& column, const std::string& pattern) {
+  if (dialect_ == SqlDialect::kSqlite) {
+    params_.emplace_back(pattern);
+    conditions_.push_back(column + " GLOB " + next());
+  } else {
+    params_.emplace_back(glob_regex(pattern));
+    conditions_.push_back(column + " ~ " + next());
   }
-  conditions_.push_back(out);
+  const GlobRange range = glob_range(pattern);
+  if (!range.lower.empty()) compare(column, ">=", range.lower);
+  // PostgreSQL refuses text that is not UTF-8, which an incremented non-ASCII byte may leave: the
+  // range then has no upper end (the pattern test still decides).
+  if (range.upper && (dialect_ == SqlDialect::kSqlite || ascii(*range.upper))) compare(column, "<", *range.upper);
+}
+
+void SqlConditions::contains_delimited(const std::string& column, const std::string& value) {
+  params_.emplace_back(value);
+  const char* position = dialect_ == SqlDialect::kSqlite ? "instr(" : "strpos(";
+  conditions_.push_back(position + column + ", '/' || " + next() + " || '/') > 0");
 }
 
 std::string SqlConditions::sql() const {
   std::string out;
   for (const std::string& c : conditions_) out += " AND " + c;
   return out;
-}
-
-void SqlConditions::bind(Statement& st) const {
-  for (size_t i = 0; i < params_.size(); ++i) {
-    if (const auto* text = std::get_if<std::string>(&params_[i])) {
-      st.bind(int(i + 1), *text);
-    } else {
-      st.bind(int(i + 1), std::get<double>(params_[i]));
-    }
-  }
 }
 
 }  // namespace soiq::db

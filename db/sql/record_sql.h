@@ -1,14 +1,14 @@
 #pragma once
 // The SELECT column lists of the store's records and the code that reads a row back into a record,
-// shared by every query that returns records (sqlite_store_*.cpp). Each list assumes the aliases
-// of kStructureFrom: s = structures, st = studies, p = patients, sf = surfaces.
+// shared by every query that returns records in both backends (the SQL is the same in SQLite's and
+// PostgreSQL's dialect). Each list assumes the aliases of kStructureFrom: s = structures,
+// st = studies, p = patients, sf = surfaces.
 
 #include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "db/sqlite/sqlite_statement.h"
 #include "db/store.h"
 
 namespace soiq::db {
@@ -58,10 +58,75 @@ std::string select_sql(std::initializer_list<std::string_view> column_lists,
 std::string join_uid_list(const std::vector<std::string>& uids);
 std::vector<std::string> split_uid_list(const std::string& joined);  // "" -> {}
 
-// Each reads its columns starting at `col`.
-PatientRecord read_patient(const Statement& row, int col);
-StudyRecord read_study(const Statement& row, int col);
-StructureRecord read_structure(const Statement& row, int col);
-SeriesRecord read_series(const Statement& row, int col);
+// Each reads its columns starting at `col` from a row with text, int64, real and optional_real by
+// column: a SQLite statement (sqlite_statement.h) or a PostgreSQL result's row (PgRow).
+template <typename Row>
+PatientRecord read_patient(const Row& row, int col) {
+  PatientRecord p;
+  p.patient_id = row.text(col);
+  p.sex = row.text(col + 1);
+  p.birth_date = row.text(col + 2);
+  p.study_count = row.int64(col + 3);
+  p.structure_count = row.int64(col + 4);
+  return p;
+}
+
+template <typename Row>
+StudyRecord read_study(const Row& row, int col) {
+  StudyRecord s;
+  s.study_uid = row.text(col);
+  s.patient_id = row.text(col + 1);
+  s.study_date = row.text(col + 2);
+  s.description = row.text(col + 3);
+  s.modality = row.text(col + 4);
+  s.age_years = row.optional_real(col + 5);
+  s.structure_count = row.int64(col + 6);
+  s.study_time = row.text(col + 7);
+  s.study_id = row.text(col + 8);
+  s.accession_number = row.text(col + 9);
+  return s;
+}
+
+template <typename Row>
+StructureRecord read_structure(const Row& row, int col) {
+  StructureRecord s;
+  s.id = row.int64(col);
+  s.patient_id = row.text(col + 1);
+  s.study_uid = row.text(col + 2);
+  s.name = row.text(col + 3);
+  s.laterality = row.text(col + 4);
+  s.robust = row.int64(col + 5) != 0;
+  s.created_at = row.text(col + 6);
+  s.surface.sha256 = row.text(col + 7);
+  s.surface.vertex_count = row.int64(col + 8);
+  s.surface.triangle_count = row.int64(col + 9);
+  for (int i = 0; i < 6; ++i) s.surface.bounds_mm[i] = row.real(col + 10 + i);
+  s.source_series_uid = row.text(col + 16);
+  s.source_uid = row.text(col + 17);
+  s.surface.area_bound_mm2 = row.real(col + 18);
+  s.surface.perimeter_bound_mm = row.real(col + 19);
+  return s;
+}
+
+template <typename Row>
+SeriesRecord read_series(const Row& row, int col) {
+  SeriesRecord s;
+  s.series_uid = row.text(col);
+  s.study_uid = row.text(col + 1);
+  s.modality = row.text(col + 2);
+  for (int a = 0; a < 3; ++a) {
+    s.geometry.origin_mm[a] = row.real(col + 3 + a);
+    s.geometry.spacing_mm[a] = row.real(col + 6 + a);
+    s.geometry.dims[a] = row.int64(col + 9 + a);
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) s.geometry.direction[r][c] = row.real(col + 12 + 3 * r + c);
+  }
+  s.sha256 = row.text(col + 21);
+  s.frame_of_reference_uid = row.text(col + 22);
+  s.sop_class_uid = row.text(col + 23);
+  s.slice_instance_uids = split_uid_list(row.text(col + 24));
+  return s;
+}
 
 }  // namespace soiq::db

@@ -1,0 +1,38 @@
+#include "db/sql/record_sql.h"
+
+namespace soiq::db {
+
+std::string select_sql(std::initializer_list<std::string_view> column_lists,
+                       std::initializer_list<std::string_view> rest) {
+  std::string sql = "SELECT ";
+  const char* separator = "";
+  for (std::string_view columns : column_lists) {
+    sql.append(separator).append(columns);
+    separator = ", ";
+  }
+  for (std::string_view part : rest) sql.append(" ").append(part);
+  return sql;
+}
+
+std::string join_uid_list(const std::vector<std::string>& uids) {
+  std::string out;
+  for (size_t i = 0; i < uids.size(); ++i) {
+    if (i) out += '\\';
+    out += uids[i];
+  }
+  return out;
+}
+
+std::vector<std::string> split_uid_list(const std::string& joined) {
+  std::vector<std::string> out;
+  if (joined.empty()) return out;
+  size_t start = 0;
+  while (true) {
+    const size_t end = joined.find('\\', start);
+    out.push_back(joined.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return out;
+    start = end + 1;
+  }
+}
+
+}  // namespace soiq::db

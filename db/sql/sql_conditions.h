@@ -1,0 +1,68 @@
+#pragma once
+// A conjunction of SQL conditions with their bound parameters, for the queries whose filters are
+// optional (list_* and stage1), in either backend's dialect: each added condition takes the next
+// parameter (?n in SQLite, $n in PostgreSQL), and bind() binds them all. Column names are code
+// constants, never input; every input value goes through a parameter.
+
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace soiq::db {
+
+enum class SqlDialect { kSqlite, kPostgres };
+
+class SqlConditions {
+ public:
+  using Value = std::variant<std::string, double>;
+  struct NumberComparison {
+    std::string column;
+    std::string op;  // an SQL comparison operator
+    double value = 0;
+  };
+
+  explicit SqlConditions(SqlDialect dialect = SqlDialect::kSqlite) : dialect_(dialect) {}
+
+  // "key IN (SELECT key FROM table WHERE alternative UNION ALL SELECT key FROM table WHERE c1 op v1
+  // AND c2 op v2 …)": the comparisons hold, or `alternative` (a parameterless condition) says they do
+  // not apply to the row. Two searches of `table`, each by its own index, whatever the planner
+  // believes of the outer query's other conditions (sqlite_store_stage1.cpp says why).
+  void all_unless(const std::string& key, const std::string& table, const std::string& alternative,
+                  const std::vector<NumberComparison>& comparisons);
+  // "column = value"
+  void equal(const std::string& column, const std::string& value);
+  // "column op value" for op in <, <=, >, >=
+  void compare(const std::string& column, const char* op, const std::string& value);
+  void compare(const std::string& column, const char* op, double value);
+  // "column GLOB pattern" (PostgreSQL: "column ~ regex", glob_regex), plus the index range of the
+  // pattern's literal prefix (glob_range.h). PostgreSQL compares text by the column's collation:
+  // the store's columns are "C" (byte order), as the range assumes.
+  void glob(const std::string& column, const std::string& pattern);
+  // "/value/" occurs in `column` (a list such as /MR/CT/).
+  void contains_delimited(const std::string& column, const std::string& value);
+
+  // " AND c1 AND c2 …" (empty when there is no condition), to follow a WHERE clause.
+  std::string sql() const;
+  const std::vector<Value>& params() const { return params_; }
+  // Binds the parameters to a statement with bind(int, const std::string&) and bind(int, double),
+  // from 1 (a SQLite statement).
+  template <typename Statement>
+  void bind(Statement& st) const {
+    for (size_t i = 0; i < params_.size(); ++i) {
+      if (const auto* text = std::get_if<std::string>(&params_[i])) {
+        st.bind(int(i + 1), *text);
+      } else {
+        st.bind(int(i + 1), std::get<double>(params_[i]));
+      }
+    }
+  }
+
+ private:
+  std::string next();  // the parameter for the value just added
+
+  SqlDialect dialect_;
+  std::vector<std::string> conditions_;
+  std::vector<Value> params_;
+};
+
+}  // namespace soiq::db
