@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "db/record_merge.h"
+
 namespace soiq::db {
 namespace {
 
@@ -52,6 +54,13 @@ Result<std::optional<double>> age_years(const std::string& birth_date, const std
   const sys_days next = anniversary(birth, years + 1);
   const double fraction = double((study - last).count()) / double((next - last).count());
   return std::optional<double>(years + fraction);
+}
+
+Result<std::optional<double>> study_age(const std::optional<double>& given, const std::optional<double>& stored_given,
+                                        const std::string& birth_date, const std::string& study_date) {
+  if (given) return given;
+  if (stored_given) return stored_given;
+  return age_years(birth_date, study_date);
 }
 
 }  // namespace soiq::db

@@ -134,4 +134,55 @@ Status validate_cache_entries(const std::string& surface_sha256, const std::vect
   return ok_status();
 }
 
+Status validate_new_series(const NewSeries& s) {
+  SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
+  SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
+  if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
+  if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
+    return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
+                            "' but is sent with study '" + s.study.study_uid + "'");
+  }
+  SOIQ_RETURN_IF_ERROR(validate_geometry(s.series.geometry));
+  SOIQ_RETURN_IF_ERROR(validate_sha256(s.series.sha256, "image"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.frame_of_reference_uid, "frame_of_reference_uid"));
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.sop_class_uid, "sop_class_uid"));
+  for (const std::string& uid : s.series.slice_instance_uids)
+    SOIQ_RETURN_IF_ERROR(validate_uid(uid, "slice instance uid"));
+  if (!s.series.slice_instance_uids.empty() &&
+      int64_t(s.series.slice_instance_uids.size()) != s.series.geometry.dims[2]) {
+    return invalid_argument("series '" + s.series.series_uid + "' has " +
+                            std::to_string(s.series.slice_instance_uids.size()) + " slice instance uids for " +
+                            std::to_string(s.series.geometry.dims[2]) + " slices");
+  }
+  if (s.image_blob.empty()) return invalid_argument("image blob is empty");
+  return ok_status();
+}
+
+Status validate_new_structure(const NewStructure& s) {
+  SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
+  SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
+  if (s.name.empty()) return invalid_argument("structure name is empty");
+  SOIQ_RETURN_IF_ERROR(validate_text(s.name, "structure name", kMaxNameBytes));
+  SOIQ_RETURN_IF_ERROR(validate_laterality(s.laterality));
+  SOIQ_RETURN_IF_ERROR(validate_sha256(s.surface.sha256, "surface"));
+  if (s.surface_blob.empty()) return invalid_argument("surface blob is empty");
+  SOIQ_RETURN_IF_ERROR(validate_uid(s.source_series_uid, "source_series_uid"));
+  return ok_status();
+}
+
+Status validate_precomputed(const Precomputed& p) {
+  SOIQ_RETURN_IF_ERROR(validate_sha256(p.surface_sha256, "surface"));
+  const size_t n = stored_feature_names().size();
+  if (p.failure.empty() && p.values.size() != n) {
+    return invalid_argument("precomputed values: " + std::to_string(p.values.size()) + " given, " + std::to_string(n) +
+                            " stored features");
+  }
+  for (const CachedFeature& f : p.cache_entries) {
+    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
+  }
+  return ok_status();
+}
+
 }  // namespace soiq::db

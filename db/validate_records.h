@@ -14,6 +14,8 @@ namespace soiq::db {
 // "name" is refused rather than stored, logged and echoed.
 inline constexpr size_t kMaxIdBytes = 64;
 inline constexpr size_t kMaxNameBytes = 256;
+// A precompute failure is kept (for `soiq info` and the log) cut to this many bytes.
+inline constexpr size_t kMaxPrecomputeFailureBytes = 1024;
 
 // At most `max_bytes` bytes and no control characters (a newline in an id splits log lines and CSV
 // rows). INVALID_ARGUMENT naming `what` and quoting at most 40 printable characters of the value.
@@ -35,5 +37,13 @@ Status validate_patient_filter(const PatientFilter& f);
 Status validate_structure_filter(const StructureFilter& f);
 // A surface's feature-cache entries: the surface's sha256, and a key and an entry name for each.
 Status validate_cache_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries);
+// What import_batch takes: the patient and study as above, the series' uid, modality, geometry,
+// image sha256 and DICOM references (slice uids one per slice), a non-empty blob; the structure's
+// name, laterality, surface sha256, source series and a non-empty blob.
+Status validate_new_series(const NewSeries& s);
+Status validate_new_structure(const NewStructure& s);
+// What put_precomputed takes: the surface's sha256, one value per stored feature unless it failed,
+// and a key and an entry name for each cache entry.
+Status validate_precomputed(const Precomputed& p);
 
 }  // namespace soiq::db

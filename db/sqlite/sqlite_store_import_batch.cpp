@@ -4,6 +4,7 @@
 
 #include "db/sqlite/sqlite_store.h"
 #include "db/sqlite/sqlite_store_writes.h"
+#include "db/validate_records.h"
 
 namespace soiq::db {
 

@@ -7,14 +7,11 @@
 #include <vector>
 
 #include "db/age_years.h"
+#include "db/record_merge.h"
 #include "db/sqlite/sqlite_store_writes.h"
 
 namespace soiq::db {
 namespace {
-
-const std::string& merged(const std::string& given, const std::string& stored) {
-  return given.empty() ? stored : given;
-}
 
 // What is stored of a study, for merging; every field empty when the study is new.
 struct StoredStudy {
@@ -104,14 +101,6 @@ Result<int64_t> upsert_patient(Connection& c, const PatientRecord& patient, cons
     SOIQ_RETURN_IF_ERROR(up.run());
   }
   return *stored.pk;
-}
-
-// Chooses the stored age of a study: the given one, else a previously given one, else computed.
-Result<std::optional<double>> study_age(const std::optional<double>& given, const std::optional<double>& stored_given,
-                                        const std::string& birth_date, const std::string& study_date) {
-  if (given) return given;
-  if (stored_given) return stored_given;
-  return age_years(birth_date, study_date);
 }
 
 // The update and the insert of a study take the same parameters: ?1 pk, ?2 study_uid, ?3 study_date,

@@ -92,8 +92,6 @@ const std::string& unstore_stale_rows_sql() {
 constexpr char kDeleteStaleSql[] = R"sql(
   DELETE FROM stored_features WHERE definitions_version <> ?1)sql";
 
-constexpr size_t kMaxFailureBytes = 1024;
-
 }  // namespace
 
 Status queue_precompute(Connection& c, int64_t structure_id, bool surface_changed) {
@@ -131,19 +129,6 @@ Result<std::vector<StructureRecord>> SqliteStore::precompute_queue(int64_t limit
 
 namespace {
 
-Status check_precomputed(const Precomputed& p) {
-  SOIQ_RETURN_IF_ERROR(validate_sha256(p.surface_sha256, "surface"));
-  const size_t n = stored_feature_names().size();
-  if (p.failure.empty() && p.values.size() != n) {
-    return invalid_argument("precomputed values: " + std::to_string(p.values.size()) + " given, " + std::to_string(n) +
-                            " stored features");
-  }
-  for (const CachedFeature& f : p.cache_entries) {
-    if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
-  }
-  return ok_status();
-}
-
 // One structure's part of put_precomputed, inside its transaction.
 Status store_precomputed(Connection& c, const Precomputed& p) {
   const size_t n = stored_feature_names().size();
@@ -158,7 +143,7 @@ Status store_precomputed(Connection& c, const Precomputed& p) {
   if (!p.failure.empty()) {
     SOIQ_ASSIGN_OR_RETURN(Statement fail, c.prepare(kFailSql));
     fail.bind(1, p.structure_id);
-    fail.bind(2, p.failure.substr(0, kMaxFailureBytes));
+    fail.bind(2, p.failure.substr(0, kMaxPrecomputeFailureBytes));
     return fail.run();
   }
   SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, p.surface_sha256, p.cache_entries).status());
@@ -184,7 +169,7 @@ Status store_precomputed(Connection& c, const Precomputed& p) {
 }  // namespace
 
 Status SqliteStore::put_precomputed(const std::vector<Precomputed>& batch) {
-  for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(check_precomputed(p));
+  for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(validate_precomputed(p));
   if (batch.empty()) return ok_status();
   return write([&](Connection& c) -> Status {
     for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(store_precomputed(c, p));

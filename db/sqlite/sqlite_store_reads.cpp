@@ -2,8 +2,8 @@
 // and its counts come from one snapshot.
 #include "db/page_token.h"
 #include "db/sql/glob_range.h"
-#include "db/sql/sql_conditions.h"
 #include "db/sql/record_sql.h"
+#include "db/sql/sql_conditions.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/validate_records.h"
 

@@ -94,32 +94,6 @@ Status upsert_series_row(Connection& c, const SeriesRecord& series, int64_t stud
 
 }  // namespace
 
-Status validate_new_series(const NewSeries& s) {
-  SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
-  SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
-  if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
-  SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
-  SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
-  if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
-    return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
-                            "' but is sent with study '" + s.study.study_uid + "'");
-  }
-  SOIQ_RETURN_IF_ERROR(validate_geometry(s.series.geometry));
-  SOIQ_RETURN_IF_ERROR(validate_sha256(s.series.sha256, "image"));
-  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.frame_of_reference_uid, "frame_of_reference_uid"));
-  SOIQ_RETURN_IF_ERROR(validate_uid(s.series.sop_class_uid, "sop_class_uid"));
-  for (const std::string& uid : s.series.slice_instance_uids)
-    SOIQ_RETURN_IF_ERROR(validate_uid(uid, "slice instance uid"));
-  if (!s.series.slice_instance_uids.empty() &&
-      int64_t(s.series.slice_instance_uids.size()) != s.series.geometry.dims[2]) {
-    return invalid_argument("series '" + s.series.series_uid + "' has " +
-                            std::to_string(s.series.slice_instance_uids.size()) + " slice instance uids for " +
-                            std::to_string(s.series.geometry.dims[2]) + " slices");
-  }
-  if (s.image_blob.empty()) return invalid_argument("image blob is empty");
-  return ok_status();
-}
-
 Result<bool> insert_series(Connection& c, const NewSeries& s) {
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
   SOIQ_RETURN_IF_ERROR(insert_image_blob(c, s));

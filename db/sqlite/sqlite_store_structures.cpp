@@ -134,18 +134,6 @@ Result<int64_t> insert_structure_row(Connection& c, const NewStructure& s, int64
 
 }  // namespace
 
-Status validate_new_structure(const NewStructure& s) {
-  SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
-  SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
-  if (s.name.empty()) return invalid_argument("structure name is empty");
-  SOIQ_RETURN_IF_ERROR(validate_text(s.name, "structure name", kMaxNameBytes));
-  SOIQ_RETURN_IF_ERROR(validate_laterality(s.laterality));
-  SOIQ_RETURN_IF_ERROR(validate_sha256(s.surface.sha256, "surface"));
-  if (s.surface_blob.empty()) return invalid_argument("surface blob is empty");
-  SOIQ_RETURN_IF_ERROR(validate_uid(s.source_series_uid, "source_series_uid"));
-  return ok_status();
-}
-
 Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
   AddedStructure out;
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));

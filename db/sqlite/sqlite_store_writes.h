@@ -25,14 +25,13 @@ struct StudyKeys {
 // FAILED_PRECONDITION when the study belongs to another patient.
 Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& patient, const StudyRecord& study);
 
-// sqlite_store_structures.cpp: the checks of add_structure, and its writes (the patient and study,
-// the surface blob, then a new, replaced or recognised structure).
-Status validate_new_structure(const NewStructure& s);
+// sqlite_store_structures.cpp: the writes of a structure (the patient and study, the surface blob,
+// then a new, replaced or recognised structure), checked before by validate_new_structure.
 Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s);
 
-// sqlite_store_series.cpp: the checks of put_series, and its writes (the patient and study, the
-// image blob, the series). Returns true when a series with the same uid was replaced.
-Status validate_new_series(const NewSeries& s);
+// sqlite_store_series.cpp: the writes of a series (the patient and study, the image blob, the
+// series), checked before by validate_new_series. Returns true when a series with the same uid was
+// replaced.
 Result<bool> insert_series(Connection& c, const NewSeries& s);
 
 // sqlite_store_stage1_rows.cpp: rewrites the stage-1 rows of every structure of the patient.
