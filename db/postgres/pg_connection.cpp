@@ -36,8 +36,9 @@ std::string_view PgResult::raw(int row, int col) const {
 
 int64_t PgResult::affected() const { return std::strtoll(PQcmdTuples(r_.get()), nullptr, 10); }
 
-PgParam pg_binary_param(std::string bytes) {
-  PgParam p(std::move(bytes));
+PgParam pg_binary_param(std::string_view bytes) {
+  PgParam p(std::nullopt);
+  p.bytes = bytes;
   p.binary = true;
   return p;
 }
@@ -121,8 +122,18 @@ Result<PgResult> PgConnection::execute(const std::string& sql, const std::vector
   std::vector<int> lengths, formats;
   values.reserve(params.size());
   for (const PgParam& p : params) {
-    values.push_back(p.value ? p.value->data() : nullptr);
-    lengths.push_back(p.value ? int(p.value->size()) : 0);
+    if (p.binary) {
+      // PostgreSQL's own bound on a bytea value; larger is refused here, before anything is sent.
+      if (p.bytes.size() >= (size_t{1} << 30)) {
+        return Status(StatusCode::kResourceExhausted, std::string(what) + ": " + std::to_string(p.bytes.size()) +
+                                                          " bytes; PostgreSQL stores at most 1 GiB in one value");
+      }
+      values.push_back(p.bytes.empty() ? "" : p.bytes.data());  // a null pointer would be SQL NULL
+      lengths.push_back(int(p.bytes.size()));
+    } else {
+      values.push_back(p.value ? p.value->data() : nullptr);
+      lengths.push_back(p.value ? int(p.value->size()) : 0);
+    }
     formats.push_back(p.binary ? 1 : 0);
   }
   SOIQ_ASSIGN_OR_RETURN(const std::string name, prepared(sql, int(params.size()), what));

@@ -61,13 +61,15 @@ struct PgRow {
 // A statement parameter: text, NULL, or bytes sent as they are (pg_binary_param).
 struct PgParam {
   std::optional<std::string> value;
+  std::string_view bytes;  // with `binary`: the caller's bytes, not copied
   bool binary = false;
   PgParam(std::string text) : value(std::move(text)) {}                 // NOLINT: implicit, for {"a", b} lists
   PgParam(const char* text) : value(text) {}                            // NOLINT
   PgParam(std::nullopt_t) {}                                            // NOLINT
   PgParam(std::optional<std::string> text) : value(std::move(text)) {}  // NOLINT
 };
-PgParam pg_binary_param(std::string bytes);
+// Bytes for a bytea parameter, sent in binary: they must outlive the statement's exec.
+PgParam pg_binary_param(std::string_view bytes);
 // Bytes as PostgreSQL's hex text for bytea (\x…), for bytea values inside an array literal.
 std::string pg_bytea_hex(std::string_view bytes);
 // Numbers as parameters: exactly (a double round-trips through 17 significant digits).

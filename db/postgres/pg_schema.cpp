@@ -162,9 +162,26 @@ CREATE TABLE stored_features (
 CREATE INDEX stored_features_version ON stored_features(definitions_version);
 )sql";
 
+// Version 2: every text column compares in byte order (collation "C"), as SQLite's BINARY does,
+// whatever the database's locale: page tokens continue an ORDER BY by comparison, glob prefixes
+// become index ranges (glob_range.h), and lower() changes ASCII letters only, as SQLite's does. A
+// database created with a language's collation (initdb's default) would order 'a' and 'B' otherwise.
+constexpr char kSchemaV2[] = R"sql(
+DO $$
+DECLARE c record;
+BEGIN
+  FOR c IN SELECT table_name, column_name FROM information_schema.columns
+           WHERE table_schema = current_schema() AND data_type = 'text' AND table_name <> 'soiq_schema'
+           ORDER BY table_name, ordinal_position
+  LOOP
+    EXECUTE format('ALTER TABLE %I ALTER COLUMN %I TYPE text COLLATE "C"', c.table_name, c.column_name);
+  END LOOP;
+END $$;
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<const char*>& steps() {
-  static const std::vector<const char*> kSteps = {kSchemaV1};
+  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2};
   return kSteps;
 }
 

@@ -2,7 +2,8 @@
 // The PostgreSQL store's schema: the same tables, columns and indexes as the SQLite store's latest
 // version (db/sqlite/schema_migrations.cpp), in PostgreSQL's types, versioned and forward-only.
 // PostgreSQL's version 1 is SQLite's version 6: no PostgreSQL database existed before it, so
-// SQLite's history (its re-encodings of blobs) has nothing to migrate here.
+// SQLite's history (its re-encodings of blobs) has nothing to migrate here. Version 2 makes every
+// text column compare in byte order (collation "C"), as SQLite's do.
 //
 // pg_migrate runs each missing step in one transaction holding a transaction-level advisory lock,
 // so replicas starting together on one database migrate it once: the others wait on the lock,

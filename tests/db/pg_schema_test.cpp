@@ -142,6 +142,23 @@ TEST_F(PgTest, TheSchemaIsTheSqliteStoresTableForTableAndColumnForColumn) {
   EXPECT_EQ(c->exec("SELECT count(*) FROM soiq_schema", {}, "count")->int64(0, 0), 1);
 }
 
+TEST_F(PgTest, EveryTextColumnComparesInByteOrderWhateverTheDatabasesLocale) {
+  auto c = connect();
+  ASSERT_TRUE(c.ok());
+  ASSERT_TRUE(pg_migrate(*c).ok());
+  auto r = c->exec(
+      "SELECT table_name || '.' || column_name, coalesce(collation_name, '') FROM information_schema.columns "
+      "WHERE table_schema = 'public' AND data_type = 'text' AND table_name <> 'soiq_schema'",
+      {}, "list text columns");
+  ASSERT_TRUE(r.ok());
+  ASSERT_GT(r->rows(), 20);
+  for (int i = 0; i < r->rows(); ++i) EXPECT_EQ(r->text(i, 1), "C") << r->text(i, 0);
+  // So does lower() of them, which changes ASCII letters only (as SQLite's does).
+  auto lower = c->exec("SELECT lower(name) FROM (SELECT $1::text COLLATE \"C\" AS name) n", {"\u00c9A"}, "lower");
+  ASSERT_TRUE(lower.ok()) << lower.status().to_string();
+  EXPECT_EQ(lower->text(0, 0), "\u00c9a");
+}
+
 TEST_F(PgTest, ReplicasStartingTogetherMigrateOnce) {
   std::vector<std::thread> replicas;
   std::vector<Status> results(4);
