@@ -39,6 +39,8 @@ class PgResult {
   std::string bytes(int row, int col) const;
   // A column's raw value (a binary result's bytes), valid as long as this result.
   std::string_view raw(int row, int col) const;
+  // A column's type (PostgreSQL's type OID: 20 bigint, 23 integer, 701 double precision, …).
+  unsigned type(int col) const { return PQftype(r_.get(), col); }
   // The number of rows an INSERT, UPDATE or DELETE touched.
   int64_t affected() const;
 

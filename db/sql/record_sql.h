@@ -48,6 +48,26 @@ inline constexpr char kSeriesColumns[] = R"sql(
   se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid,
   se.slice_instance_uids)sql";
 
+// The row count of each table, in the order of Counts' fields.
+inline constexpr char kCountsSql[] = R"sql(
+  SELECT (SELECT count(*) FROM patients),
+         (SELECT count(*) FROM studies),
+         (SELECT count(*) FROM series),
+         (SELECT count(*) FROM structures),
+         (SELECT count(*) FROM surfaces),
+         (SELECT count(*) FROM feature_cache),
+         (SELECT count(*) FROM precompute_queue WHERE failure = ''),
+         (SELECT count(*) FROM precompute_queue WHERE failure <> ''))sql";
+
+// The distinct modalities of the series, by a skip-scan over the series_modality index: one index
+// seek per distinct value, not a pass over every series (neither engine skips by itself).
+inline constexpr char kSeriesModalitiesSql[] = R"sql(
+  WITH RECURSIVE m(modality) AS (
+    SELECT min(modality) FROM series
+    UNION ALL
+    SELECT (SELECT min(modality) FROM series WHERE modality > m.modality) FROM m WHERE m.modality IS NOT NULL)
+  SELECT modality FROM m WHERE modality IS NOT NULL)sql";
+
 // The SQL of a query returning records: "SELECT", the column lists above separated by commas,
 // then the parts of the rest (FROM onwards) separated by spaces. Only the column lists and the
 // clauses vary between the store's record queries, so each query names just those.

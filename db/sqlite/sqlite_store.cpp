@@ -1,6 +1,9 @@
 #include "db/sqlite/sqlite_store.h"
 
+#include "db/sql/stage1_sql.h"
 #include "db/sqlite/schema_migrations.h"
+#include "db/sqlite/sqlite_session.h"
+#include "db/validate_records.h"
 
 namespace soiq::db {
 
@@ -28,7 +31,7 @@ SqliteStore::~SqliteStore() {
   if (writer_) (void)writer_->exec("PRAGMA optimize");
 }
 
-Status SqliteStore::read(const std::function<Status(Connection&)>& fn) {
+Status SqliteStore::read_connection(const std::function<Status(Connection&)>& fn) {
   Connection* c = nullptr;
   {
     std::unique_lock lock(readers_mutex_);
@@ -45,75 +48,49 @@ Status SqliteStore::read(const std::function<Status(Connection&)>& fn) {
   return s;
 }
 
-Status SqliteStore::write(const std::function<Status(Connection&)>& fn) {
+Status SqliteStore::write_connection(const std::function<Status(Connection&)>& fn) {
   std::lock_guard lock(writer_mutex_);
   return run_transaction(*writer_, TransactionKind::kWrite, [&] { return fn(*writer_); });
 }
 
+Status SqliteStore::read(const std::function<Status(SqlSession&)>& fn) {
+  return read_connection([&](Connection& c) {
+    SqliteSession session(c);
+    return fn(session);
+  });
+}
+
+Status SqliteStore::write(const std::function<Status(SqlSession&)>& fn) {
+  return write_connection([&](Connection& c) {
+    SqliteSession session(c);
+    return fn(session);
+  });
+}
+
 Result<int> SqliteStore::schema_version() {
   int version = 0;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(read_connection([&](Connection& c) -> Status {
     SOIQ_ASSIGN_OR_RETURN(version, db::schema_version(c));
     return ok_status();
   }));
   return version;
 }
 
-namespace {
-
-// The row count of each table, in the order of Counts' fields.
-constexpr char kCountsSql[] = R"sql(
-  SELECT (SELECT count(*) FROM patients),
-         (SELECT count(*) FROM studies),
-         (SELECT count(*) FROM series),
-         (SELECT count(*) FROM structures),
-         (SELECT count(*) FROM surfaces),
-         (SELECT count(*) FROM feature_cache),
-         (SELECT count(*) FROM precompute_queue WHERE failure = ''),
-         (SELECT count(*) FROM precompute_queue WHERE failure <> ''))sql";
-
-// The distinct modalities of the series, by a skip-scan over the series_modality index: one index
-// seek per distinct value, not a pass over every series.
-constexpr char kSeriesModalitiesSql[] = R"sql(
-  WITH RECURSIVE m(modality) AS (
-    SELECT min(modality) FROM series
-    UNION ALL
-    SELECT (SELECT min(modality) FROM series WHERE modality > m.modality) FROM m WHERE m.modality IS NOT NULL)
-  SELECT modality FROM m WHERE modality IS NOT NULL)sql";
-
-}  // namespace
-
-Result<Counts> SqliteStore::counts() {
-  Counts n;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(kCountsSql));
-    SOIQ_ASSIGN_OR_RETURN(const bool row, st.step());
-    if (!row) return internal_error("count query returned no row");
-    n = Counts{st.int64(0), st.int64(1), st.int64(2), st.int64(3), st.int64(4),
-               st.int64(5), st.int64(6), st.int64(7), {}};
-    SOIQ_ASSIGN_OR_RETURN(Statement modalities, c.prepare(kSeriesModalitiesSql));
-    for (;;) {
-      SOIQ_ASSIGN_OR_RETURN(const bool more, modalities.step());
-      if (!more) break;
-      n.series_modalities.push_back(modalities.text(0));
+Result<std::vector<std::string>> SqliteStore::stage1_plan(const Stage1Filter& f, int64_t limit) {
+  SOIQ_RETURN_IF_ERROR(validate_stage1_filter(f));
+  const SqlConditions where = stage1_conditions(f, SqlDialect::kSqlite);
+  std::vector<std::string> plan;
+  SOIQ_RETURN_IF_ERROR(read_connection([&](Connection& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare("EXPLAIN QUERY PLAN " + stage1_ids_sql(where, f, limit + 1)));
+    where.bind(q);
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      plan.push_back(q.text(3));
     }
     return ok_status();
   }));
-  return n;
-}
-
-Result<int64_t> SqliteStore::remove(const Removal& r) {
-  switch (r.kind) {
-    case Removal::Kind::kStructure:
-      return remove_structure(r.structure_id);
-    case Removal::Kind::kPatient:
-      return remove_patient(r.patient_id);
-  }
-  return invalid_argument("unknown kind of removal");
-}
-
-Result<std::string> SqliteStore::get_blob(BlobKind kind, const std::string& key) {
-  return kind == BlobKind::kImage ? image_blob(key) : surface_blob(key);
+  return plan;
 }
 
 }  // namespace soiq::db

@@ -1,6 +1,5 @@
-// SqliteStore's side of precompute (db/store.h): the durable queue, the stored default features and
+// SqlStore's side of precompute (db/store.h): the durable queue, the stored default features and
 // their copy in stage1_rows (schema version 5, schema_migrations.cpp).
-#include <sqlite3.h>
 
 #include <cmath>
 #include <string>
@@ -8,8 +7,8 @@
 #include <vector>
 
 #include "db/sql/record_sql.h"
-#include "db/sqlite/sqlite_store.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -51,13 +50,16 @@ std::string feature_assignments(const Value& value) {
   return out;
 }
 
-// ?1 the structure, ?2 the definitions version, then the values.
+// ?1 the structure, ?2 the definitions version, then the values; replacing stored ones.
 const std::string& store_features_sql() {
   static const std::string sql = [] {
-    std::string values;
-    for (size_t i = 0; i < stored_feature_names().size(); ++i) values += ", ?" + std::to_string(i + 3);
-    return "INSERT OR REPLACE INTO stored_features(structure_id, definitions_version, " + feature_columns() +
-           ") VALUES (?1, ?2" + values + ")";
+    std::string values, replace = "definitions_version = excluded.definitions_version";
+    for (size_t i = 0; i < stored_feature_names().size(); ++i) {
+      values += ", ?" + std::to_string(i + 3);
+      replace += ", " + stored_feature_names()[i] + " = excluded." + stored_feature_names()[i];
+    }
+    return "INSERT INTO stored_features(structure_id, definitions_version, " + feature_columns() + ") VALUES (?1, ?2" +
+           values + ") ON CONFLICT(structure_id) DO UPDATE SET " + replace;
   }();
   return sql;
 }
@@ -94,28 +96,28 @@ constexpr char kDeleteStaleSql[] = R"sql(
 
 }  // namespace
 
-Status queue_precompute(Connection& c, int64_t structure_id, bool surface_changed) {
+Status queue_precompute(SqlSession& c, int64_t structure_id, bool surface_changed) {
   if (surface_changed) {
-    SOIQ_ASSIGN_OR_RETURN(Statement forget, c.prepare(kForgetStoredFeaturesSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement forget, c.prepare(kForgetStoredFeaturesSql));
     forget.bind(1, structure_id);
     SOIQ_RETURN_IF_ERROR(forget.run());
   }
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kQueueStructureSql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kQueueStructureSql));
   q.bind(1, structure_id);
   return q.run();
 }
 
-Status queue_precompute_of_study(Connection& c, int64_t study_pk) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kQueueStudySql));
+Status queue_precompute_of_study(SqlSession& c, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kQueueStudySql));
   q.bind(1, study_pk);
   return q.run();
 }
 
-Result<std::vector<StructureRecord>> SqliteStore::precompute_queue(int64_t limit) {
+Result<std::vector<StructureRecord>> SqlStore::precompute_queue(int64_t limit) {
   if (limit < 1) return invalid_argument("precompute queue limit must be >= 1, got " + std::to_string(limit));
   std::vector<StructureRecord> out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kQueueSql})));
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kQueueSql})));
     q.bind(1, limit);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -129,11 +131,12 @@ Result<std::vector<StructureRecord>> SqliteStore::precompute_queue(int64_t limit
 
 namespace {
 
-// One structure's part of put_precomputed, inside its transaction.
-Status store_precomputed(Connection& c, const Precomputed& p) {
+// One structure's part of put_precomputed, inside its transaction; its cache entries go into
+// `cache` for one write of them all.
+Status store_precomputed(SqlSession& c, const Precomputed& p, std::vector<SurfaceFeatures>& cache) {
   const size_t n = stored_feature_names().size();
   {
-    SOIQ_ASSIGN_OR_RETURN(Statement now, c.prepare(kStructureSurfaceSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement now, c.prepare(kStructureSurfaceSql));
     now.bind(1, p.structure_id);
     SOIQ_ASSIGN_OR_RETURN(const bool found, now.step());
     // Deleted meanwhile, or given a new surface (and queued again by that write): these values
@@ -141,52 +144,53 @@ Status store_precomputed(Connection& c, const Precomputed& p) {
     if (!found || now.text(0) != p.surface_sha256) return ok_status();
   }
   if (!p.failure.empty()) {
-    SOIQ_ASSIGN_OR_RETURN(Statement fail, c.prepare(kFailSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement fail, c.prepare(kFailSql));
     fail.bind(1, p.structure_id);
     fail.bind(2, p.failure.substr(0, kMaxPrecomputeFailureBytes));
     return fail.run();
   }
-  SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, p.surface_sha256, p.cache_entries).status());
+  cache.push_back({p.surface_sha256, p.cache_entries});
   // NaN is stored as NULL: neither satisfies any condition, as in stage 2 (server/app/query.h).
-  auto bind_value = [&](Statement& st, int index, size_t i) {
+  auto bind_value = [&](SqlStatement& st, int index, size_t i) {
     const bool known = p.values[i] && !std::isnan(*p.values[i]);
     st.bind(index, known ? p.values[i] : std::nullopt);
   };
-  SOIQ_ASSIGN_OR_RETURN(Statement store, c.prepare(store_features_sql()));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement store, c.prepare(store_features_sql()));
   store.bind(1, p.structure_id);
   store.bind(2, int64_t{p.definitions_version});
   for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
   SOIQ_RETURN_IF_ERROR(store.run());
-  SOIQ_ASSIGN_OR_RETURN(Statement row, c.prepare(stage1_features_sql()));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement row, c.prepare(stage1_features_sql()));
   row.bind(1, p.structure_id);
   for (size_t i = 0; i < n; ++i) bind_value(row, int(i + 2), i);
   SOIQ_RETURN_IF_ERROR(row.run());
-  SOIQ_ASSIGN_OR_RETURN(Statement done, c.prepare(kDequeueSql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement done, c.prepare(kDequeueSql));
   done.bind(1, p.structure_id);
   return done.run();
 }
 
 }  // namespace
 
-Status SqliteStore::put_precomputed(const std::vector<Precomputed>& batch) {
+Status SqlStore::put_precomputed(const std::vector<Precomputed>& batch) {
   for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(validate_precomputed(p));
   if (batch.empty()) return ok_status();
-  return write([&](Connection& c) -> Status {
-    for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(store_precomputed(c, p));
-    return ok_status();
+  return write([&](SqlSession& c) -> Status {
+    std::vector<SurfaceFeatures> cache;
+    for (const Precomputed& p : batch) SOIQ_RETURN_IF_ERROR(store_precomputed(c, p, cache));
+    return upsert_cached_features(c, cache);
   });
 }
 
-Result<int64_t> SqliteStore::requeue_precompute(int definitions_version) {
+Result<int64_t> SqlStore::requeue_precompute(int definitions_version) {
   int64_t requeued = 0;
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(write([&](SqlSession& c) -> Status {
     for (const std::string_view sql : {std::string_view(kRequeueStaleSql), std::string_view(unstore_stale_rows_sql()),
                                        std::string_view(kDeleteStaleSql)}) {
-      SOIQ_ASSIGN_OR_RETURN(Statement st, c.prepare(sql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement st, c.prepare(sql));
       st.bind(1, int64_t{definitions_version});
       SOIQ_RETURN_IF_ERROR(st.run());
+      requeued = st.changes();  // the last statement's: the values deleted
     }
-    requeued = sqlite3_changes64(c.handle());  // of the last statement: the values deleted
     return ok_status();
   }));
   return requeued;

@@ -1,4 +1,4 @@
-// The series half of SqliteStore::import_batch: the image blob stored once per
+// The series half of SqlStore::import_batch: the image blob stored once per
 // sha256 and the series inserted or replaced in place, never moved to another patient. One write
 // transaction, so any error leaves the database as it was.
 #include <optional>
@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "db/sql/record_sql.h"
-#include "db/sqlite/sqlite_store.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -17,10 +17,10 @@ constexpr char kInsertImageBlobSql[] = R"sql(
   INSERT INTO image_blobs(sha256, blob) VALUES (?1, ?2)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
-Status insert_image_blob(Connection& c, const NewSeries& s) {
-  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertImageBlobSql));
+Status insert_image_blob(SqlSession& c, const NewSeries& s) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertImageBlobSql));
   ins.bind(1, s.series.sha256);
-  ins.bind_blob(2, s.image_blob.data(), s.image_blob.size());
+  ins.bind_blob(2, s.image_blob);
   return ins.run();
 }
 
@@ -38,8 +38,8 @@ struct StoredSeries {
 };
 
 // FAILED_PRECONDITION when the series is stored under another patient than `patient_pk`.
-Result<std::optional<StoredSeries>> stored_series(Connection& c, const NewSeries& s, int64_t patient_pk) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSeriesOwnerSql));
+Result<std::optional<StoredSeries>> stored_series(SqlSession& c, const NewSeries& s, int64_t patient_pk) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kSeriesOwnerSql));
   q.bind(1, s.series.series_uid);
   SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
   if (!found) return std::optional<StoredSeries>();
@@ -71,8 +71,8 @@ constexpr char kUpsertSeriesSql[] = R"sql(
     image_sha256 = excluded.image_sha256, frame_of_reference_uid = excluded.frame_of_reference_uid,
     sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids)sql";
 
-Status upsert_series_row(Connection& c, const SeriesRecord& series, int64_t study_pk) {
-  SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertSeriesSql));
+Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertSeriesSql));
   const ImageGeometry& g = series.geometry;
   up.bind(1, series.series_uid);
   up.bind(2, study_pk);
@@ -94,7 +94,7 @@ Status upsert_series_row(Connection& c, const SeriesRecord& series, int64_t stud
 
 }  // namespace
 
-Result<bool> insert_series(Connection& c, const NewSeries& s) {
+Result<bool> insert_series(SqlSession& c, const NewSeries& s) {
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
   SOIQ_RETURN_IF_ERROR(insert_image_blob(c, s));
   SOIQ_ASSIGN_OR_RETURN(const std::optional<StoredSeries> old, stored_series(c, s, keys.patient_pk));

@@ -1,10 +1,11 @@
-// SqliteStore's feature cache: values are little-endian float64 arrays keyed by (key, entry).
+// SqlStore's feature cache: values are little-endian float64 arrays (cached_value.h) keyed by
+// (key, entry).
 #include <string_view>
 #include <unordered_set>
 
 #include "db/cached_value.h"
-#include "db/sqlite/sqlite_store.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -30,17 +31,18 @@ std::string in_list_sql(size_t n) {
 
 }  // namespace
 
-Result<std::vector<CachedFeature>> SqliteStore::cached_features(const std::vector<std::string>& keys,
-                                                                const std::vector<std::string>& entries) {
+Result<std::vector<CachedFeature>> SqlStore::cached_features(const std::vector<std::string>& keys,
+                                                             const std::vector<std::string>& entries) {
   std::vector<CachedFeature> out;
   if (keys.empty()) return out;
   // Rows of other entries are stepped over without a copy: only their entry text is looked at.
   const std::unordered_set<std::string_view> wanted(entries.begin(), entries.end());
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
+    out.clear();
     for (size_t begin = 0; begin < keys.size(); begin += kMaxKeysPerQuery) {
       const size_t count = std::min(kMaxKeysPerQuery, keys.size() - begin);
       const size_t padded = std::bit_ceil(count);
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(in_list_sql(padded)));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(in_list_sql(padded)));
       for (size_t i = 0; i < padded; ++i) q.bind(int(i + 1), keys[begin + std::min(i, count - 1)]);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -68,44 +70,42 @@ constexpr char kUpsertCachedFeatureSql[] = R"sql(
 
 }  // namespace
 
-Result<bool> upsert_cached_features(Connection& c, const std::string& surface_sha256,
-                                    const std::vector<CachedFeature>& entries) {
-  {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfaceExistsSql));
-    q.bind(1, surface_sha256);
-    SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
-    if (!found) return false;
-  }
-  for (const CachedFeature& f : entries) {
-    SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpsertCachedFeatureSql));
-    up.bind(1, f.key);
-    up.bind(2, f.entry);
-    up.bind(3, surface_sha256);
-    const std::string_view bytes = cached_value_bytes(f.value);
-    up.bind_blob(4, bytes.data(), bytes.size());
-    SOIQ_RETURN_IF_ERROR(up.run());
-  }
-  return true;
+Result<bool> surface_exists(SqlSession& c, const std::string& sha256) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kSurfaceExistsSql));
+  q.bind(1, sha256);
+  return q.step();
 }
 
-Status SqliteStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
+Status SqlStore::upsert_cached_features(SqlSession& c, const std::vector<SurfaceFeatures>& batch) {
+  for (const SurfaceFeatures& s : batch) {
+    SOIQ_ASSIGN_OR_RETURN(const bool stored, surface_exists(c, s.surface_sha256));
+    if (!stored) continue;
+    for (const CachedFeature& f : s.entries) {
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertCachedFeatureSql));
+      up.bind(1, f.key);
+      up.bind(2, f.entry);
+      up.bind(3, s.surface_sha256);
+      up.bind_blob(4, cached_value_bytes(f.value));
+      SOIQ_RETURN_IF_ERROR(up.run());
+    }
+  }
+  return ok_status();
+}
+
+Status SqlStore::put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) {
   SOIQ_RETURN_IF_ERROR(validate_cache_entries(surface_sha256, entries));
-  return write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(const bool stored, upsert_cached_features(c, surface_sha256, entries));
+  return write([&](SqlSession& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const bool stored, surface_exists(c, surface_sha256));
     // The surface may have been deleted while its features were computed: nothing to cache then.
     if (!stored) return not_found("surface " + surface_sha256 + " not found; its features are not cached");
-    return ok_status();
+    return upsert_cached_features(c, {{surface_sha256, entries}});
   });
 }
 
-Status SqliteStore::put_cached_features(const std::vector<SurfaceFeatures>& batch) {
+Status SqlStore::put_cached_features(const std::vector<SurfaceFeatures>& batch) {
   for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(validate_cache_entries(s.surface_sha256, s.entries));
   if (batch.empty()) return ok_status();
-  return write([&](Connection& c) -> Status {
-    for (const SurfaceFeatures& s : batch)
-      SOIQ_RETURN_IF_ERROR(upsert_cached_features(c, s.surface_sha256, s.entries).status());
-    return ok_status();
-  });
+  return write([&](SqlSession& c) { return upsert_cached_features(c, batch); });
 }
 
 }  // namespace soiq::db

@@ -1,5 +1,5 @@
 // The patient and study half of every write that adds a structure or a series
-// (upsert_patient_and_study, sqlite_store_writes.h): given fields are merged into the stored
+// (upsert_patient_and_study, sql_store_writes.h): given fields are merged into the stored
 // records, a study never changes patient, and the ages the store computes follow the dates.
 #include <optional>
 #include <string>
@@ -8,7 +8,7 @@
 
 #include "db/age_years.h"
 #include "db/record_merge.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store_writes.h"
 
 namespace soiq::db {
 namespace {
@@ -29,9 +29,9 @@ constexpr char kStudyForUpsertSql[] = R"sql(
   WHERE st.study_uid = ?1)sql";
 
 // FAILED_PRECONDITION when the study is stored under another patient than `patient_id`.
-Result<StoredStudy> stored_study(Connection& c, const std::string& study_uid, const std::string& patient_id) {
+Result<StoredStudy> stored_study(SqlSession& c, const std::string& study_uid, const std::string& patient_id) {
   StoredStudy stored;
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStudyForUpsertSql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kStudyForUpsertSql));
   q.bind(1, study_uid);
   SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
   if (!found) return stored;
@@ -60,9 +60,9 @@ struct StoredPatient {
 constexpr char kPatientForUpsertSql[] = R"sql(
   SELECT pk, sex, birth_date FROM patients WHERE patient_id = ?1)sql";
 
-Result<StoredPatient> stored_patient(Connection& c, const std::string& patient_id) {
+Result<StoredPatient> stored_patient(SqlSession& c, const std::string& patient_id) {
   StoredPatient stored;
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kPatientForUpsertSql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kPatientForUpsertSql));
   q.bind(1, patient_id);
   SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
   if (!found) return stored;
@@ -81,10 +81,10 @@ constexpr char kUpdatePatientSql[] = R"sql(
 
 // Inserts the patient, or updates a stored one whose merged sex or birth date differs; returns
 // its pk. `birth` is the merged birth date.
-Result<int64_t> upsert_patient(Connection& c, const PatientRecord& patient, const StoredPatient& stored,
+Result<int64_t> upsert_patient(SqlSession& c, const PatientRecord& patient, const StoredPatient& stored,
                                const std::string& birth) {
   if (!stored.pk) {
-    SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertPatientSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertPatientSql));
     ins.bind(1, patient.patient_id);
     ins.bind(2, patient.sex);
     ins.bind(3, patient.birth_date);
@@ -94,7 +94,7 @@ Result<int64_t> upsert_patient(Connection& c, const PatientRecord& patient, cons
   }
   const std::string& sex = merged(patient.sex, stored.sex);
   if (sex != stored.sex || birth != stored.birth_date) {
-    SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpdatePatientSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpdatePatientSql));
     up.bind(1, *stored.pk);
     up.bind(2, sex);
     up.bind(3, birth);
@@ -121,12 +121,12 @@ constexpr char kInsertStudySql[] = R"sql(
 
 // Inserts the study or updates the stored one with the merged fields and age; returns its pk.
 // `birth` is the patient's merged birth date.
-Result<int64_t> upsert_study(Connection& c, const StudyRecord& study, const StoredStudy& stored, int64_t patient_pk,
+Result<int64_t> upsert_study(SqlSession& c, const StudyRecord& study, const StoredStudy& stored, int64_t patient_pk,
                              const std::string& birth) {
   const std::string& date = merged(study.study_date, stored.date);
   SOIQ_ASSIGN_OR_RETURN(const std::optional<double> age, study_age(study.age_years, stored.given_age, birth, date));
   const bool age_given = study.age_years.has_value() || stored.given_age.has_value();
-  SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(stored.pk ? kUpdateStudySql : kInsertStudySql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(stored.pk ? kUpdateStudySql : kInsertStudySql));
   // Both forms use every parameter (an unused one is a bind error); the update's extra
   // conditions hold by the ownership check of stored_study.
   if (stored.pk) up.bind(1, *stored.pk);
@@ -154,10 +154,10 @@ constexpr char kUpdateStudyAgeSql[] = R"sql(
 
 // Recomputes the age of every study of the patient but `study_pk` whose age was not given, from
 // the new birth date `birth`.
-Status refresh_computed_ages(Connection& c, int64_t patient_pk, int64_t study_pk, const std::string& birth) {
+Status refresh_computed_ages(SqlSession& c, int64_t patient_pk, int64_t study_pk, const std::string& birth) {
   std::vector<std::pair<int64_t, std::string>> others;
   {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStudiesWithComputedAgeSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kStudiesWithComputedAgeSql));
     q.bind(1, patient_pk);
     q.bind(2, study_pk);
     while (true) {
@@ -169,7 +169,7 @@ Status refresh_computed_ages(Connection& c, int64_t patient_pk, int64_t study_pk
   for (const auto& [pk, other_date] : others) {
     // A stored date that no longer parses cannot be: it was validated when stored.
     SOIQ_ASSIGN_OR_RETURN(const std::optional<double> other_age, age_years(birth, other_date));
-    SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpdateStudyAgeSql));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpdateStudyAgeSql));
     up.bind(1, pk);
     up.bind(2, other_age);
     SOIQ_RETURN_IF_ERROR(up.run());
@@ -179,7 +179,7 @@ Status refresh_computed_ages(Connection& c, int64_t patient_pk, int64_t study_pk
 
 }  // namespace
 
-Result<StudyKeys> upsert_patient_and_study(Connection& c, const PatientRecord& patient, const StudyRecord& study) {
+Result<StudyKeys> upsert_patient_and_study(SqlSession& c, const PatientRecord& patient, const StudyRecord& study) {
   // The ownership check comes first so that a refused study leaves no patient behind even
   // without the rollback.
   SOIQ_ASSIGN_OR_RETURN(const StoredStudy old_study, stored_study(c, study.study_uid, patient.patient_id));

@@ -1,13 +1,12 @@
-// SqliteStore's deletes: a structure, or a patient with everything of it. Blobs and cached
+// SqlStore's deletes: a structure, or a patient with everything of it. Blobs and cached
 // features nothing refers to any more go in the same transaction, so the file never keeps data
 // of a deleted patient.
-#include <sqlite3.h>
 
 #include <set>
 #include <string>
 
-#include "db/sqlite/sqlite_store.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 
 namespace soiq::db {
 namespace {
@@ -19,8 +18,8 @@ constexpr char kDeleteOrphanSurfaceSql[] = R"sql(
 }  // namespace
 
 // Deletes the surface (and, by cascade, its cached features) when no structure refers to it.
-Status delete_surface_if_orphan(Connection& c, const std::string& sha256) {
-  SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeleteOrphanSurfaceSql));
+Status delete_surface_if_orphan(SqlSession& c, const std::string& sha256) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanSurfaceSql));
   del.bind(1, sha256);
   return del.run();
 }
@@ -33,8 +32,8 @@ constexpr char kDeleteOrphanImageSql[] = R"sql(
 
 }  // namespace
 
-Status delete_image_if_orphan(Connection& c, const std::string& sha256) {
-  SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeleteOrphanImageSql));
+Status delete_image_if_orphan(SqlSession& c, const std::string& sha256) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanImageSql));
   del.bind(1, sha256);
   return del.run();
 }
@@ -47,9 +46,9 @@ constexpr char kDeleteStructureSql[] = R"sql(
 
 }  // namespace
 
-Result<int64_t> SqliteStore::remove_structure(int64_t id) {
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeleteStructureSql));
+Result<int64_t> SqlStore::remove_structure(int64_t id) {
+  SOIQ_RETURN_IF_ERROR(write([&](SqlSession& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteStructureSql));
     del.bind(1, id);
     SOIQ_ASSIGN_OR_RETURN(const bool row, del.step());
     if (!row) return not_found("structure " + std::to_string(id) + " not found");
@@ -82,13 +81,13 @@ constexpr char kDeletePatientSql[] = R"sql(
 
 }  // namespace
 
-Result<int64_t> SqliteStore::remove_patient(const std::string& patient_id) {
+Result<int64_t> SqlStore::remove_patient(const std::string& patient_id) {
   int64_t deleted = 0;
-  SOIQ_RETURN_IF_ERROR(write([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(write([&](SqlSession& c) -> Status {
     // The blobs the patient refers to, collected before the cascade removes the references.
     std::set<std::string> surfaces, images;
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kSurfacesOfPatientSql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kSurfacesOfPatientSql));
       q.bind(1, patient_id);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -98,7 +97,7 @@ Result<int64_t> SqliteStore::remove_patient(const std::string& patient_id) {
       }
     }
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kImagesOfPatientSql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kImagesOfPatientSql));
       q.bind(1, patient_id);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -107,10 +106,10 @@ Result<int64_t> SqliteStore::remove_patient(const std::string& patient_id) {
       }
     }
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement del, c.prepare(kDeletePatientSql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeletePatientSql));
       del.bind(1, patient_id);
       SOIQ_RETURN_IF_ERROR(del.run());
-      if (sqlite3_changes64(c.handle()) == 0) return not_found("patient '" + patient_id + "' not found");
+      if (del.changes() == 0) return not_found("patient '" + patient_id + "' not found");
     }
     for (const std::string& sha : surfaces) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, sha));
     for (const std::string& sha : images) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, sha));

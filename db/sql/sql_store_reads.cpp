@@ -1,19 +1,19 @@
-// SqliteStore's reads of single records and pages. Each method is one read transaction, so a page
+// SqlStore's reads of single records and pages. Each method is one read transaction, so a page
 // and its counts come from one snapshot.
 #include "db/page_token.h"
 #include "db/sql/glob_range.h"
 #include "db/sql/record_sql.h"
 #include "db/sql/sql_conditions.h"
-#include "db/sqlite/sqlite_store.h"
+#include "db/sql/sql_store.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
 
 template <typename T, typename Key, typename Make>
-Result<T> SqliteStore::one_row(const char* sql, const Key& key, const Make& make, const std::string& missing) {
+Result<T> SqlStore::one_row(const char* sql, const Key& key, const Make& make, const std::string& missing) {
   T out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(sql));
+  SOIQ_RETURN_IF_ERROR(read_one([&](SqlSession& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql));
     q.bind(1, key);
     SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
     if (!row) return not_found(missing);
@@ -31,10 +31,10 @@ constexpr char kPatientByIdSql[] = R"sql(
 
 }  // namespace
 
-Result<PatientRecord> SqliteStore::get_patient(const std::string& patient_id) {
+Result<PatientRecord> SqlStore::get_patient(const std::string& patient_id) {
   static const std::string sql = select_sql({kPatientColumns}, {kPatientByIdSql});
   return one_row<PatientRecord>(
-      sql.c_str(), patient_id, [](Statement& q) { return read_patient(q, 0); },
+      sql.c_str(), patient_id, [](SqlStatement& q) { return read_patient(q, 0); },
       "patient '" + patient_id + "' not found");
 }
 
@@ -51,20 +51,20 @@ constexpr char kPatientPageOrderSql[] = R"sql(
 
 }  // namespace
 
-Result<Page<PatientRecord>> SqliteStore::list_patients(const PatientFilter& f, const PageRequest& p) {
+Result<Page<PatientRecord>> SqlStore::list_patients(const PatientFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("patients", p.page_token));
   SOIQ_RETURN_IF_ERROR(validate_patient_filter(f));
-  SqlConditions where;
-  if (!p.page_token.empty()) where.compare("p.patient_id", ">", after);
-  if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
-  if (!f.sex.empty()) where.equal("p.sex", f.sex);
-  const std::string sql =
-      select_sql({kPatientColumns}, {kPatientPageFromSql, where.sql(), kPatientPageOrderSql, std::to_string(size + 1)});
-
   Page<PatientRecord> page;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(sql));
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
+    page.items.clear();
+    SqlConditions where(c.dialect());
+    if (!p.page_token.empty()) where.compare("p.patient_id", ">", after);
+    if (!f.patient_id_glob.empty()) where.glob("p.patient_id", f.patient_id_glob);
+    if (!f.sex.empty()) where.equal("p.sex", f.sex);
+    SOIQ_ASSIGN_OR_RETURN(
+        SqlStatement q, c.prepare(select_sql({kPatientColumns}, {kPatientPageFromSql, where.sql(), kPatientPageOrderSql,
+                                                                 std::to_string(size + 1)})));
     where.bind(q);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -90,10 +90,10 @@ constexpr char kStudyByUidSql[] = R"sql(
 
 }  // namespace
 
-Result<StudyRecord> SqliteStore::get_study(const std::string& study_uid) {
+Result<StudyRecord> SqlStore::get_study(const std::string& study_uid) {
   static const std::string sql = select_sql({kStudyColumns}, {kStudyByUidSql});
   return one_row<StudyRecord>(
-      sql.c_str(), study_uid, [](Statement& q) { return read_study(q, 0); }, "study '" + study_uid + "' not found");
+      sql.c_str(), study_uid, [](SqlStatement& q) { return read_study(q, 0); }, "study '" + study_uid + "' not found");
 }
 
 namespace {
@@ -110,18 +110,18 @@ constexpr char kStudyPageSql[] = R"sql(
 
 }  // namespace
 
-Result<Page<StudyRecord>> SqliteStore::list_studies(const std::string& patient_id, const PageRequest& p) {
+Result<Page<StudyRecord>> SqlStore::list_studies(const std::string& patient_id, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("studies", p.page_token));
   Page<StudyRecord> page;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kPatientExistsSql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kPatientExistsSql));
       q.bind(1, patient_id);
       SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
       if (!found) return not_found("patient '" + patient_id + "' not found");
     }
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStudyColumns}, {kStudyPageSql})));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(select_sql({kStudyColumns}, {kStudyPageSql})));
     q.bind(1, patient_id);
     q.bind(2, after);  // "" sorts before every uid
     q.bind(3, int64_t{size} + 1);
@@ -152,16 +152,16 @@ constexpr char kSeriesOfStudySql[] = R"sql(
 
 }  // namespace
 
-Result<std::vector<SeriesRecord>> SqliteStore::list_series(const std::string& study_uid) {
+Result<std::vector<SeriesRecord>> SqlStore::list_series(const std::string& study_uid) {
   std::vector<SeriesRecord> out;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     {
-      SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStudyExistsSql));
+      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kStudyExistsSql));
       q.bind(1, study_uid);
       SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
       if (!found) return not_found("study '" + study_uid + "' not found");
     }
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kSeriesColumns}, {kSeriesOfStudySql})));
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(select_sql({kSeriesColumns}, {kSeriesOfStudySql})));
     q.bind(1, study_uid);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -182,10 +182,11 @@ constexpr char kSeriesByUidSql[] = R"sql(
 
 }  // namespace
 
-Result<SeriesRecord> SqliteStore::get_series(const std::string& series_uid) {
+Result<SeriesRecord> SqlStore::get_series(const std::string& series_uid) {
   static const std::string sql = select_sql({kSeriesColumns}, {kSeriesByUidSql});
   return one_row<SeriesRecord>(
-      sql.c_str(), series_uid, [](Statement& q) { return read_series(q, 0); }, "series '" + series_uid + "' not found");
+      sql.c_str(), series_uid, [](SqlStatement& q) { return read_series(q, 0); },
+      "series '" + series_uid + "' not found");
 }
 
 namespace {
@@ -198,9 +199,9 @@ constexpr char kImageBlobOfSeriesSql[] = R"sql(
 
 }  // namespace
 
-Result<std::string> SqliteStore::image_blob(const std::string& series_uid) {
+Result<std::string> SqlStore::image_blob(const std::string& series_uid) {
   return one_row<std::string>(
-      kImageBlobOfSeriesSql, series_uid, [](Statement& q) { return q.blob(0); },
+      kImageBlobOfSeriesSql, series_uid, [](SqlStatement& q) { return q.blob(0); },
       "series '" + series_uid + "' not found");
 }
 
@@ -211,10 +212,10 @@ constexpr char kStructureByIdSql[] = R"sql(
 
 }  // namespace
 
-Result<StructureRecord> SqliteStore::get_structure(int64_t id) {
+Result<StructureRecord> SqlStore::get_structure(int64_t id) {
   static const std::string sql = select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql});
   return one_row<StructureRecord>(
-      sql.c_str(), id, [](Statement& q) { return read_structure(q, 0); },
+      sql.c_str(), id, [](SqlStatement& q) { return read_structure(q, 0); },
       "structure " + std::to_string(id) + " not found");
 }
 
@@ -230,7 +231,7 @@ constexpr char kStructurePageOrderSql[] = R"sql(
 
 }  // namespace
 
-Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter& f, const PageRequest& p) {
+Result<Page<StructureRecord>> SqlStore::list_structures(const StructureFilter& f, const PageRequest& p) {
   SOIQ_ASSIGN_OR_RETURN(const int size, effective_page_size(p.page_size));
   SOIQ_ASSIGN_OR_RETURN(const std::string after, parse_page_token("structures", p.page_token));
   SOIQ_RETURN_IF_ERROR(validate_structure_filter(f));
@@ -244,22 +245,22 @@ Result<Page<StructureRecord>> SqliteStore::list_structures(const StructureFilter
     }
     if (used != after.size()) return invalid_argument("page_token does not hold a structure id");
   }
-  SqlConditions where;
-  if (f.patient_id.find_first_of("*?[") != std::string::npos) {
-    where.glob("p.patient_id", f.patient_id);
-  } else if (!f.patient_id.empty()) {
-    where.equal("p.patient_id", f.patient_id);
-  }
-  if (!f.study_uid.empty()) where.equal("st.study_uid", f.study_uid);
-  if (!f.name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.name_glob));
-  if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);
-  const std::string sql =
-      select_sql({kStructureColumns}, {kStructureFrom, kStructurePageWhereSql, std::to_string(after_id), where.sql(),
-                                       kStructurePageOrderSql, std::to_string(size + 1)});
-
   Page<StructureRecord> page;
-  SOIQ_RETURN_IF_ERROR(read([&](Connection& c) -> Status {
-    SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(sql));
+  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
+    page.items.clear();
+    SqlConditions where(c.dialect());
+    if (f.patient_id.find_first_of("*?[") != std::string::npos) {
+      where.glob("p.patient_id", f.patient_id);
+    } else if (!f.patient_id.empty()) {
+      where.equal("p.patient_id", f.patient_id);
+    }
+    if (!f.study_uid.empty()) where.equal("st.study_uid", f.study_uid);
+    if (!f.name_glob.empty()) where.glob("lower(s.name)", ascii_lower(f.name_glob));
+    if (!f.laterality.empty()) where.equal("s.laterality", f.laterality);
+    const std::string sql =
+        select_sql({kStructureColumns}, {kStructureFrom, kStructurePageWhereSql, std::to_string(after_id), where.sql(),
+                                         kStructurePageOrderSql, std::to_string(size + 1)});
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql));
     where.bind(q);
     while (true) {
       SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -282,9 +283,9 @@ constexpr char kSurfaceBlobSql[] = R"sql(
 
 }  // namespace
 
-Result<std::string> SqliteStore::surface_blob(const std::string& sha256) {
+Result<std::string> SqlStore::surface_blob(const std::string& sha256) {
   return one_row<std::string>(
-      kSurfaceBlobSql, sha256, [](Statement& q) { return q.blob(0); }, "surface " + sha256 + " not found");
+      kSurfaceBlobSql, sha256, [](SqlStatement& q) { return q.blob(0); }, "surface " + sha256 + " not found");
 }
 
 }  // namespace soiq::db

@@ -1,14 +1,13 @@
-// The structure half of SqliteStore::import_batch: the surface blob stored once
+// The structure half of SqlStore::import_batch: the surface blob stored once
 // per sha256, and a structure that is new, replaces the one with its source_uid, or is recognised
 // as one already stored. One write transaction, so any error leaves the database as it was.
-#include <sqlite3.h>
 
 #include <optional>
 #include <string>
 
 #include "db/sql/record_sql.h"
-#include "db/sqlite/sqlite_store.h"
-#include "db/sqlite/sqlite_store_writes.h"
+#include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -17,8 +16,9 @@ namespace {
 constexpr char kStructureByIdSql[] = R"sql(
   WHERE s.id = ?1)sql";
 
-Result<StructureRecord> structure_by_id(Connection& c, int64_t id) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql})));
+Result<StructureRecord> structure_by_id(SqlSession& c, int64_t id) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q,
+                        c.prepare(select_sql({kStructureColumns}, {kStructureFrom, kStructureByIdSql})));
   q.bind(1, id);
   SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
   if (!row) return not_found("structure " + std::to_string(id) + " not found");
@@ -31,15 +31,15 @@ constexpr char kInsertSurfaceSql[] = R"sql(
   ON CONFLICT(sha256) DO NOTHING)sql";
 
 // Stores the surface blob unless one with its sha256 is there; true when it already was.
-Result<bool> insert_surface(Connection& c, const NewStructure& s) {
-  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertSurfaceSql));
+Result<bool> insert_surface(SqlSession& c, const NewStructure& s) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertSurfaceSql));
   ins.bind(1, s.surface.sha256);
   ins.bind(2, s.surface.vertex_count);
   ins.bind(3, s.surface.triangle_count);
   for (int i = 0; i < 6; ++i) ins.bind(4 + i, s.surface.bounds_mm[i]);
-  ins.bind_blob(10, s.surface_blob.data(), s.surface_blob.size());
+  ins.bind_blob(10, s.surface_blob);
   SOIQ_RETURN_IF_ERROR(ins.run());
-  return sqlite3_changes64(c.handle()) == 0;
+  return ins.changes() == 0;
 }
 
 constexpr char kStructureBySourceUidSql[] = R"sql(
@@ -58,8 +58,8 @@ constexpr char kUpdateStructureSql[] = R"sql(
 // A re-imported structure (same source_uid) keeps its id: the stored structure with s.source_uid,
 // if any, is updated to `s` (its old surface goes if orphaned) and its id returned.
 // FAILED_PRECONDITION when that structure belongs to another patient.
-Result<std::optional<int64_t>> replace_by_source_uid(Connection& c, const NewStructure& s, const StudyKeys& keys) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureBySourceUidSql));
+Result<std::optional<int64_t>> replace_by_source_uid(SqlSession& c, const NewStructure& s, const StudyKeys& keys) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kStructureBySourceUidSql));
   q.bind(1, s.source_uid);
   SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
   if (!row) return std::optional<int64_t>();
@@ -71,7 +71,7 @@ Result<std::optional<int64_t>> replace_by_source_uid(Connection& c, const NewStr
                                "') belongs to patient '" + q.text(3) + "', not to '" + s.patient.patient_id +
                                "': an import never moves a structure to another patient");
   }
-  SOIQ_ASSIGN_OR_RETURN(Statement up, c.prepare(kUpdateStructureSql));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpdateStructureSql));
   up.bind(1, id);
   up.bind(2, keys.study_pk);
   up.bind(3, s.name);
@@ -98,8 +98,8 @@ constexpr char kStructureWithSameContentSql[] = R"sql(
   LIMIT 1)sql";
 
 // The stored structure that `s` is by NewStructure::same_content_is_same_structure, if any.
-Result<std::optional<int64_t>> structure_with_same_content(Connection& c, const NewStructure& s, int64_t study_pk) {
-  SOIQ_ASSIGN_OR_RETURN(Statement q, c.prepare(kStructureWithSameContentSql));
+Result<std::optional<int64_t>> structure_with_same_content(SqlSession& c, const NewStructure& s, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kStructureWithSameContentSql));
   q.bind(1, study_pk);
   q.bind(2, s.source_series_uid);
   q.bind(3, s.name);
@@ -116,8 +116,8 @@ constexpr char kInsertStructureSql[] = R"sql(
   RETURNING id)sql";
 
 // Inserts `s` as a new structure of the study; returns its id.
-Result<int64_t> insert_structure_row(Connection& c, const NewStructure& s, int64_t study_pk) {
-  SOIQ_ASSIGN_OR_RETURN(Statement ins, c.prepare(kInsertStructureSql));
+Result<int64_t> insert_structure_row(SqlSession& c, const NewStructure& s, int64_t study_pk) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertStructureSql));
   ins.bind(1, study_pk);
   ins.bind(2, s.name);
   ins.bind(3, s.laterality);
@@ -134,7 +134,7 @@ Result<int64_t> insert_structure_row(Connection& c, const NewStructure& s, int64
 
 }  // namespace
 
-Result<AddedStructure> insert_structure(Connection& c, const NewStructure& s) {
+Result<AddedStructure> insert_structure(SqlSession& c, const NewStructure& s) {
   AddedStructure out;
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
   SOIQ_ASSIGN_OR_RETURN(out.surface_already_stored, insert_surface(c, s));

@@ -1,0 +1,27 @@
+#pragma once
+// The store's SQL session (db/sql/sql_session.h) on one PostgreSQL connection, inside the
+// transaction PgStore opened on it. A statement's ?n parameters become $n; parameters go as text
+// (numbers exactly, pg_number) and blobs in binary; results come back in binary, so numbers are
+// read without parsing text and doubles exactly, and a blob is its bytes.
+
+#include "db/postgres/pg_connection.h"
+#include "db/sql/sql_session.h"
+
+namespace soiq::db {
+
+class PgSession : public SqlSession {
+ public:
+  explicit PgSession(PgConnection& c) : c_(c) {}
+  SqlDialect dialect() const override { return SqlDialect::kPostgres; }
+  Result<SqlStatement> prepare(std::string_view sql) override;
+  PgConnection& connection() { return c_; }
+
+ private:
+  PgConnection& c_;
+};
+
+// `sql` with SQLite's numbered parameters ?n written as PostgreSQL's $n. The store's SQL has no
+// '?' in a literal or identifier.
+std::string pg_numbered_parameters(std::string_view sql);
+
+}  // namespace soiq::db

@@ -1,0 +1,81 @@
+#pragma once
+// The Store (store.h) written once in SQL for every backend: records, their rules and the stage-1
+// rows, on a SqlSession (sql_session.h) that the backend opens inside one transaction per method.
+// SqliteStore (db/sqlite/) and PgStore (db/postgres/) derive from it and supply the connections
+// and transactions; the conformance suite (tests/db/store_conformance_test.cpp) runs on both.
+//
+// Semantics a caller must know, beyond store.h, the same in every backend:
+//   - Page sizes: 0 -> 100, above 1000 -> 1000, negative -> INVALID_ARGUMENT. Page tokens are
+//     opaque keyset tokens (page_token.h): patients are listed by patient_id, studies by
+//     study_uid, structures by id; a token of another list -> INVALID_ARGUMENT.
+//   - Ages: StudyRecord::age_years is the given age when one was stored, else computed from the
+//     patient's birth date and the study date as whole years plus the fraction of the current
+//     year of life (age_years.h), and recomputed when either date changes.
+//   - Identifiers (patient_id, study_uid, structure name) must be non-empty; sex is "", "M", "F" or
+//     "O"; laterality "", "L" or "R"; dates "" or YYYYMMDD. Anything else -> INVALID_ARGUMENT.
+//   - Globs are SQLite GLOB patterns (*, ?, [...]), case-sensitive except the structure name, which
+//     is matched in ASCII lower case; text compares in byte order.
+//   - stage1 fills every field of its candidates, the counts of patient and study included.
+//   - Surface and image sha256 values are trusted to match their blobs (the server computes them
+//     with encode_surface / encode_image); they must be 64 lower-case hex digits.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "db/sql/sql_session.h"
+#include "db/store.h"
+
+namespace soiq::db {
+
+class SqlStore : public Store {
+ public:
+  Result<ImportedBatch> import_batch(const ImportBatch& b) override;
+  Result<int64_t> remove(const Removal& r) override;
+  Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
+  Status put_cached_features(const std::vector<SurfaceFeatures>& batch) override;
+  Status put_precomputed(const std::vector<Precomputed>& batch) override;
+  Result<int64_t> requeue_precompute(int definitions_version) override;
+
+  Result<PatientRecord> get_patient(const std::string& patient_id) override;
+  Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;
+  Result<StudyRecord> get_study(const std::string& study_uid) override;
+  Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) override;
+  Result<SeriesRecord> get_series(const std::string& series_uid) override;
+  Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
+  Result<StructureRecord> get_structure(int64_t id) override;
+  Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
+  Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
+  Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
+  Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
+                                                     const std::vector<std::string>& entries) override;
+  Result<Counts> counts() override;
+  Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
+  using Store::cached_features;
+  using Store::put_precomputed;
+
+ protected:
+  // Units of work the backend provides: `fn` runs inside one transaction on a session this thread
+  // holds alone; a write is retried or serialised as the backend needs, a read sees one snapshot.
+  // read_one is for a single statement (a backend may skip BEGIN and COMMIT for it).
+  virtual Status read(const std::function<Status(SqlSession&)>& fn) = 0;
+  virtual Status write(const std::function<Status(SqlSession&)>& fn) = 0;
+  virtual Status read_one(const std::function<Status(SqlSession&)>& fn) { return read(fn); }
+  // Writes the surfaces' feature-cache entries inside a write (put_cached_features, put_precomputed):
+  // an upsert per entry, skipping a surface that is gone. A backend may do it in fewer statements.
+  // Inputs are checked (validate_cache_entries).
+  virtual Status upsert_cached_features(SqlSession& c, const std::vector<SurfaceFeatures>& batch);
+
+ private:
+  Result<int64_t> remove_structure(int64_t id);
+  Result<int64_t> remove_patient(const std::string& patient_id);
+  Result<std::string> image_blob(const std::string& series_uid);
+  Result<std::string> surface_blob(const std::string& sha256);
+
+  // The one row `sql` finds with `key` bound as ?1, made into a T by `make(SqlStatement&)`;
+  // NOT_FOUND with `missing` as the message when there is none (sql_store_reads.cpp).
+  template <typename T, typename Key, typename Make>
+  Result<T> one_row(const char* sql, const Key& key, const Make& make, const std::string& missing);
+};
+
+}  // namespace soiq::db
