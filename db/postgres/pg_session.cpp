@@ -2,6 +2,7 @@
 
 #include <endian.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <memory>
@@ -11,10 +12,33 @@
 
 namespace soiq::db {
 
-std::string pg_numbered_parameters(std::string_view sql) {
-  std::string out(sql);
-  for (size_t i = 0; i + 1 < out.size(); ++i) {
-    if (out[i] == '?' && std::isdigit(static_cast<unsigned char>(out[i + 1]))) out[i] = '$';
+PgNumberedSql pg_numbered_parameters(std::string_view sql) {
+  // The numbers the text uses, then the text with each replaced by its rank among them.
+  std::vector<int> used;
+  for (size_t i = 0; i + 1 < sql.size(); ++i) {
+    if (sql[i] != '?' || !std::isdigit(static_cast<unsigned char>(sql[i + 1]))) continue;
+    int n = 0;
+    for (size_t j = i + 1; j < sql.size() && std::isdigit(static_cast<unsigned char>(sql[j])); ++j)
+      n = std::min(n * 10 + (sql[j] - '0'), 1 << 20);
+    if (size_t(n) >= used.size()) used.resize(size_t(n) + 1, 0);
+    used[size_t(n)] = 1;
+  }
+  PgNumberedSql out;
+  out.numbers.assign(used.size(), 0);
+  for (size_t n = 1, next = 1; n < used.size(); ++n) {
+    if (used[n]) out.numbers[n] = int(next++);
+  }
+  for (size_t i = 0; i < sql.size(); ++i) {
+    if (sql[i] == '?' && i + 1 < sql.size() && std::isdigit(static_cast<unsigned char>(sql[i + 1]))) {
+      size_t j = i + 1;
+      int n = 0;
+      for (; j < sql.size() && std::isdigit(static_cast<unsigned char>(sql[j])); ++j)
+        n = std::min(n * 10 + (sql[j] - '0'), 1 << 20);
+      out.sql += '$' + std::to_string(out.numbers[size_t(n)]);
+      i = j - 1;
+    } else {
+      out.sql += sql[i];
+    }
   }
   return out;
 }
@@ -36,22 +60,26 @@ Int big_endian(std::string_view raw) {
 
 class PgCursor : public SqlCursor {
  public:
-  PgCursor(PgConnection& c, std::string sql) : c_(c), sql_(std::move(sql)) {
+  PgCursor(PgConnection& c, PgNumberedSql sql) : c_(c), sql_(std::move(sql.sql)), numbers_(std::move(sql.numbers)) {
     // Errors name the statement by its start ("INSERT INTO patients(patient_id, …").
     size_t begin = sql_.find_first_not_of(" \n");
     what_ = sql_.substr(begin == std::string::npos ? 0 : begin, 48);
     for (char& ch : what_) ch = ch == '\n' ? ' ' : ch;
   }
 
-  void bind_null(int i) override { param(i) = PgParam(std::nullopt); }
-  void bind(int i, int64_t v) override { param(i) = pg_number(v); }
-  void bind(int i, double v) override { param(i) = pg_number(v); }
-  void bind(int i, std::string_view text) override { param(i) = std::string(text); }
-  void bind_blob(int i, std::string_view bytes) override { param(i) = pg_binary_param(bytes); }
+  void bind_null(int i) override { set(i, PgParam(std::nullopt)); }
+  void bind(int i, int64_t v) override { set(i, pg_number(v)); }
+  void bind(int i, double v) override { set(i, pg_number(v)); }
+  void bind(int i, std::string_view text) override { set(i, std::string(text)); }
+  void bind_blob(int i, std::string_view bytes) override { set(i, pg_binary_param(bytes)); }
 
   Result<bool> step() override {
     if (bad_bind_) return internal_error("statement parameter numbers start at 1: " + what_);
     if (!result_) {
+      // Every parameter of the text is sent, those never bound as NULL.
+      size_t count = 0;
+      for (const int m : numbers_) count = std::max(count, size_t(m));
+      if (params_.size() < count) params_.resize(count, PgParam(std::nullopt));
       SOIQ_ASSIGN_OR_RETURN(PgResult r, c_.exec_binary(sql_, params_, what_));
       result_.emplace(std::move(r));
       row_ = -1;
@@ -106,18 +134,23 @@ class PgCursor : public SqlCursor {
   int64_t changes() const override { return result_ ? result_->affected() : 0; }
 
  private:
-  PgParam& param(int i) {
+  // Parameter i of the SQLite-numbered text; one the text does not use is dropped, as SQLite
+  // leaves an unused number unread.
+  void set(int i, PgParam p) {
     if (i < 1) {
       bad_bind_ = true;
-      i = 1;
+      return;
     }
-    if (size_t(i) > params_.size()) params_.resize(size_t(i), PgParam(std::nullopt));
+    if (size_t(i) >= numbers_.size() || numbers_[size_t(i)] == 0) return;
+    const size_t m = size_t(numbers_[size_t(i)]);
+    if (m > params_.size()) params_.resize(m, PgParam(std::nullopt));
+    params_[m - 1] = std::move(p);
     result_.reset();  // a new binding: the next step runs the statement again
-    return params_[size_t(i - 1)];
   }
 
   PgConnection& c_;
   std::string sql_;
+  std::vector<int> numbers_;
   std::string what_;
   bool bad_bind_ = false;
   std::vector<PgParam> params_;

@@ -4,6 +4,10 @@
 // (numbers exactly, pg_number) and blobs in binary; results come back in binary, so numbers are
 // read without parsing text and doubles exactly, and a blob is its bytes.
 
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "db/postgres/pg_connection.h"
 #include "db/sql/sql_session.h"
 
@@ -20,8 +24,14 @@ class PgSession : public SqlSession {
   PgConnection& c_;
 };
 
-// `sql` with SQLite's numbered parameters ?n written as PostgreSQL's $n. The store's SQL has no
-// '?' in a literal or identifier.
-std::string pg_numbered_parameters(std::string_view sql);
+// `sql` with SQLite's numbered parameters ?n written as PostgreSQL's $m, numbered again without
+// gaps: PostgreSQL must know the type of every $m up to the highest, and cannot for one the text
+// never uses (SQLite leaves it NULL), so `numbers[n]` is n's new number, 0 for one not in the text.
+// The store's SQL has no '?' in a literal or identifier.
+struct PgNumberedSql {
+  std::string sql;
+  std::vector<int> numbers;
+};
+PgNumberedSql pg_numbered_parameters(std::string_view sql);
 
 }  // namespace soiq::db

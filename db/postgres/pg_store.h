@@ -1,9 +1,9 @@
 #pragma once
 // The Store (store.h) on a PostgreSQL database that several soiqd replicas may share:
-// DESIGN.md "Storage", docs/SCALE_OUT.md. The schema (pg_schema.h) is SQLite's, table for table;
-// the SQL the two backends share is in db/sql/, and each method means what SqliteStore's does
-// (sqlite_store.h: page sizes and tokens, ages, identifiers, globs), which the conformance suite
-// (tests/db/store_conformance_test.cpp) holds both to.
+// DESIGN.md "Storage", docs/SCALE_OUT.md. The records' SQL is SqlStore's (db/sql/sql_store.h),
+// the same as SQLite's; this class owns the connection pool and the transactions, and writes and
+// reads the feature cache in one statement each (pg_feature_cache.h). The conformance suite
+// (tests/db/store_conformance_test.cpp) holds both backends to the same behaviour.
 //
 // Threads, replicas and transactions: every method may be called from any number of threads, in
 // any number of processes on the same database. A method leases a connection from the replica's
@@ -13,7 +13,7 @@
 //     it. PostgreSQL aborts one of two conflicting transactions (SQLSTATE 40001), which runs again
 //     after a random wait (pg_transaction), so callers see success or a real error.
 //   - Reads of several statements run in one REPEATABLE READ READ ONLY snapshot (a page and its
-//     counts agree); reads of one statement run alone.
+//     counts agree); reads of one statement run alone, without BEGIN and COMMIT.
 //   - Blobs travel in binary, never as hex text.
 //
 // Beyond SqliteStore: text must be UTF-8 (PostgreSQL refuses other bytes: INVALID_ARGUMENT), and a
@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "db/postgres/pg_pool.h"
-#include "db/store.h"
+#include "db/sql/sql_store.h"
 
 namespace soiq::db {
 
@@ -36,45 +36,25 @@ struct PgOptions {
   int write_attempts = 10;                      // runs of a write that keeps conflicting
 };
 
-class PgStore : public Store {
+class PgStore : public SqlStore {
  public:
   // Connects the pool to `conninfo` (a postgresql:// URI or libpq key=value pairs) and migrates the
   // schema. UNAVAILABLE naming the server when it cannot be reached; FAILED_PRECONDITION when its
   // schema is newer than this code knows; INVALID_ARGUMENT for bad options.
   static Result<std::unique_ptr<PgStore>> open(const std::string& conninfo, const PgOptions& options);
 
-  Result<ImportedBatch> import_batch(const ImportBatch& b) override;
-  Result<int64_t> remove(const Removal& r) override;
-  Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
-  Status put_cached_features(const std::vector<SurfaceFeatures>& batch) override;
-  Status put_precomputed(const std::vector<Precomputed>& batch) override;
-  Result<int64_t> requeue_precompute(int definitions_version) override;
-
-  Result<PatientRecord> get_patient(const std::string& patient_id) override;
-  Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;
-  Result<StudyRecord> get_study(const std::string& study_uid) override;
-  Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) override;
-  Result<SeriesRecord> get_series(const std::string& series_uid) override;
-  Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
-  Result<StructureRecord> get_structure(int64_t id) override;
-  Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
-  Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
-  Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
                                                      const std::vector<std::string>& entries) override;
-  Result<Counts> counts() override;
-  Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
   using Store::cached_features;
-  using Store::put_precomputed;
+
+ protected:
+  Status read(const std::function<Status(SqlSession&)>& fn) override;
+  Status write(const std::function<Status(SqlSession&)>& fn) override;
+  Status read_one(const std::function<Status(SqlSession&)>& fn) override;
+  Status upsert_cached_features(SqlSession& c, const std::vector<SurfaceFeatures>& batch) override;
 
  private:
   PgStore() = default;
-
-  // Units of work on a leased connection: `fn` runs in one SERIALIZABLE transaction (retried),
-  // one read-only snapshot, or alone (one statement: its own snapshot, no BEGIN and COMMIT).
-  Status write(const std::function<Status(PgConnection&)>& fn);
-  Status read(const std::function<Status(PgConnection&)>& fn);
-  Status read_one(const std::function<Status(PgConnection&)>& fn);
 
   std::unique_ptr<PgPool> pool_;
   PgOptions options_;

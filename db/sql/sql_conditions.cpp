@@ -6,7 +6,7 @@ namespace soiq::db {
 
 std::string SqlConditions::next() {
   // Appending rather than "?" + to_string(): GCC 12 reports a false -Wrestrict on the latter.
-  std::string p = dialect_ == SqlDialect::kSqlite ? "?" : "$";
+  std::string p = "?";  // in both dialects: the PostgreSQL session renumbers (sql_session.h)
   p += std::to_string(params_.size());
   return p;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A conjunction of SQL conditions with their bound parameters, for the queries whose filters are
 // optional (list_* and stage1), in either backend's dialect: each added condition takes the next
-// parameter (?n in SQLite, $n in PostgreSQL), and bind() binds them all. Column names are code
+// parameter (?n, which the PostgreSQL session renumbers), and bind() binds them all. Column names are code
 // constants, never input; every input value goes through a parameter.
 
 #include <string>

@@ -1,15 +1,15 @@
 // What every Store backend must do (db/store.h), one behaviour per test, written against the
-// interface alone. Each backend adds itself to StoreBackends; SQLite is the first, and the
-// PostgreSQL store runs the same suite. Backend-specific behaviour (files, pragmas, migrations,
-// concurrency of one engine) stays in that backend's own tests.
+// interface alone and run on each backend of store_backends.h (SQLite, PostgreSQL).
+// Backend-specific behaviour (files, pragmas, migrations, concurrency of one engine) stays in that
+// backend's own tests.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <set>
 #include <string>
 
-#include "db/sqlite/sqlite_store.h"
 #include "db/store.h"
+#include "tests/db/store_backends.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -19,11 +19,6 @@ using testing::contains;
 using testing::new_series;
 using testing::new_structure;
 using testing::TempDir;
-
-// A backend: a fresh, empty store that lives as long as the test's TempDir.
-struct SqliteBackend {
-  static std::unique_ptr<Store> open(const TempDir& dir) { return testing::open_store(dir.file("conformance.db")); }
-};
 
 template <typename Backend>
 class StoreConformance : public ::testing::Test {
@@ -51,8 +46,7 @@ class StoreConformance : public ::testing::Test {
   std::unique_ptr<Store> store_;
 };
 
-using StoreBackends = ::testing::Types<SqliteBackend>;
-TYPED_TEST_SUITE(StoreConformance, StoreBackends);
+TYPED_TEST_SUITE(StoreConformance, testing::StoreBackends, testing::StoreBackendNames);
 
 TYPED_TEST(StoreConformance, AnAddedStructureReadsBackWithItsPatientStudyAndSurface) {
   NewStructure s = new_structure("P1", "1.2.3", "Hippocampus", 1);
