@@ -1,7 +1,8 @@
-// soiqd: the soiq server. Opens (or creates) the SQLite store, serves soiq.v1.Soiq with the
-// standard health service and reflection, and shuts down gracefully on SIGTERM or SIGINT: it stops
-// accepting calls, gives calls in flight a few seconds to finish (queries are cancelled after
-// that), then closes the store (a WAL checkpoint).
+// soiqd: the soiq server. Opens (or creates) its store (a SQLite file, or a PostgreSQL database
+// shared with other replicas: --db), serves soiq.v1.Soiq with the standard health service and
+// reflection, and shuts down gracefully on SIGTERM or SIGINT: it stops accepting calls, gives calls
+// in flight a few seconds to finish (queries are cancelled after that), then closes the store (a
+// SQLite WAL checkpoint).
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
@@ -17,10 +18,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "db/sqlite/sqlite_store.h"
 #include "server/api/grpc_log.h"
 #include "server/api/soiq_service.h"
 #include "server/app/server_config.h"
+#include "server/app/store_location.h"
 #include "server/util/listen_check.h"
 #include "server/util/log.h"
 #include "server/util/malloc_tuning.h"
@@ -98,12 +99,13 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGINT);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
-  const std::filesystem::path db_dir = std::filesystem::path(c.db_path).parent_path();
-  std::error_code ec;
-  if (!db_dir.empty()) std::filesystem::create_directories(db_dir, ec);
-  soiq::db::SqliteOptions store_options;
+  Result<soiq::server::StoreLocation> where = soiq::server::parse_store_location(c.db_path);
+  if (!where.ok()) return fail(where.status());
+  soiq::server::StoreOpenOptions store_options;
   store_options.read_connections = std::max(2, c.workers + 2);
-  Result<std::unique_ptr<soiq::db::SqliteStore>> store = soiq::db::SqliteStore::open(c.db_path, store_options);
+  // Stage-2 workers, the precompute worker and the calls being served each hold one at a time.
+  store_options.connections = c.db_connections > 0 ? c.db_connections : c.workers + 4;
+  Result<std::unique_ptr<soiq::db::Store>> store = soiq::server::open_store(*where, store_options);
   if (!store.ok()) return fail(store.status());
   std::string token;
   if (!c.token_file.empty()) {
@@ -143,7 +145,7 @@ int main(int argc, char** argv) {
   soiq::server::log_event("info", {{"event", "listening"},
                                    {"address", c.listen},
                                    {"port", std::to_string(port)},
-                                   {"db", c.db_path},
+                                   {"db", soiq::server::redacted_store_location(c.db_path)},
                                    {"tls", c.tls_cert.empty() ? "off" : "on"},
                                    {"auth", token.empty() ? "off" : "bearer"},
                                    {"workers", std::to_string(c.workers)}});
@@ -159,7 +161,7 @@ int main(int argc, char** argv) {
   server->Wait();
   waiter.join();
   server.reset();
-  store->reset();  // closes the database: WAL checkpoint
+  store->reset();  // closes the database (SQLite: a WAL checkpoint)
   soiq::server::log_event("info", {{"event", "stopped"}});
   return 0;
 }

@@ -34,7 +34,10 @@ struct OptionText {
 
 constexpr OptionText kOptionTexts[] = {
     {"--listen", "HOST:PORT", "127.0.0.1:50051", "where to listen; port 0 binds any free port (see --port-file)"},
-    {"--db", "PATH", "var/soiq.db", "the SQLite store (made, with its folder, when missing)"},
+    {"--db", "PATH|sqlite:PATH|postgresql://USER@HOST:PORT/DB", "var/soiq.db",
+     "the store: a SQLite file (made, with its folder, when missing), or a PostgreSQL database that "
+     "several soiqd replicas may share (the password from PGPASSWORD or ~/.pgpass)"},
+    {"--db-connections", "N", "the workers + 4", "PostgreSQL connections this soiqd opens (the pool)"},
     {"--port-file", "PATH", "none", "write the bound port there once soiqd serves"},
     {"--max-upload-bytes", "N", "268435456 (256 MiB)", "the largest upload or import soiqd accepts"},
     {"--max-grid-voxels", "N", "500000000", "the largest grid of a conversion or an image"},
@@ -118,6 +121,7 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
   const std::map<std::string_view, Setter> setters = {
       {"--listen", text(c.listen)},
       {"--db", text(c.db_path)},
+      {"--db-connections", count(c.db_connections, 1, 1000)},
       {"--port-file", text(c.port_file)},
       {"--max-upload-bytes", count(c.max_upload_bytes, 1, int64_t(1) << 40)},
       {"--max-grid-voxels", count(c.max_grid_voxels, 1, int64_t(1) << 40)},

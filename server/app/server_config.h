@@ -19,7 +19,8 @@ namespace soiq::server {
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";
-  std::string db_path = "var/soiq.db";
+  std::string db_path = "var/soiq.db";  // or sqlite:PATH, postgresql://… (store_location.h)
+  int db_connections = 0;               // PostgreSQL's pool; 0: the workers + 4
   std::string port_file;
   int64_t max_upload_bytes = 256ll << 20;
   int64_t max_grid_voxels = 500'000'000;

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -111,5 +112,36 @@ class PostgresProcess {
   int port_ = 0;
   pid_t pid_ = -1;
 };
+
+// The test process's one PostgreSQL server, started when first asked for and stopped at exit, so
+// the tests of a process share one server (each with a database of its own). `why` is "" when it
+// runs, else why it does not.
+inline PostgresProcess& shared_postgres(std::string& why) {
+  static PostgresProcess* server = new PostgresProcess;
+  static const std::string started = server->start();
+  static const int stop_at_exit = std::atexit([] { server->stop(); });
+  (void)stop_at_exit;
+  why = started;
+  return *server;
+}
+
+// Creates the database `name` (letters, digits and '_') on `server` unless it exists; "" or why
+// not.
+inline std::string ensure_postgres_database(const PostgresProcess& server, const std::string& name) {
+  PGconn* c = PQconnectdb(server.conninfo("postgres").c_str());
+  std::string why;
+  if (PQstatus(c) != CONNECTION_OK) {
+    why = PQerrorMessage(c);
+  } else {
+    PGresult* r = PQexec(c, ("CREATE DATABASE " + name).c_str());
+    const char* state = PQresultErrorField(r, PG_DIAG_SQLSTATE);
+    // 42P04 duplicate_database: made before (a soiqd restarted on the same store).
+    if (PQresultStatus(r) != PGRES_COMMAND_OK && !(state != nullptr && std::string(state) == "42P04"))
+      why = PQresultErrorMessage(r);
+    PQclear(r);
+  }
+  PQfinish(c);
+  return why;
+}
 
 }  // namespace soiq::testing

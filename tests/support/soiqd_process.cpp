@@ -7,11 +7,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
+
+#include "tests/support/postgres_process.h"
 
 namespace soiq::testing {
 namespace {
@@ -29,6 +33,25 @@ int wait_exit(pid_t pid, std::chrono::seconds timeout) {
 
 }  // namespace
 
+bool soiqd_on_postgres() {
+  const char* store = std::getenv("SOIQ_TEST_STORE");
+  return store != nullptr && std::string(store) == "postgresql";
+}
+
+std::string soiqd_store(const std::string& db_path, std::string& why) {
+  why.clear();
+  if (!soiqd_on_postgres()) return db_path;
+  PostgresProcess& server = shared_postgres(why);
+  if (!why.empty()) return "";
+  // A name from the path: the same path, the same database.
+  char name[32];
+  std::snprintf(name, sizeof name, "soiq_%016zx", std::hash<std::string>{}(db_path));
+  why = ensure_postgres_database(server, name);
+  if (!why.empty()) return "";
+  return "postgresql://" + std::string(PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(server.port()) + "/" +
+         name + "?connect_timeout=5";
+}
+
 SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args,
                            const std::string& binary) {
   const std::string dir = std::filesystem::path(db_path).parent_path().string();
@@ -36,13 +59,18 @@ SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::st
   const std::string tag = std::to_string(getpid()) + "-" + std::to_string(++counter);
   log_path_ = dir + "/soiqd-" + tag + ".log";
   port_path_ = dir + "/soiqd-" + tag + ".port";
+  std::string why;
+  const std::string store = soiqd_store(db_path, why);
+  if (store.empty()) {
+    std::ofstream(log_path_) << "soiqd not started: PostgreSQL: " << why << "\n";
+    return;
+  }
   std::vector<std::string> args = {
-      binary.empty() ? SOIQD_BINARY : binary, "--db", db_path, "--listen", "127.0.0.1:0", "--port-file", port_path_};
+      binary.empty() ? SOIQD_BINARY : binary, "--db", store, "--listen", "127.0.0.1:0", "--port-file", port_path_};
   // Precompute off unless asked: a test that counts what a query computed, or a process's peak
   // memory, must not race soiqd's background worker. Precompute's own tests turn it on.
-  const bool precompute_given = std::any_of(extra_args.begin(), extra_args.end(), [](const std::string& a) {
-    return a.rfind("--precompute", 0) == 0;
-  });
+  const bool precompute_given = std::any_of(extra_args.begin(), extra_args.end(),
+                                            [](const std::string& a) { return a.rfind("--precompute", 0) == 0; });
   if (!precompute_given) args.insert(args.end(), {"--precompute", "off"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = fork();

@@ -2,6 +2,11 @@
 // A real soiqd for integration tests and benchmarks: started as a child process on a free loopback
 // port (port 0, read back from --port-file) with its own temporary directory and SQLite file, stopped with
 // SIGTERM (graceful shutdown, which the tests also check) or killed with SIGKILL.
+//
+// With SOIQ_TEST_STORE=postgresql in the environment (ctest runs the integration tests once so,
+// as postgresql.*), the store is a PostgreSQL database instead, on the test process's own server
+// (postgres_process.h), one database per SQLite path a test names: a soiqd started again on the
+// same path finds the same records.
 
 #include <sys/types.h>
 
@@ -12,11 +17,17 @@
 
 namespace soiq::testing {
 
+// Whether this test process runs soiqd on PostgreSQL (SOIQ_TEST_STORE=postgresql).
+bool soiqd_on_postgres();
+// The --db a soiqd started for `db_path` gets: the path, or its PostgreSQL database's URI (made
+// when missing); "" when PostgreSQL could not start (`why` says why).
+std::string soiqd_store(const std::string& db_path, std::string& why);
+
 class SoiqdProcess {
  public:
   // Starts `binary` (empty: this build's soiqd) with `--db db_path --listen 127.0.0.1:0` plus
-  // `extra_args` (and --precompute off unless they say otherwise); waits (up to 60 s: a benchmark's database can be large) for the port. On failure
-  // address() is empty and log() says why.
+  // `extra_args` (and --precompute off unless they say otherwise); waits (up to 60 s: a benchmark's database can be
+  // large) for the port. On failure address() is empty and log() says why.
   SoiqdProcess(const std::string& db_path, const std::vector<std::string>& extra_args = {},
                const std::string& binary = "");
   ~SoiqdProcess();  // SIGTERM, then SIGKILL after 30 s
