@@ -248,6 +248,15 @@ struct Precomputed {
 // Which blob get_blob reads: an image series' pixels (by series uid) or a surface (by sha256).
 enum class BlobKind { kImage, kSurface };
 
+// Stage-2 work shared between soiqd replicas on one database (docs/SCALE_OUT.md): a query posts the
+// structures whose features it lacks; every live replica claims some, computes them into the
+// feature cache, and finishes them; the query waits until none is left, then reads the cache.
+struct Stage2Work {
+  std::string query_id;
+  int64_t structure_id = 0;
+  std::string ask;  // what to compute, as the query engine encodes it (opaque to the store)
+};
+
 // What remove deletes: one structure, or a patient with all of its studies, series and structures.
 struct Removal {
   enum class Kind { kStructure, kPatient } kind = Kind::kStructure;
@@ -255,7 +264,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The store: 18 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// The store: 24 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
 // (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
 // single-record cases; backends implement only the virtual methods.
 class Store {
@@ -307,6 +316,29 @@ class Store {
   // Up to `limit` structures waiting for precompute, oldest first (a new structure, one replaced
   // with a new surface, a structure of a study that gained an image). Failed ones are not listed.
   virtual Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) = 0;
+
+  // --- replicas sharing stage 2 (docs/SCALE_OUT.md) ----------------------------------------
+  // Times are the database's clock, so replicas on machines whose clocks differ agree. A replica is
+  // live while its last heartbeat is at most `live_ms` old.
+  //
+  // Records that `replica_id` is alive, drops the work posted by replicas that are not (nobody waits
+  // for it), and returns the number of live replicas, this one included.
+  virtual Result<int> replica_heartbeat(const std::string& replica_id, int64_t live_ms) = 0;
+  // Posts the structures of a query for any replica to compute (one item per structure id; an id
+  // given twice is one item).
+  virtual Status post_stage2_work(const std::string& replica_id, const std::string& query_id, const std::string& ask,
+                                  const std::vector<int64_t>& structure_ids) = 0;
+  // Up to `limit` items that no live replica holds (never claimed, or claimed by one that died),
+  // oldest first, now held by `replica_id`. Two replicas never get the same item while both live.
+  virtual Result<std::vector<Stage2Work>> claim_stage2_work(const std::string& replica_id, int64_t limit,
+                                                            int64_t live_ms) = 0;
+  // The item is done: its values are in the feature cache, or it failed (the query computes it
+  // again itself, and reports the failure as its own). Finishing an item that is gone is no error.
+  virtual Status finish_stage2_work(const std::string& query_id, int64_t structure_id) = 0;
+  // How many items of the query are not finished.
+  virtual Result<int64_t> stage2_work_left(const std::string& query_id) = 0;
+  // Drops the query's items that are left (it is done, or gone).
+  virtual Status drop_stage2_work(const std::string& query_id) = 0;
 
   // --- conveniences on the methods above -----------------------------------------------------
   Result<AddedStructure> add_structure(NewStructure s) {

@@ -179,9 +179,27 @@ BEGIN
 END $$;
 )sql";
 
+// Version 3: SQLite's version 7, replicas and their shared stage-2 work.
+constexpr char kSchemaV3[] = R"sql(
+CREATE TABLE replicas (
+  id text COLLATE "C" PRIMARY KEY,
+  seen_ms bigint NOT NULL
+);
+CREATE TABLE stage2_work (
+  query_id text COLLATE "C" NOT NULL,
+  structure_id bigint NOT NULL,
+  ask text COLLATE "C" NOT NULL,
+  posted_by text COLLATE "C" NOT NULL,
+  posted_ms bigint NOT NULL,
+  claimed_by text COLLATE "C" NOT NULL DEFAULT '',
+  PRIMARY KEY (query_id, structure_id)
+);
+CREATE INDEX stage2_work_posted ON stage2_work(posted_ms);
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<const char*>& steps() {
-  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2};
+  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2, kSchemaV3};
   return kSteps;
 }
 

@@ -28,6 +28,13 @@ Status PgStore::read(const std::function<Status(SqlSession&)>& fn) {
       *c, [&] { return fn(session); }, PgIsolation::kSnapshotReadOnly);
 }
 
+Status PgStore::write_queue(const std::function<Status(SqlSession&)>& fn) {
+  SOIQ_ASSIGN_OR_RETURN(PgPool::Lease c, pool_->acquire(options_.lease_wait));
+  PgSession session(*c);
+  return pg_transaction(
+      *c, [&] { return fn(session); }, PgIsolation::kReadCommitted, options_.write_attempts);
+}
+
 Status PgStore::read_one(const std::function<Status(SqlSession&)>& fn) {
   SOIQ_ASSIGN_OR_RETURN(PgPool::Lease c, pool_->acquire(options_.lease_wait));
   PgSession session(*c);

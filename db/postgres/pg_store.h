@@ -51,6 +51,8 @@ class PgStore : public SqlStore {
   Status read(const std::function<Status(SqlSession&)>& fn) override;
   Status write(const std::function<Status(SqlSession&)>& fn) override;
   Status read_one(const std::function<Status(SqlSession&)>& fn) override;
+  // READ COMMITTED: a claim's SKIP LOCKED, not serializability, keeps two replicas off one item.
+  Status write_queue(const std::function<Status(SqlSession&)>& fn) override;
   Status upsert_cached_features(SqlSession& c, const std::vector<SurfaceFeatures>& batch) override;
 
  private:

@@ -51,6 +51,14 @@ class SqlStore : public Store {
                                                      const std::vector<std::string>& entries) override;
   Result<Counts> counts() override;
   Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
+  Result<int> replica_heartbeat(const std::string& replica_id, int64_t live_ms) override;
+  Status post_stage2_work(const std::string& replica_id, const std::string& query_id, const std::string& ask,
+                          const std::vector<int64_t>& structure_ids) override;
+  Result<std::vector<Stage2Work>> claim_stage2_work(const std::string& replica_id, int64_t limit,
+                                                    int64_t live_ms) override;
+  Status finish_stage2_work(const std::string& query_id, int64_t structure_id) override;
+  Result<int64_t> stage2_work_left(const std::string& query_id) override;
+  Status drop_stage2_work(const std::string& query_id) override;
   using Store::cached_features;
   using Store::put_precomputed;
 
@@ -61,6 +69,9 @@ class SqlStore : public Store {
   virtual Status read(const std::function<Status(SqlSession&)>& fn) = 0;
   virtual Status write(const std::function<Status(SqlSession&)>& fn) = 0;
   virtual Status read_one(const std::function<Status(SqlSession&)>& fn) { return read(fn); }
+  // A write of the stage-2 queue and heartbeats, whose statements decide by themselves (ON
+  // CONFLICT, SKIP LOCKED): a backend may run it at a lighter isolation than write(). Default write().
+  virtual Status write_queue(const std::function<Status(SqlSession&)>& fn);
   // Writes the surfaces' feature-cache entries inside a write (put_cached_features, put_precomputed):
   // an upsert per entry, skipping a surface that is gone. A backend may do it in fewer statements.
   // Inputs are checked (validate_cache_entries).

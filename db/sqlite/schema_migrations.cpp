@@ -320,6 +320,26 @@ CREATE INDEX stage1_rows_name_lower
   ON stage1_rows(name_lower, age_years, study_date, birth_date, sex, laterality, modalities);
 )sql";
 
+// Version 7: replicas sharing one database, and the stage-2 work they share (db/store.h,
+// docs/SCALE_OUT.md). A SQLite file has one soiqd; the tables are here so both backends run the
+// same store code, and a file moved to PostgreSQL keeps its shape.
+constexpr char kSchemaV7[] = R"sql(
+CREATE TABLE replicas (
+  id TEXT PRIMARY KEY,
+  seen_ms INTEGER NOT NULL  -- the last heartbeat, by the database's clock (ms since 1970)
+);
+CREATE TABLE stage2_work (
+  query_id TEXT NOT NULL,
+  structure_id INTEGER NOT NULL,
+  ask TEXT NOT NULL,
+  posted_by TEXT NOT NULL,
+  posted_ms INTEGER NOT NULL,
+  claimed_by TEXT NOT NULL DEFAULT '',  -- '' until a replica claims it
+  PRIMARY KEY (query_id, structure_id)
+);
+CREATE INDEX stage2_work_posted ON stage2_work(posted_ms);
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -329,6 +349,7 @@ const std::vector<Migration>& migrations() {
       {4, kSchemaV4, reencode_surface_blobs},
       {5, kSchemaV5, reencode_image_blobs},
       {6, kSchemaV6},
+      {7, kSchemaV7},
   };
   return kMigrations;
 }

@@ -19,7 +19,7 @@ using testing::TempDir;
 
 // A range with every other structured filter: the range's index holds those columns too, so the
 // conditions are tested inside it and no stage1_rows row is read (a covering index). Results are
-// the oracle's (sqlite_store_stage1_test.cpp's random combinations check them).
+// the oracle's (store_stage1_test.cpp's random combinations check them).
 TEST(Stage1Indexes, ARangeWithTheOtherStructuredFiltersReadsOnlyItsIndex) {
   TempDir dir;
   auto store = open_store(dir.file("stage1.db"));
@@ -57,12 +57,12 @@ TEST(Stage1Indexes, AVersion5FileGetsTheCoveringRangeIndexes) {
     ASSERT_TRUE(store->add_structure(new_structure("P1", "1.2.3", "Liver")).ok());
   }
   testing::exec_sql(
-      path,
-      "DROP INDEX stage1_rows_age; CREATE INDEX stage1_rows_age ON stage1_rows(age_years); "
-      "DROP INDEX stage1_rows_study_date; CREATE INDEX stage1_rows_study_date ON stage1_rows(study_date); "
-      "DROP INDEX stage1_rows_birth_date; CREATE INDEX stage1_rows_birth_date ON stage1_rows(birth_date); "
-      "DROP INDEX stage1_rows_name_lower; CREATE INDEX stage1_rows_name_lower ON stage1_rows(name_lower); "
-      "PRAGMA user_version = 5");
+      path, std::string(testing::kBackToSchemaV6) +
+                "DROP INDEX stage1_rows_age; CREATE INDEX stage1_rows_age ON stage1_rows(age_years); "
+                "DROP INDEX stage1_rows_study_date; CREATE INDEX stage1_rows_study_date ON stage1_rows(study_date); "
+                "DROP INDEX stage1_rows_birth_date; CREATE INDEX stage1_rows_birth_date ON stage1_rows(birth_date); "
+                "DROP INDEX stage1_rows_name_lower; CREATE INDEX stage1_rows_name_lower ON stage1_rows(name_lower); "
+                "PRAGMA user_version = 5");
   auto store = open_store(path);
   ASSERT_TRUE(store);
   EXPECT_EQ(*store->schema_version(), latest_schema_version());

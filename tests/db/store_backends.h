@@ -26,34 +26,19 @@ struct SqliteBackend {
   static std::unique_ptr<Store> open(const TempDir& dir) { return open_store(dir.file("store.db")); }
 };
 
-// The test process's PostgreSQL server, started once; "" or why it could not start.
-inline soiq::testing::PostgresProcess& shared_postgres(std::string& why) {
-  static soiq::testing::PostgresProcess* server = new soiq::testing::PostgresProcess;  // stopped at exit
-  static const std::string started = server->start();
-  static const int stop_at_exit = std::atexit([] { server->stop(); });
-  (void)stop_at_exit;
-  why = started;
-  return *server;
-}
-
 // The conninfo of a new, empty database on the shared server; "" after a failed ADD_FAILURE.
 inline std::string fresh_postgres_database() {
   std::string why;
-  soiq::testing::PostgresProcess& server = shared_postgres(why);
+  soiq::testing::PostgresProcess& server = soiq::testing::shared_postgres(why);
   if (!why.empty()) {
     ADD_FAILURE() << "PostgreSQL: " << why;
     return "";
   }
   static std::atomic<int> next{0};
   const std::string name = "store" + std::to_string(next++);
-  auto admin = PgConnection::open(server.conninfo("postgres"));
-  if (!admin.ok()) {
-    ADD_FAILURE() << admin.status().to_string();
-    return "";
-  }
-  const Status created = admin->run("CREATE DATABASE " + name, "create a test database");
-  if (!created.ok()) {
-    ADD_FAILURE() << created.to_string();
+  why = soiq::testing::ensure_postgres_database(server, name);
+  if (!why.empty()) {
+    ADD_FAILURE() << "PostgreSQL: " << why;
     return "";
   }
   return server.conninfo(name);

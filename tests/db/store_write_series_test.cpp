@@ -1,12 +1,13 @@
-// SqliteStore writes of series: put_series inserts, replaces, and refuses a series of another
-// patient.
+// Store writes of series, on every backend: put_series inserts, replaces, and refuses a series of
+// another patient.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "db/sqlite/sqlite_store.h"
-#include "tests/db/sqlite_store_write_fixture.h"
+#include "db/store.h"
+#include "tests/db/store_backends.h"
+#include "tests/db/store_fixture.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -15,56 +16,58 @@ namespace {
 using testing::contains;
 using testing::new_series;
 
-class SqliteStoreWriteSeries : public testing::SqliteStoreWrite {};
+template <typename Backend>
+class StoreWriteSeries : public testing::StoreTest<Backend> {};
+TYPED_TEST_SUITE(StoreWriteSeries, testing::StoreBackends, testing::StoreBackendNames);
 
-TEST_F(SqliteStoreWriteSeries, PutSeriesInsertsThenReplaces) {
-  auto first = store_->put_series(new_series("P1", "S1", "SE1", 1.0f));
+TYPED_TEST(StoreWriteSeries, PutSeriesInsertsThenReplaces) {
+  auto first = this->store_->put_series(new_series("P1", "S1", "SE1", 1.0f));
   ASSERT_TRUE(first.ok()) << first.status().to_string();
   EXPECT_FALSE(*first);
   NewSeries second = new_series("P1", "S1", "SE1", 2.0f);
   second.series.modality = "PT";
-  auto replaced = store_->put_series(second);
+  auto replaced = this->store_->put_series(second);
   ASSERT_TRUE(replaced.ok());
   EXPECT_TRUE(*replaced);
-  auto series = store_->get_series("SE1");
+  auto series = this->store_->get_series("SE1");
   ASSERT_TRUE(series.ok());
   EXPECT_EQ(series->modality, "PT");
   EXPECT_EQ(series->study_uid, "S1");
   EXPECT_EQ(series->geometry, second.series.geometry);
   EXPECT_EQ(series->sha256, second.series.sha256);
-  auto blob = store_->get_image_blob("SE1");
+  auto blob = this->store_->get_image_blob("SE1");
   ASSERT_TRUE(blob.ok());
   auto image = decode_image(*blob, series->geometry);
   ASSERT_TRUE(image.ok());
   EXPECT_EQ(image->voxels, std::vector<float>(12, 2.0f));
-  EXPECT_EQ(counts().series, 1);
+  EXPECT_EQ(this->counts().series, 1);
   // The replaced image blob was orphaned and is gone: only one remains, checked via a second
   // series that shares the new blob.
-  auto listed = store_->list_series("S1");
+  auto listed = this->store_->list_series("S1");
   ASSERT_TRUE(listed.ok());
   ASSERT_EQ(listed->size(), 1u);
 }
 
 // A series UID names images of one patient: an upload naming it under another patient (another
 // study) used to move the series there. It is refused, and the refused upload leaves nothing.
-TEST_F(SqliteStoreWriteSeries, SeriesOfAnotherPatientIsRefusedAndLeavesNothing) {
-  ASSERT_TRUE(store_->put_series(new_series("P1", "S1", "SE1", 1.0f)).ok());
-  const Counts before = counts();
-  auto bad = store_->put_series(new_series("P2", "S2", "SE1", 2.0f));
+TYPED_TEST(StoreWriteSeries, SeriesOfAnotherPatientIsRefusedAndLeavesNothing) {
+  ASSERT_TRUE(this->store_->put_series(new_series("P1", "S1", "SE1", 1.0f)).ok());
+  const Counts before = this->counts();
+  auto bad = this->store_->put_series(new_series("P2", "S2", "SE1", 2.0f));
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_TRUE(contains(bad.status().message(), "series 'SE1' belongs to patient 'P1', not to 'P2'"))
       << bad.status().message();
-  EXPECT_EQ(store_->get_patient("P2").status().code(), StatusCode::kNotFound);
-  EXPECT_EQ(store_->get_study("S2").status().code(), StatusCode::kNotFound);
-  auto series = store_->get_series("SE1");
+  EXPECT_EQ(this->store_->get_patient("P2").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(this->store_->get_study("S2").status().code(), StatusCode::kNotFound);
+  auto series = this->store_->get_series("SE1");
   ASSERT_TRUE(series.ok());
   EXPECT_EQ(series->study_uid, "S1");
-  auto image = decode_image(*store_->get_image_blob("SE1"), series->geometry);
+  auto image = decode_image(*this->store_->get_image_blob("SE1"), series->geometry);
   ASSERT_TRUE(image.ok());
   EXPECT_EQ(image->voxels, std::vector<float>(12, 1.0f));
-  EXPECT_EQ(counts().patients, before.patients);
-  EXPECT_EQ(counts().series, before.series);
+  EXPECT_EQ(this->counts().patients, before.patients);
+  EXPECT_EQ(this->counts().series, before.series);
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 // imported again) is recognised as the stored one, never stored twice; anything that differs is new.
 #include <gtest/gtest.h>
 
-#include "db/sqlite/sqlite_store.h"
+#include "db/store.h"
+#include "tests/db/store_backends.h"
+#include "tests/db/store_fixture.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -10,8 +12,6 @@ namespace {
 
 using testing::new_series;
 using testing::new_structure;
-using testing::open_store;
-using testing::TempDir;
 
 // The original: an RT Structure Set ROI on series 1.2.3.4.
 NewStructure original() {
@@ -30,9 +30,12 @@ NewStructure from_seg(const std::string& name = "GTV", double surface_offset = 0
   return s;
 }
 
-TEST(SqliteStoreSameContent, SegmentRepeatingAStoredStructureIsRecognisedAndNothingIsWritten) {
-  TempDir dir;
-  auto store = open_store(dir.file("s.db"));
+template <typename Backend>
+class StoreSameContent : public testing::StoreTest<Backend> {};
+TYPED_TEST_SUITE(StoreSameContent, testing::StoreBackends, testing::StoreBackendNames);
+
+TYPED_TEST(StoreSameContent, SegmentRepeatingAStoredStructureIsRecognisedAndNothingIsWritten) {
+  Store* store = this->store_.get();
   ASSERT_TRUE(store->put_series(new_series("P1", "1.2.3", "1.2.3.4", 1.0f)).ok());
   auto first = store->add_structure(original());
   ASSERT_TRUE(first.ok()) << first.status().to_string();
@@ -52,9 +55,8 @@ TEST(SqliteStoreSameContent, SegmentRepeatingAStoredStructureIsRecognisedAndNoth
   EXPECT_EQ(store->counts()->structures, 1);
 }
 
-TEST(SqliteStoreSameContent, OtherVoxelsOtherNameOrNoFlagMakeANewStructure) {
-  TempDir dir;
-  auto store = open_store(dir.file("s.db"));
+TYPED_TEST(StoreSameContent, OtherVoxelsOtherNameOrNoFlagMakeANewStructure) {
+  Store* store = this->store_.get();
   ASSERT_TRUE(store->put_series(new_series("P1", "1.2.3", "1.2.3.4", 1.0f)).ok());
   ASSERT_TRUE(store->add_structure(original()).ok());
   auto edited = store->add_structure(from_seg("GTV", 1));  // other voxels
@@ -72,9 +74,8 @@ TEST(SqliteStoreSameContent, OtherVoxelsOtherNameOrNoFlagMakeANewStructure) {
   EXPECT_EQ(store->counts()->structures, 4);
 }
 
-TEST(SqliteStoreSameContent, SameVoxelsInAnotherStudyAreAnotherStructure) {
-  TempDir dir;
-  auto store = open_store(dir.file("s.db"));
+TYPED_TEST(StoreSameContent, SameVoxelsInAnotherStudyAreAnotherStructure) {
+  Store* store = this->store_.get();
   ASSERT_TRUE(store->add_structure(original()).ok());
   NewStructure elsewhere = from_seg();
   elsewhere.study.study_uid = "1.2.4";

@@ -1,20 +1,20 @@
-// SqliteStore::stage1 with twins: each candidate's contralateral twin comes from the same query,
-// checked against a brute-force search over the stored structures of a random store.
+// Store::stage1 with twins, on every backend: each candidate's contralateral twin comes from the
+// same query, checked against a brute-force search over the stored structures of a random store.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <optional>
 #include <random>
 
-#include "db/sqlite/sqlite_store.h"
+#include "db/store.h"
+#include "tests/db/store_backends.h"
+#include "tests/db/store_fixture.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
 namespace {
 
 using testing::new_structure;
-using testing::open_store;
-using testing::TempDir;
 
 std::string ascii_lower_copy(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return c < 128 ? std::tolower(c) : c; });
@@ -32,9 +32,12 @@ std::optional<int64_t> brute_twin(const StructureRecord& s, const std::vector<St
   return std::nullopt;
 }
 
-TEST(SqliteStoreTwins, EveryCandidatesTwinIsTheBruteForceOne) {
-  TempDir tmp;
-  auto store = open_store(tmp.file("soiq.db"));
+template <typename Backend>
+class StoreTwins : public testing::StoreTest<Backend> {};
+TYPED_TEST_SUITE(StoreTwins, testing::StoreBackends, testing::StoreBackendNames);
+
+TYPED_TEST(StoreTwins, EveryCandidatesTwinIsTheBruteForceOne) {
+  Store* store = this->store_.get();
   std::mt19937 rng(7);
   const char* names[] = {"Hippocampus", "hippocampus", "HIPPOCAMPUS", "amygdala", "Amygdala", "insula"};
   const char* sides[] = {"L", "R", ""};
@@ -72,9 +75,8 @@ TEST(SqliteStoreTwins, EveryCandidatesTwinIsTheBruteForceOne) {
   EXPECT_LT(with_twin, int(left->size()));
 }
 
-TEST(SqliteStoreTwins, AStructureWithoutLateralityHasNoTwin) {
-  TempDir tmp;
-  auto store = open_store(tmp.file("soiq.db"));
+TYPED_TEST(StoreTwins, AStructureWithoutLateralityHasNoTwin) {
+  Store* store = this->store_.get();
   NewStructure a = new_structure("P", "S", "insula", 1);
   NewStructure b = new_structure("P", "S", "insula", 2);
   b.laterality = "L";

@@ -1,20 +1,20 @@
-// SqliteStore::stage1 after later writes: changed and deleted patients, studies and series are
-// seen by the next stage 1 (its indexes and joins follow every write).
+// Store::stage1 after later writes, on every backend: changed and deleted patients, studies and
+// series are seen by the next stage 1 (its indexes and joins follow every write).
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "db/sqlite/sqlite_store.h"
+#include "db/store.h"
+#include "tests/db/store_backends.h"
+#include "tests/db/store_fixture.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
 namespace {
 
 using testing::new_structure;
-using testing::open_store;
-using testing::TempDir;
 
-std::vector<int64_t> stage1_ids(SqliteStore& store, const Stage1Filter& f) {
+std::vector<int64_t> stage1_ids(Store& store, const Stage1Filter& f) {
   auto got = store.stage1(f, 1000);
   EXPECT_TRUE(got.ok()) << got.status().to_string();
   std::vector<int64_t> ids;
@@ -24,9 +24,12 @@ std::vector<int64_t> stage1_ids(SqliteStore& store, const Stage1Filter& f) {
   return ids;
 }
 
-TEST(Stage1Maintenance, LaterPatientStudyAndSeriesChangesAndDeletesAreSeen) {
-  TempDir dir;
-  auto store = open_store(dir.file("m.db"));
+template <typename Backend>
+class Stage1Maintenance : public testing::StoreTest<Backend> {};
+TYPED_TEST_SUITE(Stage1Maintenance, testing::StoreBackends, testing::StoreBackendNames);
+
+TYPED_TEST(Stage1Maintenance, LaterPatientStudyAndSeriesChangesAndDeletesAreSeen) {
+  Store* store = this->store_.get();
   const int64_t a = store->add_structure(new_structure("P1", "S1", "Hippocampus"))->structure.id;
   const int64_t b = store->add_structure(new_structure("P1", "S2", "Amygdala"))->structure.id;
   Stage1Filter female;

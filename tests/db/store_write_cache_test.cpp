@@ -1,11 +1,12 @@
-// SqliteStore's feature cache: put_cached_features and cached_features.
+// The Store's feature cache, on every backend: put_cached_features and cached_features.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "db/sqlite/sqlite_store.h"
-#include "tests/db/sqlite_store_write_fixture.h"
+#include "db/store.h"
+#include "tests/db/store_backends.h"
+#include "tests/db/store_fixture.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -13,10 +14,12 @@ namespace {
 
 using testing::new_structure;
 
-class SqliteStoreWriteCache : public testing::SqliteStoreWrite {};
+template <typename Backend>
+class StoreWriteCache : public testing::StoreTest<Backend> {};
+TYPED_TEST_SUITE(StoreWriteCache, testing::StoreBackends, testing::StoreBackendNames);
 
-TEST_F(SqliteStoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
-  auto a = store_->add_structure(new_structure("P1", "S1", "a"));
+TYPED_TEST(StoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
+  auto a = this->store_->add_structure(new_structure("P1", "S1", "a"));
   ASSERT_TRUE(a.ok());
   const std::string sha = a->structure.surface.sha256;
   std::vector<CachedFeature> entries;
@@ -26,63 +29,63 @@ TEST_F(SqliteStoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
     entries.push_back({keys.back(), "mean|inside|", {double(i), 0.5}});
   }
   entries.push_back({"key3", "empty", {}});
-  ASSERT_TRUE(store_->put_cached_features(sha, entries).ok());
-  auto got = store_->cached_features(keys);
+  ASSERT_TRUE(this->store_->put_cached_features(sha, entries).ok());
+  auto got = this->store_->cached_features(keys);
   ASSERT_TRUE(got.ok()) << got.status().to_string();
   EXPECT_EQ(got->size(), 701u);
-  ASSERT_TRUE(store_->put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
-  auto one = store_->cached_features({"key5", "nope"});
+  ASSERT_TRUE(this->store_->put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
+  auto one = this->store_->cached_features({"key5", "nope"});
   ASSERT_EQ(one->size(), 1u);
   EXPECT_EQ((*one)[0].value, std::vector<double>{-1});
-  auto empty = store_->cached_features({"key3"});
+  auto empty = this->store_->cached_features({"key3"});
   ASSERT_EQ(empty->size(), 2u);
   EXPECT_EQ((*empty)[0].entry, "empty");
   EXPECT_TRUE((*empty)[0].value.empty());
 }
 
 // A query reads only the entries its plans want; an empty list reads every one.
-TEST_F(SqliteStoreWriteCache, CachedFeaturesReadOnlyTheNamedEntries) {
-  auto a = store_->add_structure(new_structure("P1", "S1", "a"));
+TYPED_TEST(StoreWriteCache, CachedFeaturesReadOnlyTheNamedEntries) {
+  auto a = this->store_->add_structure(new_structure("P1", "S1", "a"));
   ASSERT_TRUE(a.ok());
   const std::string sha = a->structure.surface.sha256;
-  ASSERT_TRUE(store_
+  ASSERT_TRUE(this->store_
                   ->put_cached_features(sha, {{"k1", "volume", {1}},
                                               {"k1", "area", {2}},
                                               {"k1", "mean|inside|x", {3, 4}},
                                               {"k2", "volume", {5}},
                                               {"k2", "area", {6}}})
                   .ok());
-  auto some = store_->cached_features({"k1", "k2"}, {"volume", "mean|inside|x", "not cached"});
+  auto some = this->store_->cached_features({"k1", "k2"}, {"volume", "mean|inside|x", "not cached"});
   ASSERT_TRUE(some.ok()) << some.status().to_string();
   std::vector<std::string> got;
   for (const CachedFeature& f : *some) got.push_back(f.key + " " + f.entry);
   EXPECT_EQ(got, (std::vector<std::string>{"k1 mean|inside|x", "k1 volume", "k2 volume"}));
   EXPECT_EQ((*some)[0].value, (std::vector<double>{3, 4}));
-  auto all = store_->cached_features({"k1", "k2"}, {});
+  auto all = this->store_->cached_features({"k1", "k2"}, {});
   ASSERT_TRUE(all.ok());
   EXPECT_EQ(all->size(), 5u);
 }
 
 // A query's results in one transaction: every known surface's entries stored, a surface deleted
 // meanwhile skipped without failing the others, a malformed entry refusing the whole batch.
-TEST_F(SqliteStoreWriteCache, ABatchStoresEverySurfacesEntriesAndSkipsAGoneSurface) {
-  auto a = store_->add_structure(new_structure("P1", "S1", "a", 1));
-  auto b = store_->add_structure(new_structure("P1", "S1", "b", 2));
+TYPED_TEST(StoreWriteCache, ABatchStoresEverySurfacesEntriesAndSkipsAGoneSurface) {
+  auto a = this->store_->add_structure(new_structure("P1", "S1", "a", 1));
+  auto b = this->store_->add_structure(new_structure("P1", "S1", "b", 2));
   ASSERT_TRUE(a.ok() && b.ok());
   const std::string gone(64, 'f');
   std::vector<SurfaceFeatures> batch = {{a->structure.surface.sha256, {{"ka", "volume", {1}}}},
                                         {gone, {{"kg", "volume", {9}}}},
                                         {b->structure.surface.sha256, {{"kb", "volume", {2}}, {"kb", "area", {3}}}}};
-  ASSERT_TRUE(store_->put_cached_features(batch).ok());
-  auto got = store_->cached_features({"ka", "kb", "kg"});
+  ASSERT_TRUE(this->store_->put_cached_features(batch).ok());
+  auto got = this->store_->cached_features({"ka", "kb", "kg"});
   ASSERT_TRUE(got.ok());
   EXPECT_EQ(got->size(), 3u);  // ka volume, kb volume and area; nothing of the gone surface
   for (const CachedFeature& f : *got) EXPECT_NE(f.key, "kg");
 
   batch[0].entries[0].entry = "";
-  const Status s = store_->put_cached_features(batch);
+  const Status s = this->store_->put_cached_features(batch);
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
-  EXPECT_TRUE(store_->put_cached_features(std::vector<SurfaceFeatures>{}).ok());
+  EXPECT_TRUE(this->store_->put_cached_features(std::vector<SurfaceFeatures>{}).ok());
 }
 
 }  // namespace
