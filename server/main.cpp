@@ -21,6 +21,7 @@
 #include "server/api/grpc_log.h"
 #include "server/api/soiq_service.h"
 #include "server/app/server_config.h"
+#include "server/app/shared_stage2.h"
 #include "server/app/store_location.h"
 #include "server/util/listen_check.h"
 #include "server/util/log.h"
@@ -89,7 +90,7 @@ int main(int argc, char** argv) {
     std::fputs(soiq::server::server_usage(), stdout);
     return 0;
   }
-  const soiq::server::ServerConfig& c = *config;
+  soiq::server::ServerConfig& c = *config;
   soiq::server::route_grpc_log();
 
   // Signals are taken by a dedicated thread (sigwait), so block them before any thread starts.
@@ -107,6 +108,9 @@ int main(int argc, char** argv) {
   store_options.connections = c.db_connections > 0 ? c.db_connections : c.workers + 4;
   Result<std::unique_ptr<soiq::db::Store>> store = soiq::server::open_store(*where, store_options);
   if (!store.ok()) return fail(store.status());
+  // Replicas share stage 2 on a shared database; a SQLite file has this soiqd alone.
+  c.share_stage2 = where->kind == soiq::server::StoreLocation::Kind::kPostgres;
+  if (c.replica_id.empty()) c.replica_id = soiq::server::default_replica_id();
   std::string token;
   if (!c.token_file.empty()) {
     Result<std::string> t = read_token(c.token_file);
@@ -148,7 +152,8 @@ int main(int argc, char** argv) {
                                    {"db", soiq::server::redacted_store_location(c.db_path)},
                                    {"tls", c.tls_cert.empty() ? "off" : "on"},
                                    {"auth", token.empty() ? "off" : "bearer"},
-                                   {"workers", std::to_string(c.workers)}});
+                                   {"workers", std::to_string(c.workers)},
+                                   {"replica", c.share_stage2 ? c.replica_id : "alone"}});
 
   std::thread waiter([&] {
     int sig = 0;

@@ -18,10 +18,16 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
       budget_(config.memory_budget_bytes),
       features_(store, config.max_grid_voxels, budget_),
       pool_(config.workers),
-      queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}),
+      sharing_(config.share_stage2
+                   ? std::make_unique<SharedStage2>(
+                         store, features_, pool_,
+                         SharingOptions{config.replica_id, std::chrono::milliseconds(config.replica_live_ms)})
+                   : nullptr),
+      queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}, sharing_.get()),
       precompute_(store, features_) {}
 
 Status SoiqService::start_background_work() {
+  if (sharing_) SOIQ_RETURN_IF_ERROR(sharing_->start());
   if (!config_.precompute) return ok_status();
   return precompute_.start();
 }

@@ -89,6 +89,9 @@ class SoiqService final : public v1::Soiq::Service {
   MemoryBudget budget_;  // before features_, which admits work against it
   FeatureEngine features_;
   WorkerPool pool_;  // after features_: destroyed (joined) first
+  // With other replicas on a shared database: after pool_, whose workers run its items (so it is
+  // stopped before the pool), before queries_, which posts to it.
+  std::unique_ptr<SharedStage2> sharing_;
   QueryEngine queries_;
   PrecomputeWorker precompute_;  // last: stopped first, before what it uses
 };

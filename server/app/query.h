@@ -82,6 +82,7 @@ struct QuerySkip {
 struct QuerySummary {
   int64_t stage1_candidates = 0;
   int64_t computed = 0;    // structures whose features were computed now
+  int64_t shared = 0;      // of those, computed through the replicas' shared stage 2 (any replica)
   int64_t cache_hits = 0;  // structures answered from the feature cache
   int64_t matched = 0, returned = 0;
   int64_t failed = 0;                 // structures whose features could not be computed

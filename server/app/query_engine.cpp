@@ -19,6 +19,7 @@ namespace soiq::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using CachedByKey = std::map<std::string, FeatureValues>;  // cache key -> its entries
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
@@ -57,9 +58,16 @@ struct Completions {
 // One run of one query: the steps of query_engine.h, in order, over shared state.
 class QueryRun {
  public:
-  QueryRun(const Query& q, db::Store& store, FeatureEngine& features, WorkerPool& pool, ImageRefsCheck& image_refs,
-           const std::function<Status()>& stop, const QueryOutput& out)
-      : q_(q), store_(store), features_(features), pool_(pool), image_refs_(image_refs), stop_(stop), out_(out) {}
+  QueryRun(const Query& q, db::Store& store, FeatureEngine& features, WorkerPool& pool, SharedStage2* sharing,
+           ImageRefsCheck& image_refs, const std::function<Status()>& stop, const QueryOutput& out)
+      : q_(q),
+        store_(store),
+        features_(features),
+        pool_(pool),
+        sharing_(sharing),
+        image_refs_(image_refs),
+        stop_(stop),
+        out_(out) {}
 
   Result<QuerySummary> run(int64_t stage1_cap) {
     const Clock::time_point start = Clock::now();
@@ -106,8 +114,9 @@ class QueryRun {
   // Each subject's plan, then the cache for every plan in one round trip. Subjects answered by the
   // cache (or that cannot be planned) are ready; the others are returned, to compute.
   Result<std::vector<size_t>> plan_and_read_cache() {
-    std::vector<std::string> keys, entries;
-    for (Subject& s : subjects_) {
+    std::vector<size_t> planned;
+    for (size_t i = 0; i < subjects_.size(); ++i) {
+      Subject& s = subjects_[i];
       if (q_.ask.names.empty()) {
         s.ready = true;
         continue;
@@ -120,27 +129,14 @@ class QueryRun {
         continue;
       }
       s.plan = std::move(plan).value();
-      keys.push_back(s.plan->cache_key);
-      for (const WantedValue& w : s.plan->wants) entries.push_back(w.entry);
+      planned.push_back(i);
     }
-    for (auto* list : {&keys, &entries}) {
-      std::sort(list->begin(), list->end());
-      list->erase(std::unique(list->begin(), list->end()), list->end());
-    }
-    std::map<std::string, FeatureValues> cached;
-    if (!keys.empty()) {
-      // Only the entries some plan wants: a key holds every value its context ever computed.
-      SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> found, store_.cached_features(keys, entries));
-      for (auto& e : found) cached[e.key][e.entry] = std::move(e.value);
-    }
+    SOIQ_ASSIGN_OR_RETURN(CachedByKey cached, cached_values(planned));
     std::vector<size_t> misses;
-    for (size_t i = 0; i < subjects_.size(); ++i) {
+    for (size_t i : planned) {
       Subject& s = subjects_[i];
-      if (s.ready) continue;
       const FeatureValues& have = cached[s.plan->cache_key];
-      const bool complete = std::all_of(s.plan->wants.begin(), s.plan->wants.end(),
-                                        [&](const WantedValue& w) { return have.count(w.entry) > 0; });
-      if (!complete) {
+      if (!has_all(s, have)) {
         misses.push_back(i);
         continue;
       }
@@ -149,6 +145,55 @@ class QueryRun {
       ++summary_.cache_hits;
     }
     return misses;
+  }
+
+  // The cached values of the planned subjects, by cache key, in one round trip: only the entries
+  // some plan wants (a key holds every value its context ever computed).
+  Result<CachedByKey> cached_values(const std::vector<size_t>& planned) {
+    std::vector<std::string> keys, entries;
+    for (size_t i : planned) {
+      keys.push_back(subjects_[i].plan->cache_key);
+      for (const WantedValue& w : subjects_[i].plan->wants) entries.push_back(w.entry);
+    }
+    for (auto* list : {&keys, &entries}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    CachedByKey cached;
+    if (keys.empty()) return cached;
+    SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> found, store_.cached_features(keys, entries));
+    for (auto& e : found) cached[e.key][e.entry] = std::move(e.value);
+    return cached;
+  }
+
+  static bool has_all(const Subject& s, const FeatureValues& have) {
+    return std::all_of(s.plan->wants.begin(), s.plan->wants.end(),
+                       [&](const WantedValue& w) { return have.count(w.entry) > 0; });
+  }
+
+  // The misses computed by every live replica (shared_stage2.h), then read back from the shared
+  // cache and evaluated; those still missing (they failed elsewhere) are returned, to compute here,
+  // where they fail again and are reported as in a single replica's run.
+  Result<std::vector<size_t>> share(const std::vector<size_t>& misses) {
+    std::vector<int64_t> ids;
+    for (size_t i : misses) ids.push_back(subjects_[i].structure.id);
+    const int64_t candidates = int64_t(candidates_.size());
+    SOIQ_RETURN_IF_ERROR(sharing_->share(q_.ask, ids, stop_, [&](int64_t finished) {
+      return progress("stage2", std::min(candidates, done_ + finished));
+    }));
+    SOIQ_ASSIGN_OR_RETURN(CachedByKey cached, cached_values(misses));
+    std::vector<size_t> left;
+    for (size_t i : misses) {
+      const FeatureValues& have = cached[subjects_[i].plan->cache_key];
+      if (!has_all(subjects_[i], have)) {
+        left.push_back(i);
+        continue;
+      }
+      ++summary_.shared;
+      SOIQ_RETURN_IF_ERROR(complete(i, have));
+      if (enough_) break;
+    }
+    return left;
   }
 
   // A study's series, read once per study.
@@ -161,8 +206,12 @@ class QueryRun {
     return &it->second;
   }
 
-  // The misses on the worker pool; each candidate is evaluated as its subjects complete.
-  Status compute(const std::vector<size_t>& misses) {
+  // The misses on the worker pool (first across the replicas, when others are live); each candidate
+  // is evaluated as its subjects complete.
+  Status compute(std::vector<size_t> misses) {
+    if (!enough_ && sharing_ != nullptr && sharing_->live_replicas() > 1 && misses.size() > 1) {
+      SOIQ_ASSIGN_OR_RETURN(misses, share(misses));
+    }
     auto completions = std::make_shared<Completions>();
     // Whatever way this returns, workers not yet started skip their structure.
     struct CancelOnExit {
@@ -332,6 +381,7 @@ class QueryRun {
   db::Store& store_;
   FeatureEngine& features_;
   WorkerPool& pool_;
+  SharedStage2* sharing_;  // null: this replica computes alone
   ImageRefsCheck& image_refs_;
   const std::function<Status()>& stop_;
   const QueryOutput& out_;
@@ -354,7 +404,7 @@ class QueryRun {
 
 Result<QuerySummary> QueryEngine::run(const Query& query, const std::function<Status()>& stop, const QueryOutput& out) {
   if (query.limit < 1) return invalid_argument("a query's limit must be >= 1, got " + std::to_string(query.limit));
-  return QueryRun(query, store_, features_, pool_, image_refs_, stop, out).run(limits_.stage1_cap);
+  return QueryRun(query, store_, features_, pool_, sharing_, image_refs_, stop, out).run(limits_.stage1_cap);
 }
 
 }  // namespace soiq::server

@@ -5,7 +5,8 @@
 //   subjects  the structures whose features are needed: candidates and their twins, each once;
 //   plan      what each subject needs (grid, images, cache key), nothing decoded, then the
 //             feature cache for every plan in one round trip;
-//   compute   the misses on the worker pool, in parallel;
+//   compute   the misses on the worker pool, in parallel; with other live replicas on the same
+//             database, first shared among all of them (shared_stage2.h), then read from the cache;
 //   evaluate  each candidate as soon as it and its twin are ready: predicates (AND), then the
 //             row streams at once (no order) or waits for the sort (order, then the first limit).
 // Progress goes out as work completes (at most every 100 ms, and at the end of each stage).
@@ -31,6 +32,7 @@
 #include "server/app/feature_engine.h"
 #include "server/app/image_refs_check.h"
 #include "server/app/query.h"
+#include "server/app/shared_stage2.h"
 #include "server/util/worker_pool.h"
 
 namespace soiq::server {
@@ -42,8 +44,10 @@ struct QueryLimits {
 
 class QueryEngine {
  public:
-  QueryEngine(db::Store& store, FeatureEngine& features, WorkerPool& pool, QueryLimits limits)
-      : store_(store), features_(features), pool_(pool), limits_(limits) {}
+  // `sharing`: the replicas' shared stage 2, or null for a soiqd alone on its store.
+  QueryEngine(db::Store& store, FeatureEngine& features, WorkerPool& pool, QueryLimits limits,
+              SharedStage2* sharing = nullptr)
+      : store_(store), features_(features), pool_(pool), sharing_(sharing), limits_(limits) {}
 
   // `stop` returns a non-OK status (CANCELLED, DEADLINE_EXCEEDED) once the caller is gone or out
   // of time. Rows and progress go to `out`; the summary is returned.
@@ -55,6 +59,7 @@ class QueryEngine {
   db::Store& store_;
   FeatureEngine& features_;
   WorkerPool& pool_;
+  SharedStage2* sharing_;
   const QueryLimits limits_;
   ImageRefsCheck image_refs_;
 };

@@ -38,6 +38,10 @@ constexpr OptionText kOptionTexts[] = {
      "the store: a SQLite file (made, with its folder, when missing), or a PostgreSQL database that "
      "several soiqd replicas may share (the password from PGPASSWORD or ~/.pgpass)"},
     {"--db-connections", "N", "the workers + 4", "PostgreSQL connections this soiqd opens (the pool)"},
+    {"--replica-id", "ID", "host-pid-random",
+     "this soiqd's name among the replicas sharing a PostgreSQL database (at most 64 bytes)"},
+    {"--replica-timeout-ms", "MS", "3000",
+     "a replica silent this long is dead and its share of a query is done by the others"},
     {"--port-file", "PATH", "none", "write the bound port there once soiqd serves"},
     {"--max-upload-bytes", "N", "268435456 (256 MiB)", "the largest upload or import soiqd accepts"},
     {"--max-grid-voxels", "N", "500000000", "the largest grid of a conversion or an image"},
@@ -122,6 +126,8 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--listen", text(c.listen)},
       {"--db", text(c.db_path)},
       {"--db-connections", count(c.db_connections, 1, 1000)},
+      {"--replica-id", text(c.replica_id)},
+      {"--replica-timeout-ms", count(c.replica_live_ms, 100, 3'600'000)},
       {"--port-file", text(c.port_file)},
       {"--max-upload-bytes", count(c.max_upload_bytes, 1, int64_t(1) << 40)},
       {"--max-grid-voxels", count(c.max_grid_voxels, 1, int64_t(1) << 40)},
@@ -186,6 +192,11 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
   }
   if (c.memory_budget_bytes == 0) c.memory_budget_bytes = default_memory_budget_bytes();
   if (c.workers == 0) c.workers = std::max(1u, std::thread::hardware_concurrency());
+  if (c.replica_id.size() > 64) return invalid_argument("--replica-id must be at most 64 bytes");
+  for (const char ch : c.replica_id) {
+    if (static_cast<unsigned char>(ch) < 0x21 || ch == 0x7f)
+      return invalid_argument("--replica-id must not contain spaces or control characters");
+  }
   return c;
 }
 

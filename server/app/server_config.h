@@ -33,7 +33,12 @@ struct ServerConfig {
   std::string pacs;  // AE@HOST:PORT as given
   std::string pacs_calling_ae = "SOIQ";
   int pacs_timeout_seconds = 30;
-  bool precompute = true;                    // compute every structure's default features in the background
+  bool precompute = true;  // compute every structure's default features in the background
+  // Replicas on a shared database (PostgreSQL; shared_stage2.h). share_stage2 is set by soiqd from
+  // the store's kind, not a flag: a SQLite file has one soiqd.
+  std::string replica_id;  // "": default_replica_id()
+  int64_t replica_live_ms = 3000;
+  bool share_stage2 = false;
   std::optional<dicom::PacsPeer> pacs_peer;  // parsed from the three above; nullopt without --pacs
 };
 

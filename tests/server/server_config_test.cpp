@@ -90,7 +90,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 17u);
+  EXPECT_EQ(flags.size(), 19u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
