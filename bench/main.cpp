@@ -23,6 +23,7 @@
 #include "bench/import_bench.h"
 #include "bench/pacs_bench.h"
 #include "bench/query_bench.h"
+#include "bench/replicas_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
 #include "bench/surface_codec_bench.h"
@@ -32,19 +33,21 @@
 namespace {
 
 int usage() {
-  std::fprintf(stderr,
-               "usage: soiq-bench simgen --out DIR [--spacing S]\n"
-               "       soiq-bench convert MESH --reference IMAGE --method 1d|2d|3d|vtk-stencil|vtk-enclosed|itk\n"
-               "                  [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n"
-               "       soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n"
-               "       soiq-bench table7 [--runs N] [--pin CPU]\n"
-               "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
-               "       soiq-bench cpu-probe [--runs N]\n"
-               "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
-               "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
-               "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
-               "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
-               "                  [--patients N] [--matched N]\n");
+  std::fprintf(
+      stderr,
+      "usage: soiq-bench simgen --out DIR [--spacing S]\n"
+      "       soiq-bench convert MESH --reference IMAGE --method 1d|2d|3d|vtk-stencil|vtk-enclosed|itk\n"
+      "                  [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n"
+      "       soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n"
+      "       soiq-bench table7 [--runs N] [--pin CPU]\n"
+      "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
+      "       soiq-bench cpu-probe [--runs N]\n"
+      "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
+      "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
+      "       soiq-bench replicas [--small] [--soiqd PATH] [--workers N] [--seconds S] [--patients N] [--matched N]\n"
+      "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
+      "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
+      "                  [--patients N] [--matched N]\n");
   return 2;
 }
 
@@ -71,6 +74,7 @@ int main(int argc, char** argv) {
   if (command == "cpu-probe") return run_cpu_probe(*args);
   if (command == "features") return run_features_bench(*args);
   if (command == "query") return run_query_bench(*args);
+  if (command == "replicas") return run_replicas_bench(*args);
   if (command == "import") return run_import_bench(*args);
   if (command == "pacs") return run_pacs_bench(*args);
   if (command == "codec") return run_surface_codec_bench(*args);

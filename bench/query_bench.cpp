@@ -170,7 +170,7 @@ Status server_runs(const Options& o, const WorkDir& work, const std::string& pri
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(server.address()));
   SOIQ_RETURN_IF_ERROR(timed_query(c, benchmark_request()).status());  // warms the page cache
   for (int clients : {1, 2, 4, 8}) {
-    SOIQ_ASSIGN_OR_RETURN(Throughput t, throughput(server.address(), clients, o.seconds));
+    SOIQ_ASSIGN_OR_RETURN(Throughput t, throughput({server.address()}, clients, o.seconds));
     f.load.push_back(t);
   }
   return ok_status();

@@ -96,7 +96,7 @@ Result<ServerRun> server_run(const std::string& soiqd, int workers, const std::s
   return run;
 }
 
-Result<Throughput> throughput(const std::string& address, int clients, double seconds) {
+Result<Throughput> throughput(const std::vector<std::string>& addresses, int clients, double seconds) {
   std::vector<std::vector<double>> latencies(static_cast<size_t>(clients));
   std::vector<Status> errors(static_cast<size_t>(clients), ok_status());
   std::vector<std::thread> threads;
@@ -104,7 +104,7 @@ Result<Throughput> throughput(const std::string& address, int clients, double se
   const Clock::time_point until = t0 + std::chrono::milliseconds(int64_t(seconds * 1000));
   for (int i = 0; i < clients; ++i) {
     threads.emplace_back([&, i] {
-      Result<client::Client> c = connect(address);
+      Result<client::Client> c = connect(addresses[size_t(i) % addresses.size()]);
       if (!c.ok()) {
         errors[size_t(i)] = c.status();
         return;

@@ -48,7 +48,8 @@ struct Throughput {
   double per_second = 0;
   Stats latency;
 };
-// `clients` threads, each with its own channel, repeat the warm query for `seconds`.
-Result<Throughput> throughput(const std::string& address, int clients, double seconds);
+// `clients` threads, each with its own channel (client i to addresses[i % n]: replicas in round
+// robin), repeat the warm query for `seconds`.
+Result<Throughput> throughput(const std::vector<std::string>& addresses, int clients, double seconds);
 
 }  // namespace soiq::bench

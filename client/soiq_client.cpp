@@ -66,6 +66,10 @@ Result<Client> Client::connect(ClientOptions options) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(options.max_receive_message_bytes);
   args.SetMaxSendMessageSize(options.max_send_message_bytes);
+  // Every address the name resolves to, in turn: "dns:///soiqd:50051" naming several soiqd
+  // replicas (docker/compose.yaml's replicas profile) spreads calls over them; one address is
+  // served as before.
+  args.SetLoadBalancingPolicyName("round_robin");
   auto channel = grpc::CreateCustomChannel(target.grpc_target, credentials, args);
   return Client(std::move(options), std::move(token), std::move(channel));
 }

@@ -9,7 +9,7 @@
 # paths the sources use ("client/soiq_client.h", "soiq/v1/soiq.grpc.pb.h", "core/base/status.h").
 include(CMakePackageConfigHelpers)
 
-install(TARGETS soiq soiqd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS soiq soiqd soiq-admin RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # soiq_warnings only rides along: static archives list their private link dependencies.
 install(TARGETS soiq_client soiq_proto soiq_core_base soiq_warnings

@@ -264,7 +264,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The store: 24 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// The store: 25 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
 // (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
 // single-record cases; backends implement only the virtual methods.
 class Store {
@@ -324,6 +324,9 @@ class Store {
   // Records that `replica_id` is alive, drops the work posted by replicas that are not (nobody waits
   // for it), and returns the number of live replicas, this one included.
   virtual Result<int> replica_heartbeat(const std::string& replica_id, int64_t live_ms) = 0;
+  // The live replica with the smallest id ("" when none is live): the one that runs the work only
+  // one replica should run (precompute), chosen again as soon as it falls silent.
+  virtual Result<std::string> first_live_replica(int64_t live_ms) = 0;
   // Posts the structures of a query for any replica to compute (one item per structure id; an id
   // given twice is one item).
   virtual Status post_stage2_work(const std::string& replica_id, const std::string& query_id, const std::string& ask,

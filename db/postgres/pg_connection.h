@@ -41,6 +41,8 @@ class PgResult {
   std::string_view raw(int row, int col) const;
   // A column's type (PostgreSQL's type OID: 20 bigint, 23 integer, 701 double precision, …).
   unsigned type(int col) const { return PQftype(r_.get(), col); }
+  int columns() const { return PQnfields(r_.get()); }
+  std::string column_name(int col) const { return PQfname(r_.get(), col); }
   // The number of rows an INSERT, UPDATE or DELETE touched.
   int64_t affected() const;
 

@@ -46,7 +46,7 @@ PgNumberedSql pg_numbered_parameters(std::string_view sql) {
 namespace {
 
 // PostgreSQL's type OIDs (catalog pg_type) of the columns the store reads.
-constexpr unsigned kBool = 16, kInt8 = 20, kInt2 = 21, kInt4 = 23, kFloat4 = 700, kFloat8 = 701;
+constexpr unsigned kBool = 16, kBytea = 17, kInt8 = 20, kInt2 = 21, kInt4 = 23, kFloat4 = 700, kFloat8 = 701;
 
 template <typename Int>
 Int big_endian(std::string_view raw) {
@@ -132,6 +132,25 @@ class PgCursor : public SqlCursor {
   std::string_view text_view(int col) const override { return result_->raw(row_, col); }
   std::string_view blob_view(int col) const override { return result_->raw(row_, col); }
   int64_t changes() const override { return result_ ? result_->affected() : 0; }
+  int column_count() const override { return result_ ? result_->columns() : 0; }
+  std::string column_name(int col) const override { return result_ ? result_->column_name(col) : ""; }
+  SqlValueType value_type(int col) const override {
+    if (result_->is_null(row_, col)) return SqlValueType::kNull;
+    switch (result_->type(col)) {
+      case kBool:
+      case kInt2:
+      case kInt4:
+      case kInt8:
+        return SqlValueType::kInteger;
+      case kFloat4:
+      case kFloat8:
+        return SqlValueType::kReal;
+      case kBytea:
+        return SqlValueType::kBlob;
+      default:
+        return SqlValueType::kText;
+    }
+  }
 
  private:
   // Parameter i of the SQLite-numbered text; one the text does not use is dropped, as SQLite

@@ -20,6 +20,9 @@
 
 namespace soiq::db {
 
+// What a column of the current row holds (for copying rows whose columns the code does not name).
+enum class SqlValueType { kNull, kInteger, kReal, kText, kBlob };
+
 // A backend's prepared statement (see SqlStatement for the meaning of each call).
 class SqlCursor {
  public:
@@ -37,6 +40,9 @@ class SqlCursor {
   virtual std::string_view text_view(int col) const = 0;
   virtual std::string_view blob_view(int col) const = 0;
   virtual int64_t changes() const = 0;
+  virtual int column_count() const = 0;
+  virtual std::string column_name(int col) const = 0;
+  virtual SqlValueType value_type(int col) const = 0;
 };
 
 class SqlStatement {
@@ -50,6 +56,7 @@ class SqlStatement {
   void bind(int i, const char* text) { cursor_->bind(i, std::string_view(text)); }
   void bind(int i, const std::string& text) { cursor_->bind(i, std::string_view(text)); }
   void bind_blob(int i, std::string_view bytes) { cursor_->bind_blob(i, bytes); }
+  void bind_null(int i) { cursor_->bind_null(i); }
 
   // true: a row is ready to read; false: the statement is done.
   Result<bool> step() { return cursor_->step(); }
@@ -65,6 +72,10 @@ class SqlStatement {
   // Rows the last run of an INSERT, UPDATE or DELETE wrote (after it is done).
   int64_t changes() const { return cursor_->changes(); }
 
+  // The columns of the rows (after the first step), and what a column of the current row holds.
+  int column_count() const { return cursor_->column_count(); }
+  std::string column_name(int col) const { return cursor_->column_name(col); }
+  SqlValueType value_type(int col) const { return cursor_->value_type(col); }
   bool is_null(int col) const { return cursor_->is_null(col); }
   int64_t int64(int col) const { return cursor_->int64(col); }
   double real(int col) const { return cursor_->real(col); }

@@ -28,8 +28,23 @@
 
 namespace soiq::db {
 
+// One table's rows and the sha256 of their canonical bytes, in key order (SqlStore::table_digests).
+struct TableDigest {
+  std::string table;
+  int64_t rows = 0;
+  std::string sha256;
+};
+
 class SqlStore : public Store {
  public:
+  // Copies every record (patients to the feature cache, keys included) into `to`, an empty store of
+  // either backend, in one transaction on each side; `progress(table, rows copied)` as it goes.
+  // FAILED_PRECONDITION when `to` holds records. The replicas' running state is not copied.
+  Status copy_to(SqlStore& to, const std::function<void(const std::string& table, int64_t rows)>& progress);
+  // Each record table's row count and digest: equal in two stores exactly when they hold the same
+  // records (soiq-admin migrate compares them after a copy).
+  Result<std::vector<TableDigest>> table_digests();
+
   Result<ImportedBatch> import_batch(const ImportBatch& b) override;
   Result<int64_t> remove(const Removal& r) override;
   Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
@@ -52,6 +67,7 @@ class SqlStore : public Store {
   Result<Counts> counts() override;
   Result<std::vector<StructureRecord>> precompute_queue(int64_t limit) override;
   Result<int> replica_heartbeat(const std::string& replica_id, int64_t live_ms) override;
+  Result<std::string> first_live_replica(int64_t live_ms) override;
   Status post_stage2_work(const std::string& replica_id, const std::string& query_id, const std::string& ask,
                           const std::vector<int64_t>& structure_ids) override;
   Result<std::vector<Stage2Work>> claim_stage2_work(const std::string& replica_id, int64_t limit,
@@ -69,8 +85,9 @@ class SqlStore : public Store {
   virtual Status read(const std::function<Status(SqlSession&)>& fn) = 0;
   virtual Status write(const std::function<Status(SqlSession&)>& fn) = 0;
   virtual Status read_one(const std::function<Status(SqlSession&)>& fn) { return read(fn); }
-  // A write of the stage-2 queue and heartbeats, whose statements decide by themselves (ON
-  // CONFLICT, SKIP LOCKED): a backend may run it at a lighter isolation than write(). Default write().
+  // A write whose statements decide by themselves (ON CONFLICT, SKIP LOCKED): the stage-2 queue,
+  // heartbeats, feature-cache batches. A backend may run it at a lighter isolation than write().
+  // Default write().
   virtual Status write_queue(const std::function<Status(SqlSession&)>& fn);
   // Writes the surfaces' feature-cache entries inside a write (put_cached_features, put_precomputed):
   // an upsert per entry, skipping a surface that is gone. A backend may do it in fewer statements.

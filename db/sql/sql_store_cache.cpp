@@ -105,7 +105,10 @@ Status SqlStore::put_cached_features(const std::string& surface_sha256, const st
 Status SqlStore::put_cached_features(const std::vector<SurfaceFeatures>& batch) {
   for (const SurfaceFeatures& s : batch) SOIQ_RETURN_IF_ERROR(validate_cache_entries(s.surface_sha256, s.entries));
   if (batch.empty()) return ok_status();
-  return write([&](SqlSession& c) { return upsert_cached_features(c, batch); });
+  // The upsert decides by itself (ON CONFLICT), and a surface deleted meanwhile is skipped: no read
+  // of this transaction must stay true at commit, so the queue's lighter unit serves (on
+  // PostgreSQL, no serialization failures between replicas caching at once).
+  return write_queue([&](SqlSession& c) { return upsert_cached_features(c, batch); });
 }
 
 }  // namespace soiq::db

@@ -32,6 +32,8 @@ constexpr char kForgetReplicasSql[] = R"sql(
   DELETE FROM replicas WHERE seen_ms < {now} - 86400000)sql";
 constexpr char kLiveReplicasSql[] = R"sql(
   SELECT count(*) FROM replicas WHERE seen_ms > {now} - ?1)sql";
+constexpr char kFirstLiveReplicaSql[] = R"sql(
+  SELECT min(id) FROM replicas WHERE seen_ms > {now} - ?1)sql";
 
 // ?1 query, ?2 ask, ?3 poster, then the structure ids; the list of ids follows.
 constexpr char kPostSql[] = R"sql(
@@ -40,14 +42,18 @@ constexpr char kPostSql[] = R"sql(
 constexpr char kPostEndSql[] = R"sql() AS v WHERE true
   ON CONFLICT(query_id, structure_id) DO NOTHING)sql";
 
-// ?1 the claimer, ?2 how many, ?3 live_ms; %s: PostgreSQL's row locking.
+// ?1 the claimer, ?2 how many, ?3 live_ms; %s: PostgreSQL's row locking. The rows are chosen once,
+// in a materialised CTE: as `IN (SELECT … LIMIT n FOR UPDATE SKIP LOCKED)` PostgreSQL may run the
+// subquery again for every row it updates, each run skipping the rows the last one locked, and
+// one claim took 993 items where it asked for 2 (measured with 1,000 items).
 constexpr char kClaimSql[] = R"sql(
-  UPDATE stage2_work SET claimed_by = ?1
-  WHERE (query_id, structure_id) IN (
+  WITH chosen AS MATERIALIZED (
     SELECT w.query_id, w.structure_id FROM stage2_work w
     WHERE w.claimed_by = '' OR w.claimed_by NOT IN (SELECT id FROM replicas WHERE seen_ms > {now} - ?3)
     ORDER BY w.posted_ms, w.query_id, w.structure_id
     LIMIT ?2%s)
+  UPDATE stage2_work SET claimed_by = ?1
+  WHERE (query_id, structure_id) IN (SELECT query_id, structure_id FROM chosen)
   RETURNING query_id, structure_id, ask)sql";
 
 constexpr char kFinishSql[] = R"sql(
@@ -94,6 +100,19 @@ Result<int> SqlStore::replica_heartbeat(const std::string& replica_id, int64_t l
     return ok_status();
   }));
   return live;
+}
+
+Result<std::string> SqlStore::first_live_replica(int64_t live_ms) {
+  if (live_ms < 1) return invalid_argument("live_ms must be >= 1");
+  std::string first;
+  SOIQ_RETURN_IF_ERROR(read_one([&](SqlSession& c) -> Status {
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(with_now(kFirstLiveReplicaSql, c.dialect())));
+    q.bind(1, live_ms);
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    first = row && !q.is_null(0) ? q.text(0) : "";
+    return ok_status();
+  }));
+  return first;
 }
 
 Status SqlStore::post_stage2_work(const std::string& replica_id, const std::string& query_id, const std::string& ask,

@@ -26,6 +26,22 @@ class SqliteCursor : public SqlCursor {
   // The connection's count, which is the last finished statement's: the session's statements run
   // one at a time on it.
   int64_t changes() const override { return sqlite3_changes64(db_); }
+  int column_count() const override { return st_.column_count(); }
+  std::string column_name(int col) const override { return st_.column_name(col); }
+  SqlValueType value_type(int col) const override {
+    switch (st_.column_type(col)) {
+      case SQLITE_INTEGER:
+        return SqlValueType::kInteger;
+      case SQLITE_FLOAT:
+        return SqlValueType::kReal;
+      case SQLITE_TEXT:
+        return SqlValueType::kText;
+      case SQLITE_BLOB:
+        return SqlValueType::kBlob;
+      default:
+        return SqlValueType::kNull;
+    }
+  }
 
  private:
   Statement st_;

@@ -41,6 +41,9 @@ class Statement {
   // Back to before the first step, keeping the bindings, to run the statement again.
   void reset();
 
+  int column_count() const;
+  std::string column_name(int col) const;
+  int column_type(int col) const;  // SQLite's storage class: SQLITE_INTEGER, _FLOAT, _TEXT, _BLOB, _NULL
   bool is_null(int col) const;
   int64_t int64(int col) const;
   double real(int col) const;

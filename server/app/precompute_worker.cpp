@@ -39,7 +39,9 @@ void lower_priority() { (void)setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid
 PrecomputeWorker::~PrecomputeWorker() {
   stopping_ = true;
   notify();
-  if (thread_.joinable()) thread_.join();
+  if (!thread_.joinable()) return;
+  thread_.join();
+  log_event("info", {{"event", "precompute_stopped"}, {"structures_precomputed", std::to_string(stored_.load())}});
 }
 
 Status PrecomputeWorker::start() {
@@ -147,6 +149,10 @@ void PrecomputeWorker::loop() {
     work_signalled_ = false;
   };
   while (!stopping_) {
+    if (!may_run_()) {  // another replica precomputes
+      sleep();
+      continue;
+    }
     Result<std::vector<db::StructureRecord>> batch = store_.precompute_queue(kBatch);
     if (!batch.ok()) {
       log_event("warn", {{"event", "precompute_queue_unreadable"}, {"error", batch.status().to_string()}});
@@ -179,6 +185,7 @@ void PrecomputeWorker::loop() {
     }
     // Work finished before a stop is kept; what was in flight stays queued.
     const Status stored = store_.put_precomputed(results);
+    if (stored.ok()) stored_ += int64_t(results.size());
     if (!stored.ok()) {
       // A full disk, a busy database: the structures stay queued; try again after a pause.
       log_event("warn", {{"event", "precompute_not_stored"},

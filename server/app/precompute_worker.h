@@ -19,6 +19,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -30,7 +31,11 @@ namespace soiq::server {
 
 class PrecomputeWorker {
  public:
-  PrecomputeWorker(db::Store& store, FeatureEngine& features) : store_(store), features_(features) {}
+  // `may_run` says whether this soiqd is the one of its replicas that precomputes (it is asked
+  // before each batch; always, for a soiqd alone on its store).
+  PrecomputeWorker(
+      db::Store& store, FeatureEngine& features, std::function<bool()> may_run = [] { return true; })
+      : store_(store), features_(features), may_run_(std::move(may_run)) {}
   ~PrecomputeWorker();
   PrecomputeWorker(const PrecomputeWorker&) = delete;
   PrecomputeWorker& operator=(const PrecomputeWorker&) = delete;
@@ -53,11 +58,13 @@ class PrecomputeWorker {
 
   db::Store& store_;
   FeatureEngine& features_;
+  const std::function<bool()> may_run_;
   std::thread thread_;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool work_signalled_ = false;
   std::atomic<bool> stopping_{false};
+  std::atomic<int64_t> stored_{0};  // structures whose results this worker stored (logged at stop)
 };
 
 }  // namespace soiq::server

@@ -58,6 +58,8 @@ SharedStage2::~SharedStage2() {
 Status SharedStage2::start() {
   SOIQ_ASSIGN_OR_RETURN(const int live, store_.replica_heartbeat(options_.replica_id, options_.live.count()));
   live_ = live;
+  SOIQ_ASSIGN_OR_RETURN(const std::string first, store_.first_live_replica(options_.live.count()));
+  leads_ = first == options_.replica_id;
   heartbeat_ = std::thread([this] { heartbeat_loop(); });
   claimer_ = std::thread([this] { claim_loop(); });
   log_event("info",
@@ -73,10 +75,13 @@ bool SharedStage2::sleep_unless_stopping(milliseconds d) {
 void SharedStage2::heartbeat_loop() {
   while (sleep_unless_stopping(options_.live / 3)) {
     Result<int> live = store_.replica_heartbeat(options_.replica_id, options_.live.count());
-    if (live.ok()) {
+    Result<std::string> first =
+        live.ok() ? store_.first_live_replica(options_.live.count()) : Result<std::string>(live.status());
+    if (first.ok()) {
       live_ = *live;
+      leads_ = *first == options_.replica_id;
     } else {
-      log_event("warn", {{"event", "heartbeat_failed"}, {"error", live.status().message()}});
+      log_event("warn", {{"event", "heartbeat_failed"}, {"error", first.status().message()}});
     }
   }
 }

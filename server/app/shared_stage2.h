@@ -10,7 +10,8 @@
 // claim them again (db::Store::claim_stage2_work). An item that fails on another replica is
 // finished all the same; the poster computes it again itself and reports the failure as its own.
 //
-// Two threads per replica: one heartbeat (every third of `live`), one claimer (claims as many items
+// Two threads per replica: one heartbeat (every third of `live`; it also says whether this replica
+// leads, see leads()), one claimer (claims as many items
 // as the worker pool has threads, runs them on the pool, claims again when they are done; polls
 // every 25 ms while the queue is empty).
 //
@@ -53,6 +54,9 @@ class SharedStage2 {
 
   // Live replicas at the last heartbeat, this one included (1 before start()).
   int live_replicas() const { return live_.load(); }
+  // Whether this replica is the first live one (db::Store::first_live_replica) at the last
+  // heartbeat: the one that runs precompute, so that the replicas do not all compute it.
+  bool leads() const { return leads_.load(); }
 
   // Posts the structures (with what to compute) and waits until every one is finished, calling
   // `progress(finished)` as they are (at most every 100 ms). Returns early, OK, when nothing has
@@ -74,6 +78,7 @@ class SharedStage2 {
   WorkerPool& pool_;
   const SharingOptions options_;
   std::atomic<int> live_{1};
+  std::atomic<bool> leads_{true};
   std::atomic<int64_t> computed_{0};
   std::atomic<bool> cancelled_{false};  // for computations in flight at shutdown
 

@@ -46,11 +46,16 @@ std::string redacted_store_location(const std::string& db) {
 }
 
 Result<std::unique_ptr<db::Store>> open_store(const StoreLocation& where, const StoreOpenOptions& options) {
+  SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqlStore> store, open_sql_store(where, options));
+  return std::unique_ptr<db::Store>(std::move(store));
+}
+
+Result<std::unique_ptr<db::SqlStore>> open_sql_store(const StoreLocation& where, const StoreOpenOptions& options) {
   if (where.kind == StoreLocation::Kind::kPostgres) {
     db::PgOptions pg;
     pg.connections = options.connections;
     SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::PgStore> store, db::PgStore::open(where.target, pg));
-    return std::unique_ptr<db::Store>(std::move(store));
+    return std::unique_ptr<db::SqlStore>(std::move(store));
   }
   const std::filesystem::path dir = std::filesystem::path(where.target).parent_path();
   std::error_code ec;
@@ -58,7 +63,7 @@ Result<std::unique_ptr<db::Store>> open_store(const StoreLocation& where, const 
   db::SqliteOptions sqlite;
   sqlite.read_connections = options.read_connections;
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqliteStore> store, db::SqliteStore::open(where.target, sqlite));
-  return std::unique_ptr<db::Store>(std::move(store));
+  return std::unique_ptr<db::SqlStore>(std::move(store));
 }
 
 }  // namespace soiq::server

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/base/status.h"
+#include "db/sql/sql_store.h"
 #include "db/store.h"
 
 namespace soiq::server {
@@ -34,5 +35,7 @@ struct StoreOpenOptions {
 };
 
 Result<std::unique_ptr<db::Store>> open_store(const StoreLocation& where, const StoreOpenOptions& options);
+// The same store with the SQL layer's own operations (copy, digests: store_admin.h).
+Result<std::unique_ptr<db::SqlStore>> open_sql_store(const StoreLocation& where, const StoreOpenOptions& options);
 
 }  // namespace soiq::server

@@ -52,6 +52,18 @@ TYPED_TEST(StoreStage2Work, AHeartbeatCountsTheReplicasHeardFromWithinTheWindow)
   EXPECT_EQ(this->beat("a", 60000), 3);
 }
 
+TYPED_TEST(StoreStage2Work, TheFirstLiveReplicaIsTheSmallestIdHeardFrom) {
+  EXPECT_EQ(*this->store_->first_live_replica(60000), "");
+  this->beat("b");
+  this->beat("c");
+  EXPECT_EQ(*this->store_->first_live_replica(60000), "b");
+  this->beat("a");
+  EXPECT_EQ(*this->store_->first_live_replica(60000), "a");
+  std::this_thread::sleep_for(300ms);
+  this->beat("c");
+  EXPECT_EQ(*this->store_->first_live_replica(200), "c");  // a and b are silent
+}
+
 TYPED_TEST(StoreStage2Work, EveryPostedItemIsClaimedOnceAndFinishedItemsAreNotLeft) {
   this->beat("a");
   this->beat("b");
@@ -114,6 +126,7 @@ TYPED_TEST(StoreStage2Work, ReplicasClaimingAtOnceNeverShareAnItem) {
           return;
         }
         if (got->empty()) return;
+        if (got->size() > 7) ++failures;  // a claim never takes more than it asked for
         std::lock_guard<std::mutex> lock(mutex);
         for (const Stage2Work& w : *got) ++times[w.structure_id];
       }

@@ -10,6 +10,7 @@
 
 #include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
+#include "tests/support/child_process.h"
 
 namespace soiq::testing {
 namespace {
@@ -131,11 +132,19 @@ TEST_F(ServiceTest, BadServerConfigurationIsRefusedAtStart) {
   SoiqdProcess bad_flag(db_path_, {"--workers", "zero"});
   EXPECT_FALSE(bad_flag.running());
   EXPECT_NE(bad_flag.log().find("--workers"), std::string::npos) << bad_flag.log();
-  const std::string not_db = dir_.file("not.db");
-  std::ofstream(not_db) << "this is not a database, it is a text file of some length........\n";
-  SoiqdProcess bad_db(not_db);
-  EXPECT_FALSE(bad_db.running());
-  EXPECT_NE(bad_db.log().find("not.db"), std::string::npos) << bad_db.log();
+  if (soiqd_on_postgres()) {
+    // A database server nobody runs: refused at start, naming it.
+    const std::string where = "127.0.0.1:" + std::to_string(free_loopback_port());
+    SoiqdProcess bad_db(db_path_, {"--db", "postgresql://soiq@" + where + "/nowhere?connect_timeout=2"});
+    EXPECT_FALSE(bad_db.running());
+    EXPECT_NE(bad_db.log().find(where + "/nowhere"), std::string::npos) << bad_db.log();
+  } else {
+    const std::string not_db = dir_.file("not.db");
+    std::ofstream(not_db) << "this is not a database, it is a text file of some length........\n";
+    SoiqdProcess bad_db(not_db);
+    EXPECT_FALSE(bad_db.running());
+    EXPECT_NE(bad_db.log().find("not.db"), std::string::npos) << bad_db.log();
+  }
   // A PACS address must be AE@HOST:PORT with a valid AE title and port, said at start, not at the first call.
   const std::vector<std::pair<std::string, std::string>> bad_pacs = {
       {"127.0.0.1:104", "has no AE title"},

@@ -68,10 +68,14 @@ class ReplicasTest : public ServiceTest {
     uri_ = "postgresql://" + std::string(PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(server.port()) +
            "/replicas?connect_timeout=5";
   }
-  std::unique_ptr<SoiqdProcess> replica(const std::string& id) {
+  // `timeout_ms`: short where a test waits for a death, longer where a busy machine must not make a
+  // live replica look dead.
+  std::unique_ptr<SoiqdProcess> replica(const std::string& id, const std::string& precompute = "off",
+                                        int timeout_ms = 1000) {
     auto p = std::make_unique<SoiqdProcess>(
         dir_.file(id + ".db"),  // the folder of its log; the store is --db
-        std::vector<std::string>{"--db", uri_, "--replica-id", id, "--replica-timeout-ms", "1000", "--workers", "1"});
+        std::vector<std::string>{"--db", uri_, "--replica-id", id, "--replica-timeout-ms", std::to_string(timeout_ms),
+                                 "--workers", "1", "--precompute", precompute});
     EXPECT_FALSE(p->address().empty()) << "replica " << id << " did not start:\n" << p->log();
     return p;
   }
@@ -149,6 +153,34 @@ TEST_F(ReplicasTest, AQuerySharedByThreeReplicasOneKilledMidwayEqualsOneSoiqdAlo
   ASSERT_EQ(c->terminate(), 0);
   EXPECT_NE(c->log().find("event=replica_stopped"), std::string::npos) << c->log();
   EXPECT_EQ(c->log().find("items_computed=0"), std::string::npos) << "C computed nothing:\n" << c->log();
+}
+
+TEST_F(ReplicasTest, OneReplicaPrecomputesForAll) {
+  std::unique_ptr<SoiqdProcess> a = replica("A", "on", 5000), b = replica("B", "on", 5000),
+                                c = replica("C", "on", 5000);
+  ASSERT_TRUE(a->running() && b->running() && c->running());
+  std::this_thread::sleep_for(std::chrono::milliseconds(2000));  // every replica has heard the others
+  client::Client to_c = client_of(*c);
+  ASSERT_EQ(load_cohort(*this, to_c, dir_, 3).structures.size(), 12u);
+  for (int i = 0; i < 600; ++i) {  // at most a minute
+    Result<v1::ServerInfo> info = to_c.server_info();
+    ASSERT_TRUE(info.ok()) << info.status().to_string();
+    if (info->precompute_queued() == 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  int64_t total = 0;
+  int precomputing = 0;
+  for (auto* r : {a.get(), b.get(), c.get()}) {
+    ASSERT_EQ(r->terminate(), 0);
+    const std::string log = r->log();
+    const size_t at = log.rfind("structures_precomputed=");
+    ASSERT_NE(at, std::string::npos) << log;
+    const int64_t n = std::atoll(log.c_str() + at + 23);
+    total += n;
+    precomputing += n > 0;
+  }
+  EXPECT_EQ(total, 12);        // each structure once
+  EXPECT_EQ(precomputing, 1);  // by A, the first id: not the replica the uploads went to
 }
 
 }  // namespace

@@ -1,0 +1,220 @@
+#include "bench/replicas_bench.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/query_cohort.h"
+#include "bench/query_load.h"
+#include "bench/query_runs.h"
+#include "server/app/store_admin.h"
+#include "tests/support/postgres_process.h"
+#include "tests/support/soiqd_process.h"
+#include "tests/support/temp_dir.h"
+
+namespace soiq::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+void note(const std::string& s) { std::fprintf(stderr, "soiq-bench replicas: %s\n", s.c_str()); }
+
+struct Options {
+  QueryCohortSize size;
+  std::string soiqd = SOIQD_BINARY;
+  int workers = 2;
+  double seconds = 3;
+};
+
+struct ColdRun {
+  int replicas = 0;
+  double client_ms = 0;
+  int64_t computed = 0;
+  std::vector<int64_t> shares;  // items each replica computed for the query
+};
+
+struct Figures {
+  LoadFigures ingest_sqlite, ingest_postgres;
+  double migrate_s = 0;
+  int64_t migrated_rows = 0;
+  Stats stage1_sqlite, stage1_postgres;
+  int64_t candidates = 0;
+  std::vector<ColdRun> cold;
+  Throughput load;
+};
+
+// A PostgreSQL database made from `template_db` (a file-level copy: fast, and every run starts equal).
+Status make_database(const testing::PostgresProcess& pg, const std::string& name, const std::string& template_db) {
+  PGconn* c = PQconnectdb(pg.conninfo("postgres").c_str());
+  const std::string sql = "CREATE DATABASE " + name + (template_db.empty() ? "" : " TEMPLATE " + template_db);
+  PGresult* r = PQexec(c, sql.c_str());
+  const bool ok = PQresultStatus(r) == PGRES_COMMAND_OK;
+  const std::string why = PQresultErrorMessage(r);
+  PQclear(r);
+  PQfinish(c);
+  return ok ? ok_status() : internal_error(sql + ": " + why);
+}
+
+std::string uri(const testing::PostgresProcess& pg, const std::string& db) {
+  return "postgresql://" + std::string(testing::PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(pg.port()) +
+         "/" + db;
+}
+
+std::unique_ptr<testing::SoiqdProcess> replica(const Options& o, const testing::TempDir& dir, const std::string& db,
+                                               const std::string& id) {
+  return std::make_unique<testing::SoiqdProcess>(
+      dir.file(id + ".log.db"),
+      std::vector<std::string>{"--db", db, "--workers", std::to_string(o.workers), "--replica-id", id}, o.soiqd);
+}
+
+int64_t items_computed(const std::string& log) {
+  const size_t at = log.rfind("items_computed=");
+  return at == std::string::npos ? -1 : std::atoll(log.c_str() + at + 15);
+}
+
+Result<Stats> stage1_through(const std::string& address, int64_t& candidates) {
+  SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(address));
+  std::vector<double> ms;
+  for (int i = 0; i < 21; ++i) {
+    SOIQ_ASSIGN_OR_RETURN(const Timed t, timed_query(c, stage1_only_request()));
+    if (i > 0) ms.push_back(t.client_ms);  // the first warms the caches
+    candidates = t.summary.stage1_candidates();
+  }
+  return stats(ms);
+}
+
+Status run(const Options& o, Figures& f) {
+  testing::TempDir dir;
+  const std::vector<CohortPatient> cohort = query_cohort_patients(o.size, 20250409);
+  note("background patients through SqliteStore");
+  const std::string sqlite = dir.file("cohort.db");
+  SOIQ_RETURN_IF_ERROR(load_background(sqlite, cohort, o.size).status());
+
+  testing::PostgresProcess pg;
+  if (const std::string why = pg.start(); !why.empty()) return internal_error("PostgreSQL: " + why);
+  SOIQ_RETURN_IF_ERROR(make_database(pg, "ingest", ""));
+  for (const bool on_postgres : {false, true}) {
+    note(std::string("matched patients uploaded through soiqd on ") + (on_postgres ? "PostgreSQL" : "SQLite"));
+    testing::SoiqdProcess server(
+        on_postgres ? dir.file("ingest.log.db") : sqlite,
+        {"--db", on_postgres ? uri(pg, "ingest") : sqlite, "--workers", std::to_string(o.workers)}, o.soiqd);
+    if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
+    SOIQ_ASSIGN_OR_RETURN(LoadFigures up, upload_matched(server.address(), dir.path().string(), cohort, o.size, 2));
+    (on_postgres ? f.ingest_postgres : f.ingest_sqlite) = up;
+    if (server.terminate() != 0) return internal_error("soiqd did not stop cleanly: " + server.log());
+  }
+
+  note("the loaded store copied to PostgreSQL (soiq-admin migrate)");
+  SOIQ_RETURN_IF_ERROR(make_database(pg, "pristine", ""));
+  const Clock::time_point t0 = Clock::now();
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::TableDigest> digests,
+                        server::migrate_store({server::StoreLocation::Kind::kSqlite, sqlite},
+                                              {server::StoreLocation::Kind::kPostgres, uri(pg, "pristine")}, {}));
+  f.migrate_s = ms_since(t0) / 1000;
+  for (const db::TableDigest& d : digests) f.migrated_rows += d.rows;
+
+  note("stage 1 through soiqd on each backend");
+  // On a copy: a replica leaves its heartbeat row behind, which the cold runs' copies must not hold.
+  SOIQ_RETURN_IF_ERROR(make_database(pg, "stage1", "pristine"));
+  for (const bool on_postgres : {false, true}) {
+    testing::SoiqdProcess server(sqlite, {"--db", on_postgres ? uri(pg, "stage1") : sqlite}, o.soiqd);
+    if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
+    SOIQ_ASSIGN_OR_RETURN((on_postgres ? f.stage1_postgres : f.stage1_sqlite),
+                          stage1_through(server.address(), f.candidates));
+  }
+
+  for (int n = 1; n <= 3; ++n) {
+    note("the cold query on " + std::to_string(n) + " replica(s)");
+    const std::string db = "cold" + std::to_string(n);
+    SOIQ_RETURN_IF_ERROR(make_database(pg, db, "pristine"));
+    std::vector<std::unique_ptr<testing::SoiqdProcess>> replicas;
+    for (int r = 0; r < n; ++r) {
+      replicas.push_back(replica(o, dir, uri(pg, db), "r" + std::to_string(n) + std::to_string(r)));
+      if (replicas.back()->address().empty()) return internal_error("soiqd did not start: " + replicas.back()->log());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // every replica has heard the others
+    SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(replicas[0]->address()));
+    SOIQ_ASSIGN_OR_RETURN(const Timed cold, timed_query(c, benchmark_request()));
+    ColdRun run{n, cold.client_ms, cold.summary.computed(), {}};
+    if (n == 3) {
+      note("8 clients against the three replicas");
+      std::vector<std::string> addresses;
+      for (const auto& r : replicas) addresses.push_back(r->address());
+      SOIQ_ASSIGN_OR_RETURN(f.load, throughput(addresses, 8, o.seconds));
+    }
+    for (auto& r : replicas) {
+      if (r->terminate() != 0) return internal_error("soiqd did not stop cleanly: " + r->log());
+      run.shares.push_back(items_computed(r->log()));
+    }
+    f.cold.push_back(run);
+  }
+  return ok_status();
+}
+
+void print(const Options& o, const Figures& f) {
+  std::printf("### Replicas on PostgreSQL\n\n");
+  std::printf("Cohort: %lld patients (%lld matched); soiqd `--workers %d`; PostgreSQL 15 on the same machine,\n",
+              (long long)o.size.patients, (long long)o.size.matched, o.workers);
+  std::printf("over loopback TCP, started by the benchmark (fsync on, defaults otherwise).\n\n");
+  std::printf("| measure | SQLite | PostgreSQL |\n|---|---:|---:|\n");
+  auto per_s = [](const LoadFigures& l) { return l.seconds > 0 ? double(l.structures + l.images) / l.seconds : 0.0; };
+  std::printf("| ingest through soiqd: %lld surfaces + %lld images, uploads/s | %.1f | %.1f |\n",
+              (long long)f.ingest_sqlite.structures, (long long)f.ingest_sqlite.images, per_s(f.ingest_sqlite),
+              per_s(f.ingest_postgres));
+  std::printf("| stage 1 through soiqd, %lld candidates: best / median ms | %.1f / %.1f | %.1f / %.1f |\n\n",
+              (long long)f.candidates, f.stage1_sqlite.best, f.stage1_sqlite.median, f.stage1_postgres.best,
+              f.stage1_postgres.median);
+  std::printf("Migration SQLite -> PostgreSQL (`soiq-admin migrate`, verified): %lld rows in %.1f s.\n\n",
+              (long long)f.migrated_rows, f.migrate_s);
+  std::printf("| cold query (%lld structures computed) | client ms | structures computed by each replica |\n",
+              (long long)(f.cold.empty() ? 0 : f.cold[0].computed));
+  std::printf("|---|---:|---|\n");
+  for (const ColdRun& r : f.cold) {
+    std::string shares;
+    for (const int64_t s : r.shares) shares += (shares.empty() ? "" : " / ") + std::to_string(s);
+    if (r.replicas == 1) shares = "alone: no sharing";
+    std::printf("| %d replica%s | %.0f | %s |\n", r.replicas, r.replicas > 1 ? "s" : "", r.client_ms, shares.c_str());
+  }
+  std::printf(
+      "\n8 clients, warm query, round robin over the three replicas: %.1f queries/s, p50 %.1f ms, p95 %.1f ms.\n\n",
+      f.load.per_second, f.load.latency.median, f.load.latency.p95);
+}
+
+}  // namespace
+
+int run_replicas_bench(const CliArgs& args) {
+  Options o;
+  if (args.has("--small")) {
+    o.size.patients = 10000;
+    o.size.matched = 10;
+    o.size.max_triangles = 20000;
+    o.seconds = 1;
+  }
+  auto parsed = [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(o.size.patients, args.get_int("--patients", o.size.patients));
+    SOIQ_ASSIGN_OR_RETURN(o.size.matched, args.get_int("--matched", o.size.matched));
+    SOIQ_ASSIGN_OR_RETURN(o.workers, args.get_int("--workers", o.workers));
+    SOIQ_ASSIGN_OR_RETURN(o.seconds, args.get_double("--seconds", o.seconds));
+    o.soiqd = args.get("--soiqd", o.soiqd);
+    return ok_status();
+  }();
+  if (!parsed.ok()) {
+    std::fprintf(stderr, "soiq-bench replicas: %s\n", parsed.message().c_str());
+    return 2;
+  }
+  Figures f;
+  const Status s = run(o, f);
+  if (!s.ok()) {
+    std::fprintf(stderr, "soiq-bench replicas: %s\n", s.to_string().c_str());
+    return 1;
+  }
+  print(o, f);
+  return 0;
+}
+
+}  // namespace soiq::bench
