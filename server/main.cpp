@@ -120,8 +120,10 @@ int main(int argc, char** argv) {
   Result<std::shared_ptr<grpc::ServerCredentials>> creds = credentials(c);
   if (!creds.ok()) return fail(creds.status());
 
-  soiq::server::SoiqService service(**store, c, token);
-  if (const Status s = service.start_background_work(); !s.ok()) return fail(s);
+  // Destroyed before the store (below): its background threads (precompute, the replicas' heartbeat
+  // and claims) use the store until they are joined.
+  auto service = std::make_unique<soiq::server::SoiqService>(**store, c, token);
+  if (const Status s = service->start_background_work(); !s.ok()) return fail(s);
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
@@ -130,7 +132,7 @@ int main(int argc, char** argv) {
   // gRPC sets SO_REUSEPORT on Linux by default: a second soiqd on the same port would then start
   // without a word and share the calls with the first, each answering from its own store.
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
-  builder.RegisterService(&service);
+  builder.RegisterService(service.get());
   builder.SetMaxReceiveMessageSize(8 << 20);
   std::unique_ptr<grpc::Server> server;
   {
@@ -166,6 +168,7 @@ int main(int argc, char** argv) {
   server->Wait();
   waiter.join();
   server.reset();
+  service.reset();
   store->reset();  // closes the database (SQLite: a WAL checkpoint)
   soiq::server::log_event("info", {{"event", "stopped"}});
   return 0;
