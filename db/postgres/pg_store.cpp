@@ -41,6 +41,14 @@ Status PgStore::read_one(const std::function<Status(SqlSession&)>& fn) {
   return fn(session);
 }
 
+Status PgStore::after_bulk_load() {
+  SOIQ_ASSIGN_OR_RETURN(PgPool::Lease c, pool_->acquire(options_.lease_wait));
+  // Outside a transaction (VACUUM refuses one): sets the rows' hint bits and the visibility map,
+  // which the first queries over freshly copied tables would otherwise write (measured: a cold
+  // query 3.8 s on a fresh copy, 1.9 s once vacuumed).
+  return c->run("VACUUM (ANALYZE)", "vacuum after a bulk load");
+}
+
 Status PgStore::upsert_cached_features(SqlSession& c, const std::vector<SurfaceFeatures>& batch) {
   // The sessions of this store are PgSessions (read, write and read_one above make them).
   return pg_put_cached_features(static_cast<PgSession&>(c).connection(), batch);

@@ -46,6 +46,7 @@ class PgStore : public SqlStore {
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
                                                      const std::vector<std::string>& entries) override;
   using Store::cached_features;
+  Status after_bulk_load() override;
 
  protected:
   Status read(const std::function<Status(SqlSession&)>& fn) override;

@@ -39,8 +39,12 @@ class SqlStore : public Store {
  public:
   // Copies every record (patients to the feature cache, keys included) into `to`, an empty store of
   // either backend, in one transaction on each side; `progress(table, rows copied)` as it goes.
-  // FAILED_PRECONDITION when `to` holds records. The replicas' running state is not copied.
+  // FAILED_PRECONDITION when `to` holds records. The replicas' running state is not copied. Call
+  // to.after_bulk_load() after it.
   Status copy_to(SqlStore& to, const std::function<void(const std::string& table, int64_t rows)>& progress);
+  // Tidies up after a bulk load such as copy_to: PostgreSQL vacuums and analyzes (hint bits and
+  // statistics set once, instead of by the first queries); SQLite needs nothing.
+  virtual Status after_bulk_load() { return ok_status(); }
   // Each record table's row count and digest: equal in two stores exactly when they hold the same
   // records (soiq-admin migrate compares them after a copy).
   Result<std::vector<TableDigest>> table_digests();

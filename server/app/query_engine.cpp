@@ -13,12 +13,16 @@
 
 #include "core/features/asymmetry_index.h"
 #include "server/app/query_skips.h"
+#include "server/app/query_subjects.h"
 #include "server/util/log.h"
 
 namespace soiq::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using query_run::Completions;
+using query_run::Computed;
+using query_run::Subject;
 using CachedByKey = std::map<std::string, FeatureValues>;  // cache key -> its entries
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -29,31 +33,6 @@ std::vector<std::string> image_refs(const FeatureAsk& ask) {
   if (ask.grid.kind != GridChoice::Kind::kAxisAligned) refs.push_back(ask.grid.series);
   return refs;
 }
-
-// One structure whose features the query needs: a candidate, or a candidate's twin.
-struct Subject {
-  db::StructureRecord structure;
-  std::optional<FeaturePlan> plan;
-  Status error;
-  FeatureValues values;
-  bool ready = false;
-  std::vector<size_t> dependents;  // candidates waiting for this subject
-};
-
-// What the workers hand back to the query's thread.
-// A candidate's computed features and the cache entries still to be written.
-struct Computed {
-  size_t idx;
-  Result<FeatureValues> values;
-  db::SurfaceFeatures to_store;
-};
-
-struct Completions {
-  std::mutex mutex;
-  std::condition_variable wake;
-  std::deque<Computed> done;
-  std::atomic<bool> cancelled{false};
-};
 
 // One run of one query: the steps of query_engine.h, in order, over shared state.
 class QueryRun {

@@ -10,6 +10,7 @@ Result<std::vector<db::TableDigest>> migrate_store(const StoreLocation& from, co
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqlStore> source, open_sql_store(from, {}));
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqlStore> target, open_sql_store(to, {}));
   SOIQ_RETURN_IF_ERROR(source->copy_to(*target, progress));
+  SOIQ_RETURN_IF_ERROR(target->after_bulk_load());
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::TableDigest> want, source->table_digests());
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::TableDigest> got, target->table_digests());
   for (size_t i = 0; i < want.size(); ++i) {
