@@ -14,6 +14,9 @@ Status pg_status(std::string_view sqlstate, std::string_view server_message, std
     return {StatusCode::kUnavailable, message};
   if (sqlstate == "23505") return {StatusCode::kAlreadyExists, message};
   if (starts("23")) return failed_precondition(message);
+  // Data exceptions: text that is not UTF-8 (22021), a value out of a column's range (22003), ...
+  // the input's fault, as a bad value is everywhere else.
+  if (starts("22")) return invalid_argument(message);
   if (starts("53")) return resource_exhausted(message);
   if (starts("28")) return {StatusCode::kUnauthenticated, message};
   if (sqlstate == "42501") return {StatusCode::kPermissionDenied, message};

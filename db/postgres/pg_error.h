@@ -5,6 +5,7 @@
 //   08xxx connection exceptions, 57P01-57P03 shutdown     UNAVAILABLE
 //   23505 unique_violation                                ALREADY_EXISTS
 //   23xxx other integrity violations                      FAILED_PRECONDITION
+//   22xxx data exceptions (text not UTF-8, out of range)  INVALID_ARGUMENT
 //   53xxx insufficient resources (disk full, memory)      RESOURCE_EXHAUSTED
 //   28xxx authentication                                  UNAUTHENTICATED
 //   42501 insufficient_privilege                          PERMISSION_DENIED

@@ -67,6 +67,9 @@ TEST_F(PgTest, StatementsTakeParametersAndFailWithTheirSqlState) {
   EXPECT_EQ(again.status().code(), StatusCode::kAlreadyExists);
   EXPECT_TRUE(contains(again.status().message(), "insert patient 1 again: ")) << again.status().message();
   EXPECT_TRUE(contains(again.status().message(), "SQLSTATE 23505")) << again.status().message();
+  // Text that is not UTF-8 is the input's fault, said as such (SQLite would have stored it).
+  const auto latin1 = c->exec("INSERT INTO t VALUES (2, $1, NULL)", {std::string("M\xfcller")}, "insert a name");
+  EXPECT_EQ(latin1.status().code(), StatusCode::kInvalidArgument) << latin1.status().to_string();
 }
 
 TEST_F(PgTest, ATransactionRunsAgainAfterASerializationFailureAndRollsBackOtherFailures) {

@@ -6,23 +6,17 @@
 
 #include "db/sqlite/schema_migrations.h"
 #include "db/sqlite/sqlite_store.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
 namespace {
 
+using testing::imported_structure;
 using testing::new_series;
 using testing::new_structure;
 using testing::open_store;
 using testing::TempDir;
-
-// An RT Structure Set's ROI, as in store_dicom_refs_test.cpp: the migrated file must take its source.
-NewStructure imported_structure(const std::string& name, double surface_offset) {
-  NewStructure s = new_structure("P1", "1.2.3", name, surface_offset);
-  s.source_series_uid = "1.2.3.4";
-  s.source_uid = "1.2.3.77/1";
-  return s;
-}
 
 TEST(SqliteStoreDicomRefs, VersionOneFileIsMigratedKeepingItsData) {
   TempDir dir;

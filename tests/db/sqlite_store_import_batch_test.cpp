@@ -7,6 +7,7 @@
 #include "db/sqlite/sqlite_store.h"
 #include "tests/db/store_backends.h"
 #include "tests/db/store_fixture.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -15,19 +16,9 @@ namespace {
 using testing::contains;
 using testing::new_series;
 using testing::new_structure;
+using testing::two_series_two_structures;
 
 class SqliteStoreImportBatch : public testing::StoreTest<testing::SqliteBackend> {};
-
-// The batch of store_import_batch_test.cpp; the trigger fails its last structure.
-ImportBatch two_series_two_structures() {
-  ImportBatch b;
-  b.series.push_back(new_series("P1", "S1", "SE-CT", 1.0f));
-  b.series.push_back(new_series("P1", "S1", "SE-PT", 2.0f));
-  b.series[1].series.modality = "PT";
-  b.structures.push_back(new_structure("P1", "S1", "GTV_CT", 1.0));
-  b.structures.push_back(new_structure("P1", "S1", "GTV_PT", 2.0));
-  return b;
-}
 
 TEST_F(SqliteStoreImportBatch, FailureOnTheLastStructureLeavesNothing) {
   sqlite3* db = nullptr;

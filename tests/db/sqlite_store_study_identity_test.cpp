@@ -6,6 +6,7 @@
 
 #include "db/sqlite/schema_migrations.h"
 #include "db/sqlite/sqlite_store.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -13,16 +14,8 @@ namespace {
 
 using testing::new_series;
 using testing::open_store;
+using testing::series_of_identified_study;
 using testing::TempDir;
-
-// The identified study of store_study_identity_test.cpp: the migrated file must take its values.
-NewSeries series_of_identified_study() {
-  NewSeries s = new_series("P1", "1.2.3", "1.2.3.4", 1.0f);
-  s.study.study_time = "101512.5";
-  s.study.study_id = "S-17";
-  s.study.accession_number = "ACC0042";
-  return s;
-}
 
 TEST(SqliteStoreStudyIdentity, VersionTwoFileIsMigratedKeepingItsStudies) {
   TempDir dir;

@@ -8,12 +8,14 @@
 #include "db/store.h"
 #include "tests/db/store_backends.h"
 #include "tests/db/store_fixture.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
 namespace {
 
 using testing::contains;
+using testing::imported_structure;
 using testing::new_series;
 using testing::new_structure;
 
@@ -22,13 +24,6 @@ NewSeries series_with_references() {
   s.series.frame_of_reference_uid = "1.2.3.99";
   s.series.sop_class_uid = "1.2.840.10008.5.1.4.1.1.4";
   s.series.slice_instance_uids = {"1.2.3.4.1", "1.2.3.4.2"};  // dims[2] == 2
-  return s;
-}
-
-NewStructure imported_structure(const std::string& name, double surface_offset) {
-  NewStructure s = new_structure("P1", "1.2.3", name, surface_offset);
-  s.source_series_uid = "1.2.3.4";
-  s.source_uid = "1.2.3.77/1";
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include "db/store.h"
 #include "tests/db/store_backends.h"
 #include "tests/db/store_fixture.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -13,20 +14,11 @@ namespace {
 
 using testing::new_series;
 using testing::new_structure;
+using testing::two_series_two_structures;
 
 template <typename Backend>
 class StoreImportBatch : public testing::StoreTest<Backend> {};
 TYPED_TEST_SUITE(StoreImportBatch, testing::StoreBackends, testing::StoreBackendNames);
-
-ImportBatch two_series_two_structures() {
-  ImportBatch b;
-  b.series.push_back(new_series("P1", "S1", "SE-CT", 1.0f));
-  b.series.push_back(new_series("P1", "S1", "SE-PT", 2.0f));
-  b.series[1].series.modality = "PT";
-  b.structures.push_back(new_structure("P1", "S1", "GTV_CT", 1.0));
-  b.structures.push_back(new_structure("P1", "S1", "GTV_PT", 2.0));
-  return b;
-}
 
 TYPED_TEST(StoreImportBatch, StoresEverySeriesAndStructure) {
   auto r = this->store_->import_batch(two_series_two_structures());

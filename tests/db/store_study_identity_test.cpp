@@ -7,6 +7,7 @@
 #include "db/store.h"
 #include "tests/db/store_backends.h"
 #include "tests/db/store_fixture.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::db {
@@ -14,14 +15,7 @@ namespace {
 
 using testing::new_series;
 using testing::new_structure;
-
-NewSeries series_of_identified_study() {
-  NewSeries s = new_series("P1", "1.2.3", "1.2.3.4", 1.0f);
-  s.study.study_time = "101512.5";
-  s.study.study_id = "S-17";
-  s.study.accession_number = "ACC0042";
-  return s;
-}
+using testing::series_of_identified_study;
 
 template <typename Backend>
 class StoreStudyIdentity : public testing::StoreTest<Backend> {};

@@ -39,17 +39,17 @@ inline TriangleMesh tetrahedron(double offset) {
 // version lacked too).
 #define SOIQ_BACK_TO_SCHEMA_V6 "DROP TABLE stage2_work; DROP TABLE replicas; "
 inline constexpr char kBackToSchemaV6[] = SOIQ_BACK_TO_SCHEMA_V6;
-#define SOIQ_BACK_TO_SCHEMA_V4                                                                                      \
-  SOIQ_BACK_TO_SCHEMA_V6                                                                                            \
-      "DROP TABLE precompute_queue; DROP TABLE stored_features; "                                                   \
-      "DROP INDEX stage1_rows_features_unstored; DROP INDEX stage1_rows_voxel_volume_mm3; "                         \
-      "DROP INDEX stage1_rows_surface_area_mm2; DROP INDEX stage1_rows_sphericity; "                                \
-      "DROP INDEX stage1_rows_elongation; DROP INDEX stage1_rows_flatness; "                                        \
-      "DROP INDEX stage1_rows_maximum_3d_diameter_mm; "                                                             \
-      "ALTER TABLE stage1_rows DROP COLUMN features_stored; ALTER TABLE stage1_rows DROP COLUMN voxel_volume_mm3; " \
-      "ALTER TABLE stage1_rows DROP COLUMN surface_area_mm2; ALTER TABLE stage1_rows DROP COLUMN sphericity; "      \
-      "ALTER TABLE stage1_rows DROP COLUMN elongation; ALTER TABLE stage1_rows DROP COLUMN flatness; "              \
-      "ALTER TABLE stage1_rows DROP COLUMN maximum_3d_diameter_mm; "
+#define SOIQ_BACK_TO_SCHEMA_V4                                                                                  \
+  SOIQ_BACK_TO_SCHEMA_V6                                                                                        \
+  "DROP TABLE precompute_queue; DROP TABLE stored_features; "                                                   \
+  "DROP INDEX stage1_rows_features_unstored; DROP INDEX stage1_rows_voxel_volume_mm3; "                         \
+  "DROP INDEX stage1_rows_surface_area_mm2; DROP INDEX stage1_rows_sphericity; "                                \
+  "DROP INDEX stage1_rows_elongation; DROP INDEX stage1_rows_flatness; "                                        \
+  "DROP INDEX stage1_rows_maximum_3d_diameter_mm; "                                                             \
+  "ALTER TABLE stage1_rows DROP COLUMN features_stored; ALTER TABLE stage1_rows DROP COLUMN voxel_volume_mm3; " \
+  "ALTER TABLE stage1_rows DROP COLUMN surface_area_mm2; ALTER TABLE stage1_rows DROP COLUMN sphericity; "      \
+  "ALTER TABLE stage1_rows DROP COLUMN elongation; ALTER TABLE stage1_rows DROP COLUMN flatness; "              \
+  "ALTER TABLE stage1_rows DROP COLUMN maximum_3d_diameter_mm; "
 inline constexpr char kBackToSchemaV4[] = SOIQ_BACK_TO_SCHEMA_V4;
 inline constexpr char kBackToSchemaV3[] = SOIQ_BACK_TO_SCHEMA_V4
     "ALTER TABLE structures DROP COLUMN surface_perimeter_bound_mm; "
