@@ -23,8 +23,11 @@ namespace soiq::db {
 
 struct PatientRecord {
   std::string patient_id;
-  std::string sex;              // "M", "F", "O" or ""
-  std::string birth_date;       // YYYYMMDD or ""
+  std::string sex;         // "M", "F", "O" or ""
+  std::string birth_date;  // YYYYMMDD or ""
+  // DICOM Patient's Name (0010,0010) in UTF-8, "^" between components; "" when unknown or not kept
+  // (soiqd keeps names only when started with --keep-patient-names). Never logged.
+  std::string patient_name;
   int64_t study_count = 0;      // filled on reads
   int64_t structure_count = 0;  // filled on reads
 };
@@ -57,6 +60,8 @@ struct SeriesRecord {
   std::string frame_of_reference_uid;
   std::string sop_class_uid;                     // of its slices
   std::vector<std::string> slice_instance_uids;  // SOP Instance UID of slice k, by k
+  int64_t series_number = 0;                     // (0020,0011), 0 when unknown
+  std::string description;                       // (0008,103E), "" when unknown
 };
 
 struct SurfaceInfo {
@@ -257,6 +262,55 @@ struct Stage2Work {
   std::string ask;  // what to compute, as the query engine encodes it (opaque to the store)
 };
 
+// DICOMweb's view of the store (QIDO-RS, server/http/). Its DICOM series are the image series
+// imported from DICOM (those with a SOP class; an image uploaded as a file has no DICOM identity)
+// and, for every structure converted on such a series, the SEG soiq writes of it on demand
+// (server/app/structure_seg.h): one series of one instance per structure. Results are in the order
+// the store keeps (studies by when they were first stored; series by study, then images, then
+// structures), so offset and limit page consistently while nothing is added or removed.
+inline constexpr int64_t kMaxSearchLimit = 1000;
+
+// Every condition given must hold; empty ones do not filter.
+struct StudySearch {
+  std::vector<std::string> study_uids;  // any of them
+  std::string patient_id;               // exact, or a GLOB when it has * ? or [
+  std::string patient_name_glob;        // a GLOB on the name, both in ASCII lower case
+  // Fuzzy name matching: each word is the start of a component or word of the name (after ^ or a
+  // space), ASCII case-insensitively. Globs' special characters in a word are literal.
+  std::vector<std::string> patient_name_words;
+  std::string study_date_from, study_date_to;  // YYYYMMDD, inclusive
+  std::string accession_number;                // exact
+  std::string study_id;                        // exact
+  std::string modality;                        // of one of its DICOM series ("SEG": a structure's)
+  int64_t offset = 0;                          // >= 0
+  int64_t limit = 100;                         // 1..kMaxSearchLimit
+};
+
+struct StudyHit {
+  StudyRecord study;
+  PatientRecord patient;
+  std::vector<std::string> modalities;  // of its DICOM series, sorted, each once
+  int64_t series_count = 0;             // its DICOM series
+  int64_t instance_count = 0;           // their instances (an image series': its slices)
+};
+
+struct SeriesSearch {
+  std::vector<std::string> study_uids;  // any of them
+  std::string patient_id;               // exact, or a GLOB
+  std::string series_uid;               // an image series (excludes structures)
+  std::optional<int64_t> structure_id;  // a structure's SEG series (excludes image series)
+  std::string modality;                 // "SEG": structures only
+  int64_t offset = 0;
+  int64_t limit = 100;
+};
+
+struct SeriesHit {
+  StudyRecord study;
+  PatientRecord patient;
+  SeriesRecord series;                       // the image series; for a structure, the series it was converted on
+  std::optional<StructureRecord> structure;  // set for a structure's SEG series
+};
+
 // What remove deletes: one structure, or a patient with all of its studies, series and structures.
 struct Removal {
   enum class Kind { kStructure, kPatient } kind = Kind::kStructure;
@@ -264,7 +318,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The store: 25 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// The store: 27 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
 // (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
 // single-record cases; backends implement only the virtual methods.
 class Store {
@@ -302,6 +356,10 @@ class Store {
   virtual Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) = 0;
   virtual Result<StructureRecord> get_structure(int64_t id) = 0;
   virtual Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) = 0;
+  // DICOMweb's searches (above). INVALID_ARGUMENT for a negative offset, a limit outside
+  // 1..kMaxSearchLimit, a malformed date or an over-long value.
+  virtual Result<std::vector<StudyHit>> search_studies(const StudySearch& s) = 0;
+  virtual Result<std::vector<SeriesHit>> search_series(const SeriesSearch& s) = 0;
   // An image series' blob by series uid, or a surface's by sha256 (db/image_blob.h, surface_blob.h).
   virtual Result<std::string> get_blob(BlobKind kind, const std::string& key) = 0;
   // Stage 1, ordered by structure id. More than `limit` candidates is RESOURCE_EXHAUSTED

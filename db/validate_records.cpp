@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/utf8.h"
 #include "db/age_years.h"
 
 namespace soiq::db {
@@ -61,6 +62,10 @@ Status validate_patient(const PatientRecord& p) {
   if (p.patient_id.empty()) return invalid_argument("patient_id is empty");
   SOIQ_RETURN_IF_ERROR(validate_text(p.patient_id, "patient_id", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_sex(p.sex));
+  // The name itself is never quoted: messages reach logs.
+  if (!validate_text(p.patient_name, "", kMaxNameBytes).ok() || !is_utf8(p.patient_name))
+    return invalid_argument("the name of patient '" + p.patient_id + "' is longer than " +
+                            std::to_string(kMaxNameBytes) + " bytes, has a control character or is not UTF-8");
   return validate_date(p.birth_date, "birth date of patient '" + p.patient_id + "'");
 }
 
@@ -140,6 +145,9 @@ Status validate_new_series(const NewSeries& s) {
   if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
   SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(validate_text(s.series.description, "series description", kMaxNameBytes));
+  if (s.series.series_number < 0 || s.series.series_number > 2147483647)
+    return invalid_argument("series number " + std::to_string(s.series.series_number) + " is outside 0..2^31-1");
   if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
     return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
                             "' but is sent with study '" + s.study.study_uid + "'");

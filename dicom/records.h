@@ -17,6 +17,9 @@ struct DicomPatient {
   std::string patient_id;  // (0010,0020)
   std::string sex;         // (0010,0040): "M", "F", "O" or ""
   std::string birth_date;  // (0010,0030) YYYYMMDD or ""
+  // (0010,0010) in UTF-8 (converted from the file's Specific Character Set), "" when absent or not
+  // convertible. The importer decides whether it is kept (soiqd --keep-patient-names).
+  std::string name;
 };
 
 struct DicomStudy {

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "core/base/utf8.h"
 #include "dicom/age_at_study.h"
 #include "dicom/dcmtk_file.h"
 
@@ -20,6 +21,17 @@ void fill_if_empty(std::string& field, const std::string& value) {
 int64_t get_integer(DcmItem& item, const DcmTagKey& tag) {
   const auto v = get_number(item, tag);
   return v ? static_cast<int64_t>(*v) : 0;
+}
+
+// The Patient's Name in UTF-8: a file in another character set (ISO_IR 100, ISO 2022 IR 87, ...)
+// is converted first; a name that cannot be converted is left out rather than stored garbled.
+std::string utf8_patient_name(DcmDataset& ds) {
+  const std::string charset = get_string(ds, DCM_SpecificCharacterSet);
+  if (!charset.empty() && charset != "ISO_IR 192" && charset != "ISO_IR 6") {
+    if (ds.convertToUTF8().bad()) return "";
+  }
+  std::string name = get_string(ds, DCM_PatientName);
+  return is_utf8(name) ? name : "";
 }
 
 // Accumulates records while files are read; turned into a DicomScan at the end.
@@ -142,6 +154,7 @@ class Index {
     p.patient_id = patient_id;
     fill_if_empty(p.sex, get_string(ds, DCM_PatientSex));
     fill_if_empty(p.birth_date, get_string(ds, DCM_PatientBirthDate));
+    if (p.name.empty()) p.name = utf8_patient_name(ds);
 
     DicomStudy& st = studies_[study_uid];
     st.study_uid = study_uid;

@@ -5,6 +5,7 @@
 #include <dcmtk/dcmdata/dctk.h>
 #include <dcmtk/dcmseg/segdoc.h>
 
+#include <algorithm>
 #include <memory>
 #include <mutex>
 
@@ -132,6 +133,15 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
   DcmFileFormat file;
   c = seg->writeDataset(*file.getDataset());
   if (c.bad()) return seg_export_error("DCMTK refused the object", c);
+  // A patient's name, segment label or description beyond ASCII is UTF-8 (the store keeps text so):
+  // declared, or readers would take its bytes for ISO 646.
+  auto beyond_ascii = [](const std::string& v) {
+    return std::any_of(v.begin(), v.end(), [](char ch) { return static_cast<unsigned char>(ch) >= 0x80; });
+  };
+  bool utf8 = beyond_ascii(source.patient_name) || beyond_ascii(options.series_description);
+  for (const SegSegment& s : segments) utf8 = utf8 || beyond_ascii(s.label);
+  if (utf8 && file.getDataset()->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 192").bad())
+    return internal_error("DICOM SEG: Specific Character Set could not be set");
   SOIQ_RETURN_IF_ERROR(put_pixel_data(*file.getDataset(), pixels));
   SOIQ_ASSIGN_OR_RETURN(out.bytes, to_part10(file));
   return out;

@@ -51,7 +51,7 @@ namespace soiq::dicom {
 // The referenced image series, as soiq stored it at import.
 struct SegSource {
   std::string patient_id;          // (0010,0020)
-  std::string patient_name;        // (0010,0010), may be empty (soiq keeps no names)
+  std::string patient_name;        // (0010,0010), may be empty (kept only with --keep-patient-names)
   std::string patient_sex;         // (0010,0040) "M", "F", "O" or ""
   std::string patient_birth_date;  // (0010,0030) YYYYMMDD or ""
   std::string study_uid;           // (0020,000D)

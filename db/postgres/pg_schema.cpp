@@ -197,9 +197,17 @@ CREATE TABLE stage2_work (
 CREATE INDEX stage2_work_posted ON stage2_work(posted_ms);
 )sql";
 
+// Version 4: SQLite's version 8, what DICOMweb's QIDO-RS answers with.
+constexpr char kSchemaV4[] = R"sql(
+ALTER TABLE patients ADD COLUMN patient_name text COLLATE "C" NOT NULL DEFAULT '';
+CREATE INDEX patients_name_lower ON patients(lower(patient_name));
+ALTER TABLE series ADD COLUMN series_number bigint NOT NULL DEFAULT 0;
+ALTER TABLE series ADD COLUMN description text COLLATE "C" NOT NULL DEFAULT '';
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<const char*>& steps() {
-  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2, kSchemaV3};
+  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2, kSchemaV3, kSchemaV4};
   return kSteps;
 }
 

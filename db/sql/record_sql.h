@@ -24,8 +24,9 @@ inline constexpr char kStructureFrom[] = R"sql(
 inline constexpr char kPatientColumns[] = R"sql(
   p.patient_id, p.sex, p.birth_date,
   (SELECT count(*) FROM studies c WHERE c.patient_pk = p.pk),
-  (SELECT count(*) FROM studies c JOIN structures cs ON cs.study_pk = c.pk WHERE c.patient_pk = p.pk))sql";
-inline constexpr int kPatientColumnCount = 5;
+  (SELECT count(*) FROM studies c JOIN structures cs ON cs.study_pk = c.pk WHERE c.patient_pk = p.pk),
+  p.patient_name)sql";
+inline constexpr int kPatientColumnCount = 6;
 
 // StudyRecord with its structure count; needs st and p.
 inline constexpr char kStudyColumns[] = R"sql(
@@ -46,7 +47,8 @@ inline constexpr char kSeriesColumns[] = R"sql(
   se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x,
   se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11,
   se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid,
-  se.slice_instance_uids)sql";
+  se.slice_instance_uids, se.series_number, se.description)sql";
+inline constexpr int kSeriesColumnCount = 27;
 
 // The row count of each table, in the order of Counts' fields.
 inline constexpr char kCountsSql[] = R"sql(
@@ -88,6 +90,7 @@ PatientRecord read_patient(const Row& row, int col) {
   p.birth_date = row.text(col + 2);
   p.study_count = row.int64(col + 3);
   p.structure_count = row.int64(col + 4);
+  p.patient_name = row.text(col + 5);
   return p;
 }
 
@@ -146,6 +149,8 @@ SeriesRecord read_series(const Row& row, int col) {
   s.frame_of_reference_uid = row.text(col + 22);
   s.sop_class_uid = row.text(col + 23);
   s.slice_instance_uids = split_uid_list(row.text(col + 24));
+  s.series_number = row.int64(col + 25);
+  s.description = row.text(col + 26);
   return s;
 }
 

@@ -66,6 +66,51 @@ void SqlConditions::contains_delimited(const std::string& column, const std::str
   conditions_.push_back(position + column + ", '/' || " + next() + " || '/') > 0");
 }
 
+void SqlConditions::any_equal(const std::string& column, const std::vector<std::string>& values) {
+  if (values.empty()) {
+    conditions_.push_back("false");
+    return;
+  }
+  std::string list;
+  for (const std::string& v : values) {
+    params_.emplace_back(v);
+    list += (list.empty() ? "" : ", ") + next();
+  }
+  conditions_.push_back(column + " IN (" + list + ")");
+}
+
+void SqlConditions::any_glob(const std::string& column, const std::vector<std::string>& patterns) {
+  if (patterns.empty()) {
+    conditions_.push_back("false");
+    return;
+  }
+  std::string any;
+  for (const std::string& p : patterns) {
+    params_.emplace_back(dialect_ == SqlDialect::kSqlite ? p : glob_regex(p));
+    any += (any.empty() ? "" : " OR ") + column + (dialect_ == SqlDialect::kSqlite ? " GLOB " : " ~ ") + next();
+  }
+  conditions_.push_back("(" + any + ")");
+}
+
+void SqlConditions::with_values(const std::string& sql, const std::vector<std::string>& values) {
+  std::string out;
+  size_t from = 0, used = 0;
+  for (size_t at = sql.find("{}"); at != std::string::npos; at = sql.find("{}", from)) {
+    out += sql.substr(from, at - from);
+    params_.emplace_back(used < values.size() ? values[used] : std::string());
+    ++used;
+    out += next();
+    from = at + 2;
+  }
+  conditions_.push_back(out + sql.substr(from));
+}
+
+std::string SqlConditions::take_sql() {
+  std::string out = sql();
+  conditions_.clear();
+  return out;
+}
+
 std::string SqlConditions::sql() const {
   std::string out;
   for (const std::string& c : conditions_) out += " AND " + c;

@@ -40,6 +40,18 @@ class SqlConditions {
   void glob(const std::string& column, const std::string& pattern);
   // "/value/" occurs in `column` (a list such as /MR/CT/).
   void contains_delimited(const std::string& column, const std::string& value);
+  // "column IN (v1, v2, …)"; no values: nothing matches.
+  void any_equal(const std::string& column, const std::vector<std::string>& values);
+  // "(column GLOB p1 OR column GLOB p2 …)" (PostgreSQL: regexes), without index ranges.
+  void any_glob(const std::string& column, const std::vector<std::string>& patterns);
+  // A condition of code with each "{}" in `sql` standing for the next of `values`, in order.
+  void with_values(const std::string& sql, const std::vector<std::string>& values);
+  // A parameterless condition of code.
+  void literal(const std::string& sql) { conditions_.push_back(sql); }
+
+  // sql(), then forgets the conditions but not their parameters: the next conditions go to another
+  // WHERE clause of the same statement (a UNION's other half), numbered on.
+  std::string take_sql();
 
   // " AND c1 AND c2 …" (empty when there is no condition), to follow a WHERE clause.
   std::string sql() const;

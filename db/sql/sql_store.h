@@ -64,6 +64,8 @@ class SqlStore : public Store {
   Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
   Result<StructureRecord> get_structure(int64_t id) override;
   Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
+  Result<std::vector<StudyHit>> search_studies(const StudySearch& s) override;
+  Result<std::vector<SeriesHit>> search_series(const SeriesSearch& s) override;
   Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
   Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,

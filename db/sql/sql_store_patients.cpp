@@ -54,11 +54,11 @@ Result<StoredStudy> stored_study(SqlSession& c, const std::string& study_uid, co
 // What is stored of a patient, for merging; every field empty when the patient is new.
 struct StoredPatient {
   std::optional<int64_t> pk;  // unset: a new patient
-  std::string sex, birth_date;
+  std::string sex, birth_date, patient_name;
 };
 
 constexpr char kPatientForUpsertSql[] = R"sql(
-  SELECT pk, sex, birth_date FROM patients WHERE patient_id = ?1)sql";
+  SELECT pk, sex, birth_date, patient_name FROM patients WHERE patient_id = ?1)sql";
 
 Result<StoredPatient> stored_patient(SqlSession& c, const std::string& patient_id) {
   StoredPatient stored;
@@ -69,17 +69,18 @@ Result<StoredPatient> stored_patient(SqlSession& c, const std::string& patient_i
   stored.pk = q.int64(0);
   stored.sex = q.text(1);
   stored.birth_date = q.text(2);
+  stored.patient_name = q.text(3);
   return stored;
 }
 
 constexpr char kInsertPatientSql[] = R"sql(
-  INSERT INTO patients(patient_id, sex, birth_date) VALUES (?1, ?2, ?3)
+  INSERT INTO patients(patient_id, sex, birth_date, patient_name) VALUES (?1, ?2, ?3, ?4)
   RETURNING pk)sql";
 
 constexpr char kUpdatePatientSql[] = R"sql(
-  UPDATE patients SET sex = ?2, birth_date = ?3 WHERE pk = ?1)sql";
+  UPDATE patients SET sex = ?2, birth_date = ?3, patient_name = ?4 WHERE pk = ?1)sql";
 
-// Inserts the patient, or updates a stored one whose merged sex or birth date differs; returns
+// Inserts the patient, or updates a stored one whose merged sex, birth date or name differs; returns
 // its pk. `birth` is the merged birth date.
 Result<int64_t> upsert_patient(SqlSession& c, const PatientRecord& patient, const StoredPatient& stored,
                                const std::string& birth) {
@@ -88,16 +89,19 @@ Result<int64_t> upsert_patient(SqlSession& c, const PatientRecord& patient, cons
     ins.bind(1, patient.patient_id);
     ins.bind(2, patient.sex);
     ins.bind(3, patient.birth_date);
+    ins.bind(4, patient.patient_name);
     SOIQ_ASSIGN_OR_RETURN(const bool row, ins.step());
     if (!row) return internal_error("insert of patient '" + patient.patient_id + "' returned no key");
     return ins.int64(0);
   }
   const std::string& sex = merged(patient.sex, stored.sex);
-  if (sex != stored.sex || birth != stored.birth_date) {
+  const std::string& name = merged(patient.patient_name, stored.patient_name);
+  if (sex != stored.sex || birth != stored.birth_date || name != stored.patient_name) {
     SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpdatePatientSql));
     up.bind(1, *stored.pk);
     up.bind(2, sex);
     up.bind(3, birth);
+    up.bind(4, name);
     SOIQ_RETURN_IF_ERROR(up.run());
   }
   return *stored.pk;

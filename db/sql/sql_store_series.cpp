@@ -57,9 +57,9 @@ Result<std::optional<StoredSeries>> stored_series(SqlSession& c, const NewSeries
 constexpr char kUpsertSeriesSql[] = R"sql(
   INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, spacing_y, spacing_z,
                      dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, image_sha256,
-                     frame_of_reference_uid, sop_class_uid, slice_instance_uids)
+                     frame_of_reference_uid, sop_class_uid, slice_instance_uids, series_number, description)
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22,
-          ?23, ?24, ?25)
+          ?23, ?24, ?25, ?26, ?27)
   ON CONFLICT(series_uid) DO UPDATE SET
     study_pk = excluded.study_pk, modality = excluded.modality,
     origin_x = excluded.origin_x, origin_y = excluded.origin_y, origin_z = excluded.origin_z,
@@ -69,7 +69,8 @@ constexpr char kUpsertSeriesSql[] = R"sql(
     d10 = excluded.d10, d11 = excluded.d11, d12 = excluded.d12,
     d20 = excluded.d20, d21 = excluded.d21, d22 = excluded.d22,
     image_sha256 = excluded.image_sha256, frame_of_reference_uid = excluded.frame_of_reference_uid,
-    sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids)sql";
+    sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids,
+    series_number = excluded.series_number, description = excluded.description)sql";
 
 Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t study_pk) {
   SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertSeriesSql));
@@ -89,6 +90,8 @@ Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t stud
   up.bind(23, series.frame_of_reference_uid);
   up.bind(24, series.sop_class_uid);
   up.bind(25, join_uid_list(series.slice_instance_uids));
+  up.bind(26, series.series_number);
+  up.bind(27, series.description);
   return up.run();
 }
 

@@ -340,6 +340,16 @@ CREATE TABLE stage2_work (
 CREATE INDEX stage2_work_posted ON stage2_work(posted_ms);
 )sql";
 
+// Version 8: what DICOMweb's QIDO-RS answers with (server/http/): the patient's name (kept only when
+// soiqd is started with --keep-patient-names), the series' number and description. The name index
+// is on lower(): QIDO matches names case-insensitively, and a prefix becomes an index range.
+constexpr char kSchemaV8[] = R"sql(
+ALTER TABLE patients ADD COLUMN patient_name TEXT NOT NULL DEFAULT '';
+CREATE INDEX patients_name_lower ON patients(lower(patient_name));
+ALTER TABLE series ADD COLUMN series_number INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE series ADD COLUMN description TEXT NOT NULL DEFAULT '';
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -350,6 +360,7 @@ const std::vector<Migration>& migrations() {
       {5, kSchemaV5, reencode_image_blobs},
       {6, kSchemaV6},
       {7, kSchemaV7},
+      {8, kSchemaV8},
   };
   return kMigrations;
 }

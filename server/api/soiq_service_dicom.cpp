@@ -100,8 +100,9 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     if (client_gone) return Status(StatusCode::kCancelled, "the client cancelled the pull; nothing was imported");
     SOIQ_RETURN_IF_ERROR(pulled.status());
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult result, on_pool<DicomImportResult>([&] {
-                            return import_dicom_folder(store_, dir.path(), pulled->paths, config_.max_grid_voxels,
-                                                       budget_, [&] { return stop_status(*ctx); });
+                            return import_dicom_folder(
+                                store_, dir.path(), pulled->paths, config_.max_grid_voxels, budget_,
+                                [&] { return stop_status(*ctx); }, config_.keep_patient_names);
                           }));
     queued_work();
     v1::ImportDicomResponse imported = to_proto(result);

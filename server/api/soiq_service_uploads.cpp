@@ -110,8 +110,9 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
     SOIQ_ASSIGN_OR_RETURN(ReceivedFiles files, receive_dicom_files(*reader, dir.path(), config_.max_upload_bytes));
     SOIQ_RETURN_IF_ERROR(stream_complete(*ctx, "DICOM"));
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult imported, on_pool<DicomImportResult>([&] {
-                            return import_dicom_folder(store_, dir.path(), files.paths, config_.max_grid_voxels,
-                                                       budget_, [&] { return stop_status(*ctx); });
+                            return import_dicom_folder(
+                                store_, dir.path(), files.paths, config_.max_grid_voxels, budget_,
+                                [&] { return stop_status(*ctx); }, config_.keep_patient_names);
                           }));
     *response = to_proto(imported);
     response->set_bytes_received(files.bytes);

@@ -31,9 +31,10 @@ void add_problem(DicomImportResult& r, const std::string& path, StatusCode code,
 
 // DICOM values the store would refuse are dropped rather than failing the import: the series and
 // structures are still useful without them.
-db::PatientRecord patient_of(const dicom::DicomPatient& p) {
+db::PatientRecord patient_of(const dicom::DicomPatient& p, bool keep_name) {
   db::PatientRecord r;
   r.patient_id = p.patient_id;
+  if (keep_name && db::validate_text(p.name, "", db::kMaxNameBytes).ok()) r.patient_name = p.name;
   if (db::validate_sex(p.sex).ok()) r.sex = p.sex;
   if (db::validate_date(p.birth_date, "birth_date").ok()) r.birth_date = p.birth_date;
   return r;
@@ -65,13 +66,13 @@ std::string laterality_of(const std::string& name) {
 
 // The patient and study records a series belongs to; NOT_FOUND when the scan lacks them (cannot
 // happen for scanned series, checked anyway since the two come from different lists).
-Status records_of(const dicom::DicomScan& scan, const std::string& series_uid, db::PatientRecord& patient,
-                  db::StudyRecord& study) {
+Status records_of(const dicom::DicomScan& scan, const std::string& series_uid, bool keep_names,
+                  db::PatientRecord& patient, db::StudyRecord& study) {
   const dicom::DicomSeries* series = scan.find_series(series_uid);
   const dicom::DicomStudy* st = series ? scan.find_study(series->study_uid) : nullptr;
   const dicom::DicomPatient* p = st ? scan.find_patient(st->patient_id) : nullptr;
   if (p == nullptr) return not_found("series " + series_uid + " has no study or patient in the files sent");
-  patient = patient_of(*p);
+  patient = patient_of(*p, keep_names);
   study = study_of(*st);
   return ok_status();
 }
@@ -102,11 +103,12 @@ struct Planned {
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, DicomImportResult& r) {
+Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names,
+                     DicomImportResult& r) {
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
     db::NewSeries s;
-    SOIQ_RETURN_IF_ERROR(records_of(in.scan, image.series_uid, s.patient, s.study));
+    SOIQ_RETURN_IF_ERROR(records_of(in.scan, image.series_uid, keep_names, s.patient, s.study));
     SOIQ_ASSIGN_OR_RETURN(db::EncodedImage encoded, db::encode_image(image.image));
     s.series.series_uid = image.series_uid;
     s.series.study_uid = s.study.study_uid;
@@ -117,6 +119,10 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
     if (const dicom::DicomSeries* scanned = in.scan.find_series(image.series_uid)) {
       s.series.frame_of_reference_uid = scanned->frame_of_reference_uid;
       if (!scanned->instances.empty()) s.series.sop_class_uid = scanned->instances.front().sop_class_uid;
+      if (scanned->series_number >= 0 && scanned->series_number <= 2147483647)
+        s.series.series_number = scanned->series_number;
+      if (db::validate_text(scanned->description, "", db::kMaxNameBytes).ok())
+        s.series.description = scanned->description;
     }
     s.series.slice_instance_uids = image.slice_sop_instance_uids;
     s.image_blob = std::move(encoded.blob);
@@ -140,7 +146,7 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
       if (set.on_known_series) {
         SOIQ_RETURN_IF_ERROR(stored_records_of(store, set.referenced_series_uid, s.patient, s.study));
       } else {
-        SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, s.patient, s.study));
+        SOIQ_RETURN_IF_ERROR(records_of(in.scan, set.referenced_series_uid, keep_names, s.patient, s.study));
       }
       s.name = name;
       s.laterality = laterality_of(name);
@@ -181,7 +187,8 @@ void list_records(const db::ImportBatch& batch, DicomImportResult& r) {
 
 Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
-                                              MemoryBudget& budget, const std::function<Status()>& stop) {
+                                              MemoryBudget& budget, const std::function<Status()>& stop,
+                                              bool keep_patient_names) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
   // Held to the end: the decoded images and their blobs live until the write is done.
@@ -204,7 +211,7 @@ Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::strin
     add_problem(r, "", StatusCode::kInvalidArgument,
                 std::to_string(in.scan.non_dicom_skipped) + " of the files sent are not DICOM and were skipped");
   }
-  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, r));
+  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, keep_patient_names, r));
   if (planned.batch.series.empty() && planned.batch.structures.empty()) {
     const std::string why = !r.problems.empty() && !r.problems[0].path.empty()
                                 ? r.problems[0].path + ": " + r.problems[0].message

@@ -78,6 +78,7 @@ struct DicomImportResult {
 
 Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
-                                              MemoryBudget& budget, const std::function<Status()>& stop);
+                                              MemoryBudget& budget, const std::function<Status()>& stop,
+                                              bool keep_patient_names = false);
 
 }  // namespace soiq::server

@@ -60,6 +60,13 @@ constexpr OptionText kOptionTexts[] = {
     {"--precompute", "on|off", "on",
      "compute every new structure's default features in the background, at nice 19, so that "
      "queries read them and stage 1 filters on them"},
+    {"--http", "HOST:PORT", "none (no DICOMweb)",
+     "also serve DICOMweb (QIDO-RS, WADO-RS, STOW-RS) and soiq's JSON queries there, with the same TLS "
+     "and token; port 0 binds any free port (see --http-port-file)"},
+    {"--http-port-file", "PATH", "none", "write the bound DICOMweb port there once soiqd serves"},
+    {"--keep-patient-names", "on|off", "off",
+     "store the Patient's Name of imported DICOM (QIDO-RS answers and matches it); off: names are "
+     "dropped at import"},
 };
 
 // "--max-grid-voxels" -> "SOIQ_MAX_GRID_VOXELS".
@@ -121,6 +128,13 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       return ok_status();
     };
   };
+  auto on_off = [](bool& field) {
+    return [&field](const std::string& v, const std::string& what) -> Status {
+      if (v != "on" && v != "off") return invalid_argument(what + " must be on or off, got '" + v + "'");
+      field = v == "on";
+      return ok_status();
+    };
+  };
   // Where each option's value goes, by its flag in kOptionTexts.
   const std::map<std::string_view, Setter> setters = {
       {"--listen", text(c.listen)},
@@ -145,12 +159,10 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--pacs", text(c.pacs)},
       {"--pacs-calling-ae", text(c.pacs_calling_ae)},
       {"--pacs-timeout", count(c.pacs_timeout_seconds, 1, 3600)},
-      {"--precompute",
-       [&c](const std::string& v, const std::string& what) -> Status {
-         if (v != "on" && v != "off") return invalid_argument(what + " must be on or off, got '" + v + "'");
-         c.precompute = v == "on";
-         return ok_status();
-       }},
+      {"--precompute", on_off(c.precompute)},
+      {"--http", text(c.http_listen)},
+      {"--http-port-file", text(c.http_port_file)},
+      {"--keep-patient-names", on_off(c.keep_patient_names)},
   };
   auto setter = [&](const char* flag) -> const Setter& { return setters.at(flag); };
   for (const OptionText& o : kOptionTexts) {
@@ -183,6 +195,8 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
     }
     SOIQ_RETURN_IF_ERROR(setter(match->flag)(value, match->flag));
   }
+  if (!c.http_port_file.empty() && c.http_listen.empty())
+    return invalid_argument("--http-port-file needs --http (where to serve DICOMweb)");
   if (c.tls_cert.empty() != c.tls_key.empty())
     return invalid_argument("--tls-cert and --tls-key go together: give both or neither");
   if (!c.pacs.empty()) {

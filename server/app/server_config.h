@@ -34,6 +34,11 @@ struct ServerConfig {
   std::string pacs_calling_ae = "SOIQ";
   int pacs_timeout_seconds = 30;
   bool precompute = true;  // compute every structure's default features in the background
+  // DICOMweb (server/http/): "" serves none; HOST:PORT, port 0 any free one (see http_port_file).
+  std::string http_listen;
+  std::string http_port_file;
+  // Patient names from DICOM are stored (and answered by QIDO-RS) only when true.
+  bool keep_patient_names = false;
   // Replicas on a shared database (PostgreSQL; shared_stage2.h). share_stage2 is set by soiqd from
   // the store's kind, not a flag: a SQLite file has one soiqd.
   std::string replica_id;  // "": default_replica_id()

@@ -64,7 +64,8 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
   SOIQ_ASSIGN_OR_RETURN(const db::PatientRecord patient, store.get_patient(study.patient_id));
 
   dicom::SegSource source;
-  source.patient_id = patient.patient_id;  // no name: soiq keeps none
+  source.patient_id = patient.patient_id;
+  source.patient_name = patient.patient_name;  // "" unless soiqd keeps names
   source.patient_sex = patient.sex;
   source.patient_birth_date = patient.birth_date;
   source.study_uid = study.study_uid;

@@ -81,6 +81,37 @@ TEST(ScanDicom, BareDatasetWithoutPreambleOrMetaHeaderIsRead) {
   EXPECT_EQ(s.series[0].modality, "RTSTRUCT");
 }
 
+// A name in the file's own character set is given in UTF-8; one that is not what its character set
+// says is left out rather than given garbled.
+TEST(ScanDicom, PatientNamesAreGivenInUtf8) {
+  TempDir tmp;
+  auto write = [&](const std::string& file, const char* charset, const char* name) -> std::string {
+    DcmFileFormat f;
+    DcmDataset& ds = *f.getDataset();
+    if (charset != nullptr) ds.putAndInsertString(DCM_SpecificCharacterSet, charset);
+    ds.putAndInsertString(DCM_PatientName, name);
+    ds.putAndInsertString(DCM_PatientID, file.c_str());
+    ds.putAndInsertString(DCM_SOPClassUID, UID_CTImageStorage);
+    ds.putAndInsertString(DCM_SOPInstanceUID, ("1.2.3." + std::to_string(file.size()) + ".1").c_str());
+    ds.putAndInsertString(DCM_StudyInstanceUID, ("1.2.3." + file).c_str());
+    ds.putAndInsertString(DCM_SeriesInstanceUID, ("1.2.3." + file + ".1").c_str());
+    ds.putAndInsertString(DCM_Modality, "CT");
+    EXPECT_TRUE(f.saveFile(tmp.file(file).c_str(), EXS_LittleEndianExplicit).good());
+    return tmp.file(file);
+  };
+  const DicomScan latin1 = scan(std::vector<std::string>{write("1", "ISO_IR 100", "M\xFCller^J\xFCrgen")});
+  ASSERT_EQ(latin1.patients.size(), 1u);
+  EXPECT_EQ(latin1.patients[0].name, "M\xC3\xBCller^J\xC3\xBCrgen");
+  const DicomScan utf8 =
+      scan(std::vector<std::string>{write("22", "ISO_IR 192", "\xE5\xB1\xB1\xE7\x94\xB0^\xE5\xA4\xAA\xE9\x83\x8E")});
+  ASSERT_EQ(utf8.patients.size(), 1u);
+  EXPECT_EQ(utf8.patients[0].name, "\xE5\xB1\xB1\xE7\x94\xB0^\xE5\xA4\xAA\xE9\x83\x8E");
+  // No character set is ASCII: a Latin-1 byte there is not UTF-8.
+  const DicomScan bad = scan(std::vector<std::string>{write("333", nullptr, "M\xFCller")});
+  ASSERT_EQ(bad.patients.size(), 1u);
+  EXPECT_EQ(bad.patients[0].name, "");
+}
+
 TEST(ScanDicom, CtStrippedOfPreambleAndMetaHeaderGivesTheSameRecords) {
   TempDir dir;
   DcmFileFormat file;

@@ -77,6 +77,25 @@ TEST(DicomImport, AFolderBecomesRecordsWithItsProblemsNamedByRelativePath) {
     EXPECT_EQ(again->structures[i].structure.id, r->structures[i].structure.id);
     EXPECT_TRUE(again->structures[i].replaced);
   }
+  // Without --keep-patient-names the name is dropped; the series keeps its number and description.
+  EXPECT_EQ(store->get_patient("STS_002")->patient_name, "");
+  Result<db::SeriesRecord> series = store->get_series(r->series[0].series_uid);
+  ASSERT_TRUE(series.ok());
+  EXPECT_EQ(series->series_number, 3);
+  EXPECT_EQ(series->description, "IBSI_1_STS_002_CT_image");
+}
+
+// The files declare ISO_IR 100 (Latin-1): the name is stored converted to UTF-8, and only when asked.
+TEST(DicomImport, ThePatientsNameIsKeptOnlyWhenAsked) {
+  TempDir tmp;
+  const std::string dir = tmp.file("received");
+  fs::create_directories(dir);
+  const std::vector<std::string> sent = sts_002_ct(dir);
+  auto store = db::testing::open_store(tmp.file("soiq.db"));
+  MemoryBudget budget(int64_t(1) << 30);
+  Result<DicomImportResult> r = import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {}, true);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_EQ(store->get_patient("STS_002")->patient_name, "STS_002");
 }
 
 TEST(DicomImport, AnImportTheBudgetCanNeverAdmitStoresNothing) {

@@ -77,6 +77,8 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
       {parse({"--pacs", "no-at-sign:4242"}), "--pacs"},
       {parse({"--frobnicate"}), "--frobnicate"},
       {parse({"--db"}), "--db"},
+      {parse({"--http-port-file", "p"}), "--http"},
+      {parse({"--keep-patient-names", "yes"}), "--keep-patient-names"},
   };
   for (const auto& [p, name] : cases) {
     EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
@@ -90,7 +92,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 19u);
+  EXPECT_EQ(flags.size(), 22u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
@@ -114,6 +116,18 @@ TEST(ServerConfig, PrecomputeIsOnUnlessTurnedOffAndTakesOnlyOnOrOff) {
   const Parsed bad = parse({"--precompute", "yes"});
   ASSERT_FALSE(bad.config.ok());
   EXPECT_TRUE(says(bad.config.status(), "--precompute must be on or off, got 'yes'")) << bad.config.status().message();
+}
+
+TEST(ServerConfig, DicomwebIsOffAndNamesAreDroppedUnlessAsked) {
+  Parsed p = parse({});
+  ASSERT_TRUE(p.config.ok());
+  EXPECT_EQ(p.config->http_listen, "");
+  EXPECT_FALSE(p.config->keep_patient_names);
+  p = parse({"--http", "127.0.0.1:0", "--http-port-file", "h.port"}, {{"SOIQ_KEEP_PATIENT_NAMES", "on"}});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_EQ(p.config->http_listen, "127.0.0.1:0");
+  EXPECT_EQ(p.config->http_port_file, "h.port");
+  EXPECT_TRUE(p.config->keep_patient_names);
 }
 
 TEST(ServerConfig, HelpIsReportedNotAnError) {
