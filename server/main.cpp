@@ -23,6 +23,7 @@
 #include "server/app/server_config.h"
 #include "server/app/shared_stage2.h"
 #include "server/app/store_location.h"
+#include "server/http/dicomweb_server.h"
 #include "server/util/listen_check.h"
 #include "server/util/log.h"
 #include "server/util/malloc_tuning.h"
@@ -144,6 +145,18 @@ int main(int argc, char** argv) {
     const std::string why = soiq::server::why_cannot_listen(c.listen);
     return fail(soiq::Status(soiq::StatusCode::kUnavailable, why.empty() ? "cannot listen on " + c.listen : why));
   }
+  // DICOMweb beside gRPC, on the same engines; stopped before the service that owns them.
+  std::unique_ptr<soiq::server::http::DicomwebServer> http;
+  if (!c.http_listen.empty()) {
+    http = std::make_unique<soiq::server::http::DicomwebServer>(service->engines(), token);
+    if (const Status s = http->start(c.http_listen); !s.ok()) {
+      server->Shutdown();
+      return fail(s);
+    }
+    if (!c.http_port_file.empty()) {
+      if (const Status s = write_port_file(c.http_port_file, http->port()); !s.ok()) return fail(s);
+    }
+  }
   if (!c.port_file.empty()) {
     const Status s = write_port_file(c.port_file, port);
     if (!s.ok()) return fail(s);
@@ -155,18 +168,23 @@ int main(int argc, char** argv) {
                                    {"tls", c.tls_cert.empty() ? "off" : "on"},
                                    {"auth", token.empty() ? "off" : "bearer"},
                                    {"workers", std::to_string(c.workers)},
-                                   {"replica", c.share_stage2 ? c.replica_id : "alone"}});
+                                   {"replica", c.share_stage2 ? c.replica_id : "alone"},
+                                   {"http", http ? std::to_string(http->port()) : "off"},
+                                   {"patient_names", c.keep_patient_names ? "kept" : "dropped"}});
 
   std::thread waiter([&] {
     int sig = 0;
     sigwait(&signals, &sig);
     soiq::server::log_event("info", {{"event", "shutdown"}, {"signal", sig == SIGTERM ? "SIGTERM" : "SIGINT"}});
     server->GetHealthCheckService()->Shutdown();
+    if (http) http->stop();  // lets its requests in progress finish
     // Calls in flight get 10 s; after that they are cancelled (queries notice and stop).
     server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(10));
   });
   server->Wait();
   waiter.join();
+  if (http) http->stop();
+  http.reset();
   server.reset();
   service.reset();
   store->reset();  // closes the database (SQLite: a WAL checkpoint)

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "db/store.h"
+#include "server/app/app_engines.h"
 #include "server/app/feature_engine.h"
 #include "server/app/memory_budget.h"
 #include "server/app/precompute_worker.h"
@@ -25,6 +26,10 @@ class SoiqService final : public v1::Soiq::Service {
   SoiqService(db::Store& store, const ServerConfig& config, std::string token);
   // Starts precompute (unless --precompute off): call once, before serving.
   Status start_background_work();
+  // The engines, for soiqd's other front end (DICOMweb); valid while the service lives.
+  AppEngines engines() {
+    return {store_, config_, budget_, features_, pool_, queries_, [this] { queued_work(); }};
+  }
 
   grpc::Status UploadSurface(grpc::ServerContext* ctx, grpc::ServerReader<v1::UploadSurfaceRequest>* reader,
                              v1::UploadSurfaceResponse* response) override;

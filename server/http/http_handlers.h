@@ -1,0 +1,39 @@
+#pragma once
+// The DICOMweb and /soiq/v1 handlers behind server/http/dicomweb_server.cpp, one file per service
+// (qido_handlers.cpp, …). Each turns a request into calls on the shared engines and returns the
+// reply or a Status, which the server maps to HTTP once (http_status.h); none writes to the socket.
+
+#include <httplib.h>
+
+#include <map>
+#include <string>
+
+#include "core/base/status.h"
+#include "server/app/app_engines.h"
+#include "server/http/dicomweb_attributes.h"
+
+namespace soiq::server::http {
+
+struct HttpReply {
+  int status = 200;
+  std::string content_type;
+  std::string body;
+  std::multimap<std::string, std::string> headers;
+};
+
+// What every handler gets besides the request: the engines and the URL prefix of this server's
+// DICOMweb resources ("http://host:port/dicom-web"), for RetrieveURL.
+struct HandlerContext {
+  const AppEngines& engines;
+  std::string base_url;
+};
+
+// Whether the request's Accept header admits `type` (absent, */*, type/* and the type itself do;
+// q-values are not weighed). NOT_ACCEPTABLE is not a Status code: the caller replies 406.
+bool accepts(const httplib::Request& req, const std::string& type);
+
+// QIDO-RS: GET /dicom-web/studies, /series, /instances and below a study or series.
+Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
+                       const std::string& series_uid, const httplib::Request& req);
+
+}  // namespace soiq::server::http
