@@ -72,6 +72,11 @@ SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::st
   const bool precompute_given = std::any_of(extra_args.begin(), extra_args.end(),
                                             [](const std::string& a) { return a.rfind("--precompute", 0) == 0; });
   if (!precompute_given) args.insert(args.end(), {"--precompute", "off"});
+  // DICOMweb's port too, when asked for (soiqd writes it before the gRPC port file).
+  const bool http = std::any_of(extra_args.begin(), extra_args.end(),
+                                [](const std::string& a) { return a == "--http" || a.rfind("--http=", 0) == 0; });
+  const std::string http_port_path = dir + "/soiqd-" + tag + ".http-port";
+  if (http) args.insert(args.end(), {"--http-port-file", http_port_path});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = fork();
   if (pid_ == 0) {
@@ -88,6 +93,7 @@ SoiqdProcess::SoiqdProcess(const std::string& db_path, const std::vector<std::st
     std::ifstream in(port_path_);
     if (in >> port_ && port_ > 0) {
       address_ = "127.0.0.1:" + std::to_string(port_);
+      if (http) std::ifstream(http_port_path) >> http_port_;
       return;
     }
     int status = 0;

@@ -37,6 +37,8 @@ class SoiqdProcess {
   bool running() const { return pid_ > 0; }
   const std::string& address() const { return address_; }
   int port() const { return port_; }
+  // DICOMweb's port when extra_args had --http HOST:PORT (its port file is added), else 0.
+  int http_port() const { return http_port_; }
   // Sends SIGTERM and waits up to 30 s (the shutdown checkpoints the WAL); returns the exit status
   // (0 for a clean shutdown), -1 on timeout.
   int terminate();
@@ -49,6 +51,7 @@ class SoiqdProcess {
  private:
   pid_t pid_ = -1;
   int port_ = 0;
+  int http_port_ = 0;
   std::string address_;
   std::string log_path_;
   std::string port_path_;
