@@ -141,8 +141,8 @@ json series_json(const db::SeriesHit& h, const std::string& base_url, const Qido
   }
   r.text(tags::kFrameOfReferenceUid, "UI", h.series.frame_of_reference_uid);
   r.number(tags::kNumberOfSeriesRelatedInstances, "IS", instance_count_of(h));
-  r.text(tags::kInstanceAvailability, "CS", h.structure ? "ONLINE" : "UNAVAILABLE");
-  if (h.structure) r.text(tags::kRetrieveUrl, "UR", base_url + "/studies/" + h.study.study_uid + "/series/" + uid);
+  r.always(tags::kInstanceAvailability, "CS", h.structure ? "ONLINE" : "UNAVAILABLE");
+  if (h.structure) r.always(tags::kRetrieveUrl, "UR", base_url + "/studies/" + h.study.study_uid + "/series/" + uid);
   return r.take();
 }
 
@@ -160,10 +160,10 @@ json instance_json(const InstanceRef& i, const std::string& base_url, const Qido
   r.number(tags::kInstanceNumber, "IS", i.k + 1);
   r.number(tags::kRows, "US", h.series.geometry.dims[1]);
   r.number(tags::kColumns, "US", h.series.geometry.dims[0]);
-  r.text(tags::kInstanceAvailability, "CS", h.structure ? "ONLINE" : "UNAVAILABLE");
+  r.always(tags::kInstanceAvailability, "CS", h.structure ? "ONLINE" : "UNAVAILABLE");
   if (h.structure)
-    r.text(tags::kRetrieveUrl, "UR",
-           base_url + "/studies/" + h.study.study_uid + "/series/" + series_uid + "/instances/" + uid);
+    r.always(tags::kRetrieveUrl, "UR",
+             base_url + "/studies/" + h.study.study_uid + "/series/" + series_uid + "/instances/" + uid);
   return r.take();
 }
 
