@@ -44,8 +44,12 @@ Status check_series_description(const std::string& d) {
 
 }  // namespace
 
+std::string seg_series_description(const std::string& name) {
+  return check_series_description(name).ok() && !name.empty() ? name : dicom::SegWriteOptions{}.series_description;
+}
+
 Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
-                                        const std::string& series_description) {
+                                        const std::string& series_description, const StructureSegUids* uids) {
   SOIQ_RETURN_IF_ERROR(check_series_description(series_description));
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures, structures_of_one_series(store, ids));
   const std::string& series_uid = structures.front().source_series_uid;
@@ -91,6 +95,10 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
   }
   dicom::SegWriteOptions options;
   if (!series_description.empty()) options.series_description = series_description;
+  if (uids != nullptr) {
+    options.series_uid = uids->series_uid;
+    options.sop_instance_uid = uids->sop_instance_uid;
+  }
   return dicom::write_seg(source, segments, options);
 }
 

@@ -6,6 +6,8 @@
 //
 // Inputs   ids: 1..kMaxSegStructures distinct structure ids, all imported from DICOM and all
 //          converted on the same series. series_description: "" for write_seg's default.
+//          uids: the Series and SOP Instance UIDs to write (DICOMweb's stable ones,
+//          structure_seg_uids.h); nullptr: new ones.
 // Output   The written SEG, segment n = ids[n-1], labelled with the structure's name.
 // Errors   INVALID_ARGUMENT: no ids, too many, a repeated id; NOT_FOUND: an unknown id or a
 //          series no longer stored; FAILED_PRECONDITION: an uploaded structure (no DICOM images
@@ -23,12 +25,17 @@
 #include "db/store.h"
 #include "dicom/seg_export.h"
 #include "server/app/feature_engine.h"
+#include "server/app/structure_seg_uids.h"
 
 namespace soiq::server {
 
 inline constexpr int kMaxSegStructures = 256;
 
 Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
-                                        const std::string& series_description);
+                                        const std::string& series_description, const StructureSegUids* uids = nullptr);
+
+// The Series Description of the SEG of one structure as DICOMweb lists and writes it: its name when
+// that is a valid LO value, else write_seg's default.
+std::string seg_series_description(const std::string& structure_name);
 
 }  // namespace soiq::server

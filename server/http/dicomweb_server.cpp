@@ -128,6 +128,22 @@ struct DicomwebServer::Impl {
     s.Get("/dicom-web/studies/" + uid + "/series", qido_at(QidoLevel::kSeries, 1, 0));
     s.Get("/dicom-web/studies/" + uid + "/instances", qido_at(QidoLevel::kInstance, 1, 0));
     s.Get("/dicom-web/studies/" + uid + "/series/" + uid + "/instances", qido_at(QidoLevel::kInstance, 1, 2));
+    auto wado_at = [this](WadoWhat what, int depth) {
+      return handler([what, depth](const HandlerContext& c, const httplib::Request& req) {
+        const auto group = [&](int g) { return depth >= g ? std::string(req.matches[g]) : std::string(); };
+        return wado(c, what, group(1), group(2), group(3), req);
+      });
+    };
+    const std::string study = "/dicom-web/studies/" + uid;
+    const std::string series = study + "/series/" + uid;
+    const std::string instance = series + "/instances/" + uid;
+    s.Get(study, wado_at(WadoWhat::kInstances, 1));
+    s.Get(series, wado_at(WadoWhat::kInstances, 2));
+    s.Get(instance, wado_at(WadoWhat::kInstances, 3));
+    s.Get(study + "/metadata", wado_at(WadoWhat::kMetadata, 1));
+    s.Get(series + "/metadata", wado_at(WadoWhat::kMetadata, 2));
+    s.Get(instance + "/metadata", wado_at(WadoWhat::kMetadata, 3));
+    s.Get(instance + "/bulkdata", wado_at(WadoWhat::kBulkData, 3));
   }
 };
 

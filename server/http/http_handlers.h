@@ -36,4 +36,11 @@ bool accepts(const httplib::Request& req, const std::string& type);
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
                        const std::string& series_uid, const httplib::Request& req);
 
+// WADO-RS: the SEG series of structures, as DICOM (multipart/related), as metadata (DICOM JSON, Pixel
+// Data as a BulkDataURI) or the Pixel Data itself (bulkdata). series_uid and instance_uid "" for a
+// whole study or series.
+enum class WadoWhat { kInstances, kMetadata, kBulkData };
+Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
+                       const std::string& series_uid, const std::string& instance_uid, const httplib::Request& req);
+
 }  // namespace soiq::server::http

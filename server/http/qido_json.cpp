@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "server/app/structure_seg.h"
 #include "server/app/structure_seg_uids.h"
 
 namespace soiq::server::http {
@@ -134,7 +135,7 @@ json series_json(const db::SeriesHit& h, const std::string& base_url, const Qido
   r.always(tags::kModality, "CS", h.structure ? "SEG" : h.series.modality);
   if (h.structure) {
     r.number(tags::kSeriesNumber, "IS", 900);
-    r.text(tags::kSeriesDescription, "LO", h.structure->name);
+    r.text(tags::kSeriesDescription, "LO", seg_series_description(h.structure->name));
   } else {
     r.number(tags::kSeriesNumber, "IS", h.series.series_number, h.series.series_number > 0);
     r.text(tags::kSeriesDescription, "LO", h.series.description);

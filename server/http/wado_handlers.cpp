@@ -1,0 +1,149 @@
+// WADO-RS (PS3.18 10.4) for the DICOM soiq has to give: the SEG of each structure imported from
+// DICOM, written on demand (server/app/structure_seg.h) with the stable UIDs QIDO lists
+// (structure_seg_uids.h). Image series are kept as voxels, not as DICOM instances: asking for one
+// is NOT_FOUND saying so and where to get them.
+#include <nlohmann/json.hpp>
+
+#include "dicom/dicom_json_metadata.h"
+#include "server/app/structure_seg.h"
+#include "server/app/structure_seg_uids.h"
+#include "server/http/http_handlers.h"
+#include "server/http/multipart.h"
+
+namespace soiq::server::http {
+namespace {
+
+constexpr char kExplicitVrLittleEndian[] = "1.2.840.10008.1.2.1";
+
+// Accept admits multipart/related of application/dicom in the transfer syntax soiq writes.
+bool accepts_dicom(const httplib::Request& req) {
+  if (!req.has_header("Accept")) return true;
+  const std::string accept = req.get_header_value("Accept");
+  size_t from = 0;
+  while (from <= accept.size()) {
+    size_t comma = accept.find(',', from);
+    if (comma == std::string::npos) comma = accept.size();
+    const std::string item = accept.substr(from, comma - from);
+    const std::string media = item.substr(0, item.find(';'));
+    const std::string type = header_parameter(item, "type");
+    const std::string syntax = header_parameter(item, "transfer-syntax");
+    const bool syntax_ok = syntax.empty() || syntax == "*" || syntax == kExplicitVrLittleEndian;
+    if (media.find("*/*") != std::string::npos) return true;
+    if (is_multipart_related(media) && (type.empty() || type == "application/dicom") && syntax_ok) return true;
+    from = comma + 1;
+  }
+  return false;
+}
+
+// The structure whose SEG series `series_uid` is, in study `study_uid`.
+Result<db::StructureRecord> seg_structure(const AppEngines& e, const std::string& study_uid,
+                                          const std::string& series_uid) {
+  const auto parsed = parse_structure_seg_uid(series_uid);
+  if (!parsed || parsed->instance) {
+    Result<db::SeriesRecord> image = e.store.get_series(series_uid);
+    if (image.ok() && image->study_uid == study_uid)
+      return not_found("series " + series_uid +
+                       " is kept by soiq as voxels for its features, not as DICOM instances: retrieve its images "
+                       "from the PACS or files they came from (soiq's DICOM are the SEG series of its structures)");
+    return not_found("series '" + series_uid + "' not found in study '" + study_uid + "'");
+  }
+  Result<db::StructureRecord> s = e.store.get_structure(parsed->structure_id);
+  if (!s.ok() && s.status().code() != StatusCode::kNotFound) return s.status();
+  if (!s.ok() || s->study_uid != study_uid || structure_seg_uids(*s).series_uid != series_uid)
+    return not_found("series '" + series_uid + "' not found in study '" + study_uid +
+                     "' (a structure whose surface changed has new UIDs: query the study's series again)");
+  return *s;
+}
+
+// The SEG of one structure, as a Part 10 file; conversions share soiqd's worker pool.
+Result<std::string> seg_bytes(const AppEngines& e, const db::StructureRecord& s) {
+  const StructureSegUids uids = structure_seg_uids(s);
+  auto work = [&]() -> Result<dicom::WrittenSeg> {
+    return structure_seg(e.store, e.features, {s.id}, seg_series_description(s.name), &uids);
+  };
+  SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, e.pool.call(work));
+  return std::move(seg.bytes);
+}
+
+// The structures of what the path names: one series, or every SEG series of a study.
+Result<std::vector<db::StructureRecord>> structures_of(const AppEngines& e, const std::string& study_uid,
+                                                       const std::string& series_uid, const std::string& instance_uid) {
+  if (!series_uid.empty()) {
+    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord s, seg_structure(e, study_uid, series_uid));
+    if (!instance_uid.empty() && structure_seg_uids(s).sop_instance_uid != instance_uid)
+      return not_found("instance '" + instance_uid + "' not found in series '" + series_uid + "'");
+    return std::vector<db::StructureRecord>{s};
+  }
+  SOIQ_RETURN_IF_ERROR(e.store.get_study(study_uid).status());
+  db::SeriesSearch search;
+  search.study_uids = {study_uid};
+  search.modality = "SEG";
+  search.limit = kMaxSegStructures + 1;
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesHit> hits, e.store.search_series(search));
+  if (hits.empty())
+    return not_found("study '" + study_uid +
+                     "' has no structure imported from DICOM, so no SEG to send (its images are kept as voxels)");
+  if (int64_t(hits.size()) > kMaxSegStructures)
+    return resource_exhausted("study '" + study_uid + "' has more than " + std::to_string(kMaxSegStructures) +
+                              " SEG series; retrieve them series by series");
+  std::vector<db::StructureRecord> out;
+  for (const db::SeriesHit& h : hits) out.push_back(*h.structure);
+  return out;
+}
+
+std::string instance_url(const HandlerContext& c, const db::StructureRecord& s) {
+  const StructureSegUids uids = structure_seg_uids(s);
+  return c.base_url + "/studies/" + s.study_uid + "/series/" + uids.series_uid + "/instances/" + uids.sop_instance_uid;
+}
+
+}  // namespace
+
+Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
+                       const std::string& series_uid, const std::string& instance_uid, const httplib::Request& req) {
+  const bool metadata = what == WadoWhat::kMetadata;
+  const bool bulk = what == WadoWhat::kBulkData;
+  if (metadata && !accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
+    return HttpReply{406, "application/dicom+json", "", {}};
+  if (what == WadoWhat::kInstances && !accepts_dicom(req))
+    return HttpReply{
+        406,
+        std::string("multipart/related; type=\"application/dicom\"; transfer-syntax=") + kExplicitVrLittleEndian,
+        "",
+        {}};
+  if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}};
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures,
+                        structures_of(c.engines, study_uid, series_uid, instance_uid));
+  std::vector<std::string> files;
+  for (const db::StructureRecord& s : structures) {
+    SOIQ_ASSIGN_OR_RETURN(std::string bytes, seg_bytes(c.engines, s));
+    files.push_back(std::move(bytes));
+  }
+  HttpReply r;
+  if (metadata) {
+    std::string body = "[";
+    for (size_t i = 0; i < files.size(); ++i) {
+      SOIQ_ASSIGN_OR_RETURN(const std::string json,
+                            dicom::dicom_json_metadata(files[i], instance_url(c, structures[i]) + "/bulkdata"));
+      body += (i ? "," : "") + json;
+    }
+    r.content_type = "application/dicom+json";
+    r.body = body + "]";
+    return r;
+  }
+  std::vector<std::string> pixels;
+  std::vector<std::string_view> parts;
+  if (bulk) {
+    SOIQ_ASSIGN_OR_RETURN(std::string p, dicom::pixel_data_of(files.at(0)));
+    pixels.push_back(std::move(p));
+    parts.push_back(pixels.back());
+  } else {
+    for (const std::string& f : files) parts.push_back(f);
+  }
+  const std::string part_type = bulk ? "application/octet-stream" : "application/dicom";
+  WrittenMultipart body = write_multipart_related(parts, part_type);
+  r.content_type = "multipart/related; type=\"" + part_type + "\"; boundary=" + body.boundary;
+  r.body = std::move(body.body);
+  return r;
+}
+
+}  // namespace soiq::server::http

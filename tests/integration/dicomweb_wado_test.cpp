@@ -1,0 +1,111 @@
+// WADO-RS through a real soiqd --http: a structure's SEG retrieved as DICOM, its metadata and its
+// Pixel Data; the voxels are those the import converted and those ExportSeg writes; image series,
+// which soiq keeps as voxels, are refused saying so.
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dicom/dicom_json_metadata.h"
+#include "tests/integration/dicomweb_fixture.h"
+
+namespace soiq::testing {
+namespace {
+
+// The parts of a multipart/related answer (a small reader of its own: the server's is under test).
+std::vector<std::string> parts_of(const httplib::Result& r) {
+  const std::string ct = r->get_header_value("Content-Type");
+  const std::string boundary = "--" + ct.substr(ct.find("boundary=") + 9);
+  std::vector<std::string> parts;
+  size_t at = r->body.find(boundary);
+  while (at != std::string::npos && r->body.compare(at + boundary.size(), 2, "--") != 0) {
+    const size_t start = r->body.find("\r\n\r\n", at) + 4;
+    const size_t end = r->body.find("\r\n" + boundary, start);
+    parts.push_back(r->body.substr(start, end - start));
+    at = end + 2;
+  }
+  return parts;
+}
+
+int64_t set_bits(const std::string& bytes) {
+  int64_t n = 0;
+  for (const char c : bytes) n += __builtin_popcount(static_cast<unsigned char>(c));
+  return n;
+}
+
+TEST_F(DicomwebTest, ASegRetrievedIsTheStructuresVoxelsAndTheExportsPixels) {
+  Result<v1::ImportDicomResponse> imported = client_->import_dicom({data("sts/STS_002/dicom/CT")});
+  ASSERT_TRUE(imported.ok()) << imported.status().to_string();
+  ASSERT_EQ(imported->structures_size(), 1);
+  const v1::ImportedStructure& gtv = imported->structures(0);
+  const json series = get("/dicom-web/series?Modality=SEG");
+  ASSERT_EQ(series.size(), 1u);
+  const std::string study = value(series[0], kStudyUid);
+  const std::string seg_uid = value(series[0], kSeriesUid);
+  const std::string url = "/dicom-web/studies/" + study + "/series/" + seg_uid;
+
+  httplib::Result r = http_->Get(url.c_str(), {{"Accept", "multipart/related; type=\"application/dicom\""}});
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type").rfind("multipart/related; type=\"application/dicom\"", 0), 0u);
+  const std::vector<std::string> parts = parts_of(r);
+  ASSERT_EQ(parts.size(), 1u);
+  Result<std::string> pixels = dicom::pixel_data_of(parts[0]);
+  ASSERT_TRUE(pixels.ok()) << pixels.status().to_string();
+  // Binary SEG frames hold one bit per voxel, padding bits zero: the set bits are the voxels inside.
+  EXPECT_EQ(set_bits(*pixels), gtv.voxel_count());
+
+  // ExportSeg (soiq export-seg) writes the same frames, under other UIDs.
+  v1::ExportSegRequest req;
+  req.add_structure_ids(gtv.structure().id());
+  const std::string exported = dir_.file("exported.dcm");
+  ASSERT_TRUE(client_->export_seg(req, exported).ok());
+  std::ifstream in(exported, std::ios::binary);
+  std::ostringstream file;
+  file << in.rdbuf();
+  EXPECT_EQ(dicom::pixel_data_of(file.str()).value(), *pixels);
+
+  // The same SEG again has the same UIDs; by instance, by study and as bulk data too.
+  const json metadata = get(url + "/metadata");
+  ASSERT_EQ(metadata.size(), 1u);
+  EXPECT_EQ(value(metadata[0], kSeriesUid), seg_uid);
+  const std::string sop = value(metadata[0], kSopUid);
+  EXPECT_EQ(sop, value(get(url + "/instances")[0], kSopUid));
+  EXPECT_EQ(metadata[0]["7FE00010"]["BulkDataURI"],
+            "http://127.0.0.1:" + std::to_string(server_->http_port()) + url + "/instances/" + sop + "/bulkdata");
+  httplib::Result one = http_->Get((url + "/instances/" + sop).c_str());
+  ASSERT_TRUE(one);
+  EXPECT_EQ(one->status, 200);
+  EXPECT_EQ(dicom::pixel_data_of(parts_of(one).at(0)).value(), *pixels);
+  httplib::Result whole_study = http_->Get(("/dicom-web/studies/" + study).c_str());
+  ASSERT_TRUE(whole_study);
+  EXPECT_EQ(parts_of(whole_study).size(), 1u);
+  httplib::Result bulk = http_->Get((url + "/instances/" + sop + "/bulkdata").c_str());
+  ASSERT_TRUE(bulk);
+  EXPECT_EQ(parts_of(bulk).at(0), *pixels);
+}
+
+TEST_F(DicomwebTest, WhatSoiqCannotSendIsRefusedSayingWhy) {
+  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT")}).ok());
+  const json series = get("/dicom-web/series");
+  ASSERT_EQ(series.size(), 2u);  // the CT, then the GTV's SEG
+  const std::string study = value(series[0], kStudyUid);
+  const std::string ct = "/dicom-web/studies/" + study + "/series/" + value(series[0], kSeriesUid);
+  const json image = get(ct, 404);
+  EXPECT_NE(image["error"]["message"].get<std::string>().find("voxels"), std::string::npos);
+  const std::string seg = "/dicom-web/studies/" + study + "/series/" + value(series[1], kSeriesUid);
+  get(seg + "/instances/1.2.3", 404);
+  get("/dicom-web/studies/1.2.3/series/" + value(series[1], kSeriesUid), 404);  // another study
+  get("/dicom-web/studies/" + study + "/series/2.25.1", 404);
+  httplib::Result jpeg = http_->Get(seg.c_str(), {{"Accept", "multipart/related; type=\"image/jpeg\""}});
+  ASSERT_TRUE(jpeg);
+  EXPECT_EQ(jpeg->status, 406);
+  httplib::Result other_syntax =
+      http_->Get(seg.c_str(),
+                 {{"Accept", "multipart/related; type=\"application/dicom\"; transfer-syntax=1.2.840.10008.1.2.4.50"}});
+  ASSERT_TRUE(other_syntax);
+  EXPECT_EQ(other_syntax->status, 406);
+}
+
+}  // namespace
+}  // namespace soiq::testing
