@@ -55,13 +55,14 @@ void write_reply(httplib::Response& res, const Result<HttpReply>& r) {
   }
   res.status = r->status;
   for (const auto& [k, v] : r->headers) res.set_header(k.c_str(), v);
-  if (r->status == 406) {
+  if (r->status == 406 && r->body.empty()) {
     res.set_content(error_body(invalid_argument("not acceptable: this resource is answered as " +
-                                                (r->content_type.empty() ? "JSON" : r->content_type))),
+                                                (r->content_type.empty() ? "JSON" : r->content_type)),
+                               406),
                     "application/json");
     return;
   }
-  res.set_content(r->body, r->content_type.c_str());
+  res.set_content(r->body, r->content_type.empty() ? "application/json" : r->content_type.c_str());
 }
 
 }  // namespace
@@ -144,6 +145,11 @@ struct DicomwebServer::Impl {
     s.Get(series + "/metadata", wado_at(WadoWhat::kMetadata, 2));
     s.Get(instance + "/metadata", wado_at(WadoWhat::kMetadata, 3));
     s.Get(instance + "/bulkdata", wado_at(WadoWhat::kBulkData, 3));
+    s.Post("/dicom-web/studies",
+           handler([](const HandlerContext& c, const httplib::Request& req) { return stow(c, "", req); }));
+    s.Post(study, handler([](const HandlerContext& c, const httplib::Request& req) {
+             return stow(c, std::string(req.matches[1]), req);
+           }));
   }
 };
 

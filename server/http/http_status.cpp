@@ -34,10 +34,11 @@ int http_status_of(StatusCode code) {
   }
 }
 
-std::string error_body(const Status& s) {
+std::string error_body(const Status& s) { return error_body(s, http_status_of(s.code())); }
+
+std::string error_body(const Status& s, int http_status) {
   nlohmann::json body = {
-      {"error",
-       {{"code", status_code_name(s.code())}, {"status", http_status_of(s.code())}, {"message", s.message()}}}};
+      {"error", {{"code", status_code_name(s.code())}, {"status", http_status}, {"message", s.message()}}}};
   return body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

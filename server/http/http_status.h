@@ -19,5 +19,7 @@ namespace soiq::server::http {
 
 int http_status_of(StatusCode code);
 std::string error_body(const Status& s);
+// The same body for an HTTP status no Status code maps to (406, 415).
+std::string error_body(const Status& s, int http_status);
 
 }  // namespace soiq::server::http
