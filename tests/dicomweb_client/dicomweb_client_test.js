@@ -1,0 +1,76 @@
+// soiqd's DICOMweb driven by dicomweb-client, the DICOMweb library of OHIF, as a web viewer would:
+// QIDO-RS with paging and includefield, WADO-RS of a structure's SEG (whose voxels must be those
+// `soiq export-seg` writes), its metadata, and STOW-RS of a series that soiq then holds.
+// Run by run_test.sh, which starts soiqd and passes SOIQ_DICOMWEB, SOIQ_DATA and SOIQ_EXPORTED_SEG.
+'use strict';
+const test = require('node:test');
+const assert = require('node:assert/strict');
+const fs = require('node:fs');
+const path = require('node:path');
+global.XMLHttpRequest = require('xhr2');  // dicomweb-client is written for browsers
+const { api } = require('dicomweb-client');
+
+const client = new api.DICOMwebClient({ url: process.env.SOIQ_DICOMWEB });
+const data = process.env.SOIQ_DATA;
+
+const value = (item, tag) => (item[tag] && item[tag].Value ? item[tag].Value[0] : undefined);
+
+// The Pixel Data of an Explicit VR Little Endian Part 10 file: (7FE0,0010) OB, then a 32-bit length.
+function pixelData(bytes) {
+  const b = Buffer.from(bytes);
+  const tag = Buffer.from([0xe0, 0x7f, 0x10, 0x00, 0x4f, 0x42, 0x00, 0x00]);
+  const at = b.lastIndexOf(tag);
+  assert.ok(at > 0, 'no Pixel Data element');
+  const length = b.readUInt32LE(at + 8);
+  return b.subarray(at + 12, at + 12 + length);
+}
+
+function files(folder) {
+  const out = [];
+  for (const e of fs.readdirSync(folder, { withFileTypes: true })) {
+    const p = path.join(folder, e.name);
+    if (e.isDirectory()) out.push(...files(p));
+    else if (p.endsWith('.dcm')) out.push(p);
+  }
+  return out.sort();
+}
+
+test('QIDO-RS lists the studies, pages them and includes fields on request', async () => {
+  const studies = await client.searchForStudies();
+  assert.equal(studies.length, 2);
+  const first = await client.searchForStudies({ queryParams: { limit: 1, offset: 0 } });
+  const second = await client.searchForStudies({ queryParams: { limit: 1, offset: 1 } });
+  assert.deepEqual([value(first[0], '0020000D'), value(second[0], '0020000D')],
+                   studies.map((s) => value(s, '0020000D')));
+  const described = await client.searchForStudies({
+    queryParams: { PatientID: 'STS_002', includefield: 'StudyDescription' },
+  });
+  assert.equal(described.length, 1);
+  assert.ok('00081030' in described[0]);
+  assert.equal(value(described[0], '00100010').Alphabetic, 'STS_002');
+});
+
+test('WADO-RS gives the SEG of a structure with the voxels soiq export-seg writes', async () => {
+  const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
+  const studyInstanceUID = value(study, '0020000D');
+  const series = await client.searchForSeries({ studyInstanceUID });
+  assert.deepEqual(series.map((s) => value(s, '00080060')), ['CT', 'SEG']);
+  const seriesInstanceUID = value(series[1], '0020000E');
+  const instances = await client.retrieveSeries({ studyInstanceUID, seriesInstanceUID });
+  assert.equal(instances.length, 1);
+  const exported = fs.readFileSync(process.env.SOIQ_EXPORTED_SEG);
+  assert.ok(pixelData(instances[0]).equals(pixelData(exported)), 'the SEG differs from the exported one');
+  const metadata = await client.retrieveSeriesMetadata({ studyInstanceUID, seriesInstanceUID });
+  assert.equal(value(metadata[0], '0020000E'), seriesInstanceUID);
+  assert.match(metadata[0]['7FE00010'].BulkDataURI, /\/bulkdata$/);
+});
+
+test('STOW-RS stores a series that QIDO-RS then lists', async () => {
+  const datasets = files(path.join(data, 'sts/STS_002/dicom/PET'))
+    .map((f) => { const b = fs.readFileSync(f); return b.buffer.slice(b.byteOffset, b.byteOffset + b.length); });
+  const response = await client.storeInstances({ datasets });
+  const stored = JSON.parse(Buffer.from(response).toString())['00081199'].Value;
+  assert.equal(stored.length, datasets.length);
+  const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
+  assert.deepEqual(study['00080061'].Value, ['CT', 'PT', 'SEG']);
+});

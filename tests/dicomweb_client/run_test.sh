@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# dicomweb-client (npm, as OHIF uses it) against a real soiqd --http: starts soiqd, imports STS_002's
+# CT and RT Structure Set with the CLI, exports the structure's SEG with the CLI, then runs
+# dicomweb_client_test.js with Node's test runner; after it, `soiq query` must find the structure of
+# the PET structure set the Node test sent by STOW-RS.
+#   run_test.sh SOIQ SOIQD
+set -euo pipefail
+soiq=$1
+soiqd=$2
+here=$(cd "$(dirname "$0")" && pwd)
+data=$here/../data
+tmp=$(mktemp -d)
+source "$here/../cli_remote/soiqd.sh"
+if [ ! -d "$here/node_modules/dicomweb-client" ]; then
+  echo "FAIL: tests/dicomweb_client/node_modules is missing: scripts/install-deps installs it (npm ci)"
+  exit 1
+fi
+start_soiqd dw --http 127.0.0.1:0 --http-port-file "$tmp/dw.http-port" --keep-patient-names on
+http="http://127.0.0.1:$(tr -d '[:space:]' <"$tmp/dw.http-port")/dicom-web"
+"$soiq" --server "$server" import "$data/sts/STS_002/dicom/CT" >/dev/null
+"$soiq" --server "$server" import "$data/dicom/CT_small.dcm" >/dev/null
+"$soiq" --server "$server" export-seg 1 -o "$tmp/gtv.dcm" >/dev/null
+SOIQ_DICOMWEB=$http SOIQ_DATA=$data SOIQ_EXPORTED_SEG=$tmp/gtv.dcm node --test "$here/dicomweb_client_test.js"
+# The PET structure set came in by STOW-RS: a query finds its structure.
+rows=$("$soiq" --server "$server" query --name 'GTV_Mass_PET' --format csv | tail -n +2 | wc -l)
+if [ "$rows" != "1" ]; then
+  echo "FAIL: the query found $rows rows for the structure sent by STOW-RS, not 1"
+  exit 1
+fi
+echo "PASS"
