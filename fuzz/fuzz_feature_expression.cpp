@@ -9,23 +9,23 @@
 #include <cstdint>
 #include <string>
 
-#include "client/feature_expression.h"
+#include "proto/text/feature_expression.h"
 #include "core/regions/regions.h"
 #include "fuzz/require.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
 
-  auto feature = soiq::client::parse_feature(text);
+  auto feature = soiq::proto_text::parse_feature(text);
   if (feature.ok()) {
-    auto again = soiq::client::parse_feature(soiq::client::feature_text(*feature));
+    auto again = soiq::proto_text::parse_feature(soiq::proto_text::feature_text(*feature));
     soiq::fuzz::require(again.ok(), "parse_feature refused feature_text of a feature it accepted");
     soiq::fuzz::require(again->SerializeAsString() == feature->SerializeAsString(),
                         "parse_feature(feature_text(f)) differs from f");
   }
 
-  auto predicate = soiq::client::parse_predicate(text);
-  if (predicate.ok()) (void)soiq::client::comparison_text(predicate->op());
+  auto predicate = soiq::proto_text::parse_predicate(text);
+  if (predicate.ok()) (void)soiq::proto_text::comparison_text(predicate->op());
 
   auto region = soiq::parse_region(text);
   if (region.ok()) {

@@ -7,7 +7,7 @@
 #include "client/cli/grid_args.h"
 #include "client/cli/record_args.h"
 #include "client/cli/row_printer.h"
-#include "client/feature_expression.h"
+#include "proto/text/feature_expression.h"
 
 namespace soiq::cli {
 
@@ -87,11 +87,11 @@ Result<QueryArgs> parse_query_args(int argc, char** argv) {
     }
     SOIQ_ASSIGN_OR_RETURN(const std::string v, option_value(argc, argv, i));
     if (arg == "--where") {
-      Result<soiq::v1::Predicate> p = client::parse_predicate(v);
+      Result<soiq::v1::Predicate> p = proto_text::parse_predicate(v);
       SOIQ_RETURN_IF_ERROR(in_flag(p.status(), arg));
       *r.add_where() = *p;
     } else if (arg == "--select" || arg == "--order-by") {
-      Result<soiq::v1::FeatureRef> f = client::parse_feature(v);
+      Result<soiq::v1::FeatureRef> f = proto_text::parse_feature(v);
       SOIQ_RETURN_IF_ERROR(in_flag(f.status(), arg));
       if (arg == "--select") {
         *r.add_select() = *f;
@@ -119,9 +119,9 @@ Result<QueryArgs> parse_query_args(int argc, char** argv) {
 
 std::vector<std::string> query_feature_columns(const soiq::v1::QueryRequest& r) {
   std::vector<std::string> columns;
-  for (const auto& p : r.where()) columns.push_back(client::feature_text(p.feature()));
-  for (const auto& f : r.select()) columns.push_back(client::feature_text(f));
-  if (r.has_order_by()) columns.push_back(client::feature_text(r.order_by()));
+  for (const auto& p : r.where()) columns.push_back(proto_text::feature_text(p.feature()));
+  for (const auto& f : r.select()) columns.push_back(proto_text::feature_text(f));
+  if (r.has_order_by()) columns.push_back(proto_text::feature_text(r.order_by()));
   return columns;
 }
 
@@ -142,16 +142,16 @@ Status in_command_line_words(const Status& status, const soiq::v1::QueryRequest&
   }
   if (m.starts_with("order_by: ") && r.has_order_by()) {
     return Status(status.code(),
-                  "--order-by '" + client::feature_text(r.order_by()) + "': " + m.substr(sizeof("order_by: ") - 1));
+                  "--order-by '" + proto_text::feature_text(r.order_by()) + "': " + m.substr(sizeof("order_by: ") - 1));
   }
   std::string text;
   if (flag == "--where" && index >= 0 && index < r.where_size()) {
     const soiq::v1::Predicate& p = r.where(index);
     char value[32];
     std::snprintf(value, sizeof value, "%g", p.value());
-    text = client::feature_text(p.feature()) + " " + client::comparison_text(p.op()) + " " + value;
+    text = proto_text::feature_text(p.feature()) + " " + proto_text::comparison_text(p.op()) + " " + value;
   } else if (flag == "--select" && index >= 0 && index < r.select_size()) {
-    text = client::feature_text(r.select(index));
+    text = proto_text::feature_text(r.select(index));
   } else {
     return status;
   }

@@ -145,6 +145,8 @@ struct DicomwebServer::Impl {
     s.Get(series + "/metadata", wado_at(WadoWhat::kMetadata, 2));
     s.Get(instance + "/metadata", wado_at(WadoWhat::kMetadata, 3));
     s.Get(instance + "/bulkdata", wado_at(WadoWhat::kBulkData, 3));
+    s.Get("/soiq/v1/query",
+          handler([](const HandlerContext& c, const httplib::Request& req) { return soiq_query(c, req); }));
     s.Post("/dicom-web/studies",
            handler([](const HandlerContext& c, const httplib::Request& req) { return stow(c, "", req); }));
     s.Post(study, handler([](const HandlerContext& c, const httplib::Request& req) {

@@ -43,6 +43,10 @@ enum class WadoWhat { kInstances, kMetadata, kBulkData };
 Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
                        const std::string& series_uid, const std::string& instance_uid, const httplib::Request& req);
 
+// GET /soiq/v1/query: the two-stage query with soiq query's options as arguments; JSON rows, or CSV
+// with Accept: text/csv.
+Result<HttpReply> soiq_query(const HandlerContext& c, const httplib::Request& req);
+
 // STOW-RS: POST /dicom-web/studies[/{study}] with multipart/related DICOM, imported as ImportDicom
 // imports files; study_uid "" takes any study.
 Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req);

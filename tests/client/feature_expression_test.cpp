@@ -1,8 +1,8 @@
-#include "client/feature_expression.h"
+#include "proto/text/feature_expression.h"
 
 #include <gtest/gtest.h>
 
-namespace soiq::client {
+namespace soiq::proto_text {
 namespace {
 
 TEST(ParseFeature, NameAloneIsAShapeFeature) {
@@ -148,4 +148,4 @@ TEST(FeatureText, ReadsBackAsTheSameFeature) {
 }
 
 }  // namespace
-}  // namespace soiq::client
+}  // namespace soiq::proto_text

@@ -1,6 +1,7 @@
 #pragma once
 // The text form of the features a query filters, selects and orders by (soiq query --where,
-// --select, --order-by), parsed into the API's FeatureRef and Predicate.
+// --select, --order-by; soiqd's /soiq/v1/query where=, select=, order-by=), parsed into the API's
+// FeatureRef and Predicate: one grammar for the command line and the HTTP API.
 //
 // Grammar (blanks allowed between tokens):
 //   feature   := NAME | NAME '[' REGION ']' | NAME '[' REGION ',' IMAGE ']' | NAME '[' ',' IMAGE ']'
@@ -19,7 +20,7 @@
 #include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
-namespace soiq::client {
+namespace soiq::proto_text {
 
 Result<soiq::v1::FeatureRef> parse_feature(const std::string& text);
 Result<soiq::v1::Predicate> parse_predicate(const std::string& text);
@@ -31,4 +32,4 @@ std::string feature_text(const soiq::v1::FeatureRef& feature);
 // "<", "<=", ... for an operator; "?" for an unset one.
 const char* comparison_text(soiq::v1::ComparisonOp op);
 
-}  // namespace soiq::client
+}  // namespace soiq::proto_text

@@ -1,4 +1,4 @@
-#include "client/feature_expression.h"
+#include "proto/text/feature_expression.h"
 
 #include <cctype>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "core/base/did_you_mean.h"
 
-namespace soiq::client {
+namespace soiq::proto_text {
 
 namespace {
 
@@ -186,4 +186,4 @@ const char* comparison_text(ComparisonOp op) {
   }
 }
 
-}  // namespace soiq::client
+}  // namespace soiq::proto_text
