@@ -26,7 +26,7 @@ expect() {
   fi
 }
 
-start_soiqd dw --http 127.0.0.1:0 --http-port-file "$tmp/dw.http-port" --max-upload-bytes 200000
+start_soiqd dw --http 127.0.0.1:0 --http-port-file "$tmp/dw.http-port" --max-upload-bytes 4000000
 base="http://127.0.0.1:$(tr -d '[:space:]' <"$tmp/dw.http-port")/dicom-web"
 "$soiq" --server "$server" import "$data/dicom/CT_small.dcm" >/dev/null
 study=1.3.6.1.4.1.5962.1.2.1.20040119072730.12322
@@ -45,7 +45,7 @@ expect 404 "kept by soiq as voxels" "$base/studies/$study/series/1.3.6.1.4.1.596
 expect 406 "not acceptable" -H 'Accept: application/dicom+xml' "$base/studies"
 expect 415 "multipart/related" -X POST -H 'Content-Type: application/dicom' --data-binary "@$data/dicom/CT_small.dcm" "$base/studies"
 expect 400 "boundary" -X POST -H 'Content-Type: multipart/related; type="application/dicom"' --data-binary 'x' "$base/studies"
-head -c 300000 /dev/zero >"$tmp/big"
+head -c 5000000 /dev/zero >"$tmp/big"
 expect 413 "max-upload-bytes" -X POST -H 'Content-Type: multipart/related; type="application/dicom"; boundary=b' --data-binary "@$tmp/big" "$base/studies"
 
 # One STOW part for another study than the URL names: 409, nothing stored.
@@ -61,6 +61,26 @@ if [ "$got" != 409 ] || [ "$reason" != $((0xA900)) ]; then
 fi
 studies=$(curl -s "$base/studies" | /usr/bin/python3 -c 'import json,sys; print(len(json.load(sys.stdin)))')
 [ "$studies" = 1 ] || { echo "FAIL: $studies studies after the refused requests, not 1"; failures=$((failures + 1)); }
+
+# /soiq/v1/query: the rows `soiq query --format csv` prints, header and numbers alike (the CLI prints
+# rows as they are computed, the HTTP answer by structure id: compared sorted).
+"$soiq" --server "$server" import "$data/sts/STS_002/dicom/CT" >/dev/null
+"$soiq" --server "$server" import "$data/sts/STS_002/dicom/PET" >/dev/null
+"$soiq" --server "$server" query --name 'GTV*' --where 'voxel_volume_mm3 > 1000' --select 'mean[inside,PT]' \
+  --select centroid_mm --format csv 2>/dev/null >"$tmp/cli.csv"
+curl -s -H 'Accept: text/csv' --get --data-urlencode 'name=GTV*' --data-urlencode 'where=voxel_volume_mm3 > 1000' \
+  --data-urlencode 'select=mean[inside,PT]' --data-urlencode 'select=centroid_mm' "${base%/dicom-web}/soiq/v1/query" >"$tmp/http.csv"
+if ! diff <(head -1 "$tmp/cli.csv"; tail -n +2 "$tmp/cli.csv" | sort) "$tmp/http.csv" >/dev/null || [ "$(wc -l <"$tmp/http.csv")" != 3 ]; then
+  echo "FAIL: /soiq/v1/query's CSV differs from soiq query's:"
+  diff "$tmp/cli.csv" "$tmp/http.csv" || true
+  failures=$((failures + 1))
+fi
+json_rows=$(curl -s "${base%/dicom-web}/soiq/v1/query?name=GTV*&select=sphericity" | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); print(len(d["rows"]), d["columns"][-1])')
+[ "$json_rows" = "2 sphericity" ] || { echo "FAIL: /soiq/v1/query JSON: $json_rows"; failures=$((failures + 1)); }
+expect 400 "did you mean 'name'" "${base%/dicom-web}/soiq/v1/query?nmae=GTV*"
+expect 400 "unknown feature 'spherity'" "${base%/dicom-web}/soiq/v1/query?where=spherity%3E1"
+expect 400 "at column" "${base%/dicom-web}/soiq/v1/query?where=sphericity%3E%3E1"
+expect 400 "desc needs order-by" "${base%/dicom-web}/soiq/v1/query?desc=true"
 
 # With a token: none or a wrong one is 401 with WWW-Authenticate.
 echo "curl-test-token-0123456789abcdef" >"$tmp/token"
