@@ -1,5 +1,5 @@
 // Feeds each input, as text, to the query expression parsers: parse_feature and parse_predicate
-// (client/feature_expression.h; `soiq query --where/--select/--order-by`) and parse_region
+// (proto/text/feature_expression.h; `soiq query --where/--select/--order-by`, soiqd's /soiq/v1/query) and parse_region
 // (core/regions/regions.h; the region of every feature a query names, which soiqd parses from the request).
 // A bug is any crash or sanitizer report, a run over -timeout, or a broken round trip: a feature
 // parse_feature accepts must come back from feature_text as text parse_feature reads to the same

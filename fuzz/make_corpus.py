@@ -216,6 +216,19 @@ def expressions():
         put("fuzz_feature_expression", "expression_%02d" % n, text)
 
 
+def dicomweb_requests():
+    put("fuzz_dicomweb_request", "stow_two_parts",
+        b"b1\r\n--b1\r\nContent-Type: application/dicom\r\n\r\nDICM\r\n--b1\r\n\r\nxx\r\n--b1--")
+    put("fuzz_dicomweb_request", "qido_studies",
+        "PatientID=AB*&StudyDate=20200101-20201231&limit=10&offset=2&includefield=all&fuzzymatching=true"
+        "&PatientName=doe^jo")
+    put("fuzz_dicomweb_request", "qido_series",
+        "SeriesInstanceUID=2.25.1827659644562251692072282&Modality=SEG&SOPInstanceUID=1.2")
+    put("fuzz_dicomweb_request", "soiq_query",
+        "name=GTV*&where=voxel_volume_mm3>1000&select=mean[shell:5,PT]&order-by=asym(sphericity)&desc=true"
+        "&spacing=1,1,2&margin=3")
+
+
 def main():
     if not os.path.isdir(DATA):
         sys.exit("make_corpus.py: run from the repository root (no %s here)" % DATA)
@@ -224,6 +237,7 @@ def main():
     images()
     dicom()
     expressions()
+    dicomweb_requests()
 
 
 if __name__ == "__main__":
