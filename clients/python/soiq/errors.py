@@ -1,0 +1,81 @@
+"""soiq's errors in Python: one exception class per gRPC status code soiqd answers with.
+
+soiqd maps every failure to a canonical gRPC code with a message a person can act on
+(proto/soiq/v1/soiq.proto); the client raises the matching subclass of SoiqError, so a caller
+can catch NotFound or InvalidArgument without looking at codes.
+"""
+
+import grpc
+
+
+class SoiqError(Exception):
+    """A call soiqd refused or could not answer. `code` is the grpc.StatusCode."""
+
+    code = grpc.StatusCode.UNKNOWN
+
+    def __init__(self, message, code=None):
+        super().__init__(message)
+        self.message = message
+        if code is not None:
+            self.code = code
+
+
+class InvalidArgument(SoiqError):
+    code = grpc.StatusCode.INVALID_ARGUMENT
+
+
+class NotFound(SoiqError):
+    code = grpc.StatusCode.NOT_FOUND
+
+
+class AlreadyExists(SoiqError):
+    code = grpc.StatusCode.ALREADY_EXISTS
+
+
+class FailedPrecondition(SoiqError):
+    code = grpc.StatusCode.FAILED_PRECONDITION
+
+
+class ResourceExhausted(SoiqError):
+    code = grpc.StatusCode.RESOURCE_EXHAUSTED
+
+
+class Unauthenticated(SoiqError):
+    code = grpc.StatusCode.UNAUTHENTICATED
+
+
+class PermissionDenied(SoiqError):
+    code = grpc.StatusCode.PERMISSION_DENIED
+
+
+class Unavailable(SoiqError):
+    code = grpc.StatusCode.UNAVAILABLE
+
+
+class DeadlineExceeded(SoiqError):
+    code = grpc.StatusCode.DEADLINE_EXCEEDED
+
+
+class Cancelled(SoiqError):
+    code = grpc.StatusCode.CANCELLED
+
+
+class DataLoss(SoiqError):
+    code = grpc.StatusCode.DATA_LOSS
+
+
+class Internal(SoiqError):
+    code = grpc.StatusCode.INTERNAL
+
+
+_BY_CODE = {c.code: c for c in (InvalidArgument, NotFound, AlreadyExists, FailedPrecondition, ResourceExhausted,
+                                 Unauthenticated, PermissionDenied, Unavailable, DeadlineExceeded, Cancelled,
+                                 DataLoss, Internal)}
+
+
+def from_rpc_error(error):
+    """The SoiqError for a grpc.RpcError (a call's failure as gRPC raised it)."""
+    code = error.code() if hasattr(error, "code") else grpc.StatusCode.UNKNOWN
+    details = error.details() if hasattr(error, "details") else str(error)
+    cls = _BY_CODE.get(code, SoiqError)
+    return cls(details or code.name, code)
