@@ -5,9 +5,11 @@ soiqd started the way `make run` starts it (scripts/run-server) and, from the PA
 demo PACS of scripts/demo-pacs with soiqd restarted on it, as the README says. Each command must
 exit 0 and print what the README shows (stdout, then stderr), except:
   - timings ("3.6 s", "103.7 ms"), sizes ("2.9 MB", "57456 bytes") and DICOM UIDs made at run time;
-  - the test's own ports, which stand for the README's 127.0.0.1:50051 and 127.0.0.1:11112;
+  - the test's own ports, which stand for the README's 127.0.0.1:50051, 127.0.0.1:50080 and
+    127.0.0.1:11112;
   - a line "..." in the README, which stands for any number of lines;
   - runs of spaces (table columns are as wide as their values).
+A command's own 127.0.0.1:50080 (a DICOMweb URL given to curl) is the test's soiqd's HTTP port.
 So an example that drifts from what soiq prints fails here, not in a reader's terminal.
 
 Usage: readme_test.py SOURCE_DIR BUILD_DIR
@@ -99,12 +101,13 @@ class Services:
 
     def __init__(self, root, env):
         self.root, self.env = root, env
-        self.soiqd_port, self.pacs_port = free_port(), free_port()
+        self.soiqd_port, self.http_port, self.pacs_port = free_port(), free_port(), free_port()
         self.soiqd = self.pacs = None
 
     def start_soiqd(self, pacs=None):
         self.stop(self.soiqd)
-        env = dict(self.env, SOIQ_LISTEN=f"127.0.0.1:{self.soiqd_port}", SOIQ_DB="var/soiq.db")
+        env = dict(self.env, SOIQ_LISTEN=f"127.0.0.1:{self.soiqd_port}", SOIQ_HTTP=f"127.0.0.1:{self.http_port}",
+                   SOIQ_DB="var/soiq.db")
         if pacs:
             env["SOIQ_PACS"] = pacs
         self.soiqd = subprocess.Popen(["scripts/run-server", "build"], cwd=self.root, env=env,
@@ -160,6 +163,7 @@ def main():
     services = Services(root, env)
     env["SOIQ_SERVER"] = f"127.0.0.1:{services.soiqd_port}"
     ports = {f"127.0.0.1:{services.soiqd_port}": "127.0.0.1:50051",
+             f"127.0.0.1:{services.http_port}": "127.0.0.1:50080",
              f"127.0.0.1:{services.pacs_port}": "127.0.0.1:11112"}
     failures = 0
     readme = examples(open(os.path.join(SOURCE, "README.md"), encoding="utf-8").read())
@@ -168,7 +172,9 @@ def main():
         for command, expected in readme:
             if command.startswith("build/client/soiq pacs") and services.pacs is None:
                 services.start_pacs()
-            r = subprocess.run(command, shell=True, cwd=root, env=env, capture_output=True, text=True, timeout=600)
+            # A URL of DICOMweb in a command (curl) names the README's port: the test's own is used.
+            run = command.replace("127.0.0.1:50080", f"127.0.0.1:{services.http_port}")
+            r = subprocess.run(run, shell=True, cwd=root, env=env, capture_output=True, text=True, timeout=600)
             actual = [normalised(l, ports) for l in (r.stdout + r.stderr).split("\n")]
             while actual and not actual[-1]:
                 actual.pop()

@@ -3,6 +3,7 @@ prints, structures page transparently, DICOM import and upload store what the CL
 is reported, and soiqd's errors arrive as typed exceptions with its messages."""
 
 import csv
+import re
 import io
 import os
 
@@ -126,3 +127,15 @@ def test_a_token_is_sent_and_a_missing_one_is_unauthenticated(tmp_path):
             assert c.info().structures == 0
     finally:
         s.stop()
+
+
+def test_the_readmes_python_example_runs_as_printed(demo_soiqd, capsys):
+    readme = os.path.join(os.path.dirname(os.path.dirname(os.environ["SOIQ_TEST_DATA"])), "README.md")
+    blocks = re.findall(r"```python\n(.*?)```", open(readme, encoding="utf-8").read(), re.S)
+    assert len(blocks) == 1
+    code = blocks[0].replace('"127.0.0.1:50051"', '"%s"' % demo_soiqd.address)
+    exec(compile(code, "README.md", "exec"), {})
+    out = capsys.readouterr().out
+    assert "120 structures" in out
+    assert "did you mean 'sphericity'" in out
+    assert "voxel_volume_mm3" in out and "mean[shell:3,MR]" in out
