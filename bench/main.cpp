@@ -19,6 +19,7 @@
 #include "bench/cli_args.h"
 #include "bench/convert_bench.h"
 #include "bench/cpu_probe.h"
+#include "bench/dicomweb_bench.h"
 #include "bench/features_bench.h"
 #include "bench/import_bench.h"
 #include "bench/pacs_bench.h"
@@ -47,6 +48,7 @@ int usage() {
       "       soiq-bench replicas [--small] [--soiqd PATH] [--workers N] [--seconds S] [--patients N] [--matched N]\n"
       "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
       "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
+      "       soiq-bench dicomweb [--patients N] [--batch B] [--runs R] [--soiqd PATH]\n"
       "                  [--patients N] [--matched N]\n");
   return 2;
 }
@@ -58,9 +60,9 @@ int main(int argc, char** argv) {
   if (argc < 2) return usage();
   const std::string command = argv[1];
   const auto args = parse_cli_args(
-      argc, argv, 2,
-      {"--out", "--spacing", "--reference", "--method", "--runs", "--threads", "--pin", "-o", "--models", "--sts",
-       "--dir", "--soiqd", "--workers", "--seconds", "--patients", "--matched", "--label", "--patient", "--image"},
+      argc, argv, 2, {"--out",      "--spacing", "--reference", "--method",  "--runs",  "--threads", "--pin",
+                      "-o",         "--models",  "--sts",       "--dir",     "--soiqd", "--workers", "--seconds",
+                      "--patients", "--matched", "--label",     "--patient", "--image", "--batch"},
       {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
@@ -77,6 +79,7 @@ int main(int argc, char** argv) {
   if (command == "replicas") return run_replicas_bench(*args);
   if (command == "import") return run_import_bench(*args);
   if (command == "pacs") return run_pacs_bench(*args);
+  if (command == "dicomweb") return run_dicomweb_bench(*args);
   if (command == "codec") return run_surface_codec_bench(*args);
   return usage();
 }

@@ -14,10 +14,17 @@
 
 namespace soiq::bench {
 
-std::string OrthancProcess::start() {
+std::string OrthancProcess::start(bool dicomweb) {
   const std::string binary = "/usr/sbin/Orthanc";
   if (::access(binary.c_str(), X_OK) != 0)
-    return "not installed: /usr/sbin/Orthanc (Debian package orthanc; scripts/install-deps --bench-peers)";
+    return "not installed: /usr/sbin/Orthanc (Debian package orthanc; scripts/install-deps)";
+  std::string plugin;
+  if (dicomweb) {
+    for (const char* p : {"/usr/lib/orthanc/libOrthancDicomWeb.so.1.7", "/usr/lib/orthanc/libOrthancDicomWeb.so"})
+      if (plugin.empty() && ::access(p, R_OK) == 0) plugin = p;
+    if (plugin.empty()) return "not installed: Orthanc's DICOMweb plugin (Debian package orthanc-dicomweb)";
+    http_port_ = dicom::testing::free_loopback_port();
+  }
   const std::string storage = (dir_.path() / "storage").string();
   port_ = dicom::testing::free_loopback_port();
   const std::string config = (dir_.path() / "orthanc.json").string();
@@ -25,7 +32,11 @@ std::string OrthancProcess::start() {
                         << "  \"Name\": \"soiq-bench\",\n"
                         << "  \"StorageDirectory\": \"" << storage << "\",\n"
                         << "  \"IndexDirectory\": \"" << storage << "\",\n"
-                        << "  \"HttpServerEnabled\": false,\n"
+                        << "  \"HttpServerEnabled\": " << (dicomweb ? "true" : "false") << ",\n"
+                        << "  \"HttpPort\": " << (dicomweb ? http_port_ : 8042) << ",\n"
+                        << "  \"RemoteAccessAllowed\": false,\n"
+                        << "  \"AuthenticationEnabled\": false,\n"
+                        << "  \"DicomWeb\": { \"Enable\": true, \"Root\": \"/dicom-web/\" },\n"
                         << "  \"DicomServerEnabled\": true,\n"
                         << "  \"DicomAet\": \"" << kAeTitle << "\",\n"
                         << "  \"DicomPort\": " << port_ << ",\n"
@@ -34,7 +45,7 @@ std::string OrthancProcess::start() {
                         << "  \"DicomAlwaysAllowStore\": true,\n"
                         << "  \"DicomAlwaysAllowFind\": true,\n"
                         << "  \"DicomAlwaysAllowGet\": true,\n"
-                        << "  \"Plugins\": [],\n"
+                        << "  \"Plugins\": [" << (plugin.empty() ? "" : "\"" + plugin + "\"") << "],\n"
                         << "  \"SaveJobs\": false\n"
                         << "}\n";
   pid_ = ::fork();
