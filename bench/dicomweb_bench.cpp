@@ -36,7 +36,7 @@ std::string patient_id(int n) {
 }
 
 std::string study_date(int n) {
-  // Spread over 2000-2019: month and day from n, so a month holds ~N/240 studies.
+  // Spread over 2000-2019: month and day (1-28) from n, so a month holds ~N/240 studies.
   char d[16];
   std::snprintf(d, sizeof d, "%04d%02d%02d", 2000 + (n / 12) % 20, 1 + n % 12, 1 + (n / 240) % 28);
   return d;
@@ -189,7 +189,7 @@ int run_dicomweb_bench(const CliArgs& args) {
   const std::vector<std::pair<std::string, std::string>> queries = {
       {"first page (limit=100)", "/dicom-web/studies?limit=100"},
       {"PatientID prefix (DW0123*)", "/dicom-web/studies?PatientID=DW0123*"},
-      {"StudyDate, one month (limit=100)", "/dicom-web/studies?StudyDate=" + month + "01-" + month + "31&limit=100"},
+      {"StudyDate, one month (limit=100)", "/dicom-web/studies?StudyDate=" + month + "01-" + month + "28&limit=100"},
       {"PatientName wildcard (synthetic^dw0456*)", "/dicom-web/studies?PatientName=synthetic%5Edw0456*"},
       {"one StudyInstanceUID", "/dicom-web/studies?StudyInstanceUID=" + uid(1, n / 3)},
       {"deep page (offset=" + std::to_string(n / 2) + ", limit=100)",

@@ -123,7 +123,7 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
 
   SOIQ_RETURN_IF_ERROR(set_identity(*seg, source, options, out.series_uid, out.sop_instance_uid));
   for (const SegSegment& s : segments) SOIQ_RETURN_IF_ERROR(add_segment(*seg, s));
-  SOIQ_RETURN_IF_ERROR(add_shared_groups(*seg, source.geometry));
+  SOIQ_RETURN_IF_ERROR(add_shared_groups(*seg, source.geometry, options.dimension_organization_uid));
   BinaryFramePacker pixels;
   for (size_t s = 0; s < segments.size(); ++s)
     SOIQ_RETURN_IF_ERROR(add_frames(*seg, source, segments[s], static_cast<Uint16>(s + 1), slices[s], pixels));
@@ -142,6 +142,11 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
   for (const SegSegment& s : segments) utf8 = utf8 || beyond_ascii(s.label);
   if (utf8 && file.getDataset()->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 192").bad())
     return internal_error("DICOM SEG: Specific Character Set could not be set");
+  if (!options.content_date.empty() &&
+      (file.getDataset()->putAndInsertString(DCM_ContentDate, options.content_date.c_str()).bad() ||
+       file.getDataset()->putAndInsertString(DCM_ContentTime, options.content_time.c_str()).bad()))
+    return invalid_argument("DICOM SEG: content date '" + options.content_date + "' or time '" + options.content_time +
+                            "' was refused");
   SOIQ_RETURN_IF_ERROR(put_pixel_data(*file.getDataset(), pixels));
   SOIQ_ASSIGN_OR_RETURN(out.bytes, to_part10(file));
   return out;

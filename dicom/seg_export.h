@@ -100,6 +100,10 @@ struct SegWriteOptions {
   std::string content_label = "SOIQ";  // CS: upper case, <= 16 characters
   std::string content_description;
   int64_t max_frames = 100'000;
+  // What makes the same SEG written twice the same bytes (DICOMweb's stable SEGs): the Dimension
+  // Organization UID ("" -> a new one) and Content Date and Time (DA, TM; "" -> now).
+  std::string dimension_organization_uid;
+  std::string content_date, content_time;
 };
 
 struct WrittenSeg {

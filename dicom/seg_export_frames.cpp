@@ -58,7 +58,7 @@ std::vector<int64_t> occupied_slices(const RunLengthVolume& v) {
 
 // Plane Orientation and Pixel Measures are the same for every frame. The Multi-frame Dimension
 // module (Type 1) indexes frames by (segment number, plane position), the usual SEG organisation.
-Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g) {
+Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std::string& organization_uid) {
   const Vec3 row{g.direction[0][0], g.direction[1][0], g.direction[2][0]};  // direction of increasing i
   const Vec3 col{g.direction[0][1], g.direction[1][1], g.direction[2][1]};  // direction of increasing j
   std::unique_ptr<FGPlaneOrientationPatient> orientation(FGPlaneOrientationPatient::createMinimal(
@@ -73,7 +73,7 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g) {
   if (c.good()) c = measures.setSpacingBetweenSlices(slice.c_str());
   if (c.good()) c = seg.addForAllFrames(measures);
   if (c.bad()) return seg_export_error("shared functional groups", c);
-  const std::string organization = new_uid(SITE_INSTANCE_UID_ROOT);
+  const std::string organization = organization_uid.empty() ? new_uid(SITE_INSTANCE_UID_ROOT) : organization_uid;
   IODMultiframeDimensionModule& dims = seg.getDimensions();
   c = dims.addDimensionIndex(DCM_ReferencedSegmentNumber, organization.c_str(), DCM_SegmentIdentificationSequence,
                              "ReferencedSegmentNumber");

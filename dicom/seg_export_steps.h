@@ -42,7 +42,7 @@ Status add_references(DcmSegmentation& seg, const SegSource& src, const std::vec
 // its segment.
 std::vector<int64_t> occupied_slices(const RunLengthVolume& v);
 // seg_export_frames.cpp: the functional groups every frame shares, and the dimension index.
-Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g);
+Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std::string& organization_uid);
 // seg_export_frames.cpp: the frames of segment `s` on `slices` to seg (for their functional
 // groups), and their pixels to `pixels`, in the same order.
 Status add_frames(DcmSegmentation& seg, const SegSource& src, const SegSegment& s, Uint16 segment_number,

@@ -96,8 +96,16 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
   dicom::SegWriteOptions options;
   if (!series_description.empty()) options.series_description = series_description;
   if (uids != nullptr) {
+    // The same structure's SEG is the same object every time it is written: same UIDs, and the
+    // date and time of the structure, not of the request.
     options.series_uid = uids->series_uid;
     options.sop_instance_uid = uids->sop_instance_uid;
+    options.dimension_organization_uid = uids->sop_instance_uid + ".1";
+    const std::string& at = structures.front().created_at;  // 2026-11-27T03:02:54.642Z
+    if (at.size() >= 19) {
+      options.content_date = at.substr(0, 4) + at.substr(5, 2) + at.substr(8, 2);
+      options.content_time = at.substr(11, 2) + at.substr(14, 2) + at.substr(17, 2);
+    }
   }
   return dicom::write_seg(source, segments, options);
 }

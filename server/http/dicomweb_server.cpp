@@ -149,11 +149,15 @@ struct DicomwebServer::Impl {
     s.Get(instance + "/bulkdata", wado_at(WadoWhat::kBulkData, 3));
     s.Get("/soiq/v1/query",
           handler([](const HandlerContext& c, const httplib::Request& req) { return soiq_query(c, req); }));
-    s.Post("/dicom-web/studies",
-           handler([](const HandlerContext& c, const httplib::Request& req) { return stow(c, "", req); }));
-    s.Post(study, handler([](const HandlerContext& c, const httplib::Request& req) {
-             return stow(c, std::string(req.matches[1]), req);
-           }));
+    // STOW-RS reads its body itself, to disk (stow_handler.cpp).
+    auto stow_at = [this](bool study_in_path) {
+      return [this, study_in_path](const httplib::Request& req, httplib::Response& res,
+                                   const httplib::ContentReader& reader) {
+        write_reply(res, stow(context(req), study_in_path ? std::string(req.matches[1]) : "", req, reader));
+      };
+    };
+    s.Post("/dicom-web/studies", stow_at(false));
+    s.Post(study, stow_at(true));
   }
 };
 
@@ -180,7 +184,9 @@ Status DicomwebServer::start(const std::string& listen) {
   if (!s.is_valid()) return invalid_argument("the TLS certificate or key could not be loaded for --http");
   const int threads = std::max(4, config.workers + 2);
   s.new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
-  s.set_payload_max_length(size_t(config.max_upload_bytes));
+  // One byte more than the limit: a chunked STOW body passing it reaches stow_handler.cpp's own
+  // check, which says which limit; a Content-Length past it is refused before anything is read.
+  s.set_payload_max_length(size_t(config.max_upload_bytes) + 1);
   // httplib sets SO_REUSEPORT by default: a second soiqd on the same port would then start without a
   // word and share the requests, each answering from its own store (as gRPC would; main.cpp).
   // TCP_NODELAY too (accepted sockets inherit it): httplib writes a reply's headers and body

@@ -49,6 +49,8 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const httplib::Request& re
 
 // STOW-RS: POST /dicom-web/studies[/{study}] with multipart/related DICOM, imported as ImportDicom
 // imports files; study_uid "" takes any study.
-Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req);
+// The body is read through `reader` (never held in memory).
+Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req,
+                       const httplib::ContentReader& reader);
 
 }  // namespace soiq::server::http

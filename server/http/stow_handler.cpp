@@ -3,6 +3,15 @@
 // instance's outcome in the PS3.18 response: ReferencedSOPSequence for those stored, with a
 // WarningReason where part of one was skipped, FailedSOPSequence with a FailureReason for the
 // others. The problems' words go in Warning headers (DICOM's response has codes only).
+//
+// The body goes to a temporary file as it arrives and is read through a read-only mapping, so a
+// request of --max-upload-bytes costs disk and page cache, not soiqd's memory (as gRPC's import).
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -90,14 +99,86 @@ void judge(std::vector<Part>& parts, const DicomImportResult& r) {
   }
 }
 
+// A file mapped read-only, unmapped and closed on destruction.
+class MappedFile {
+ public:
+  static Result<MappedFile> open(const std::string& path) {
+    MappedFile m;
+    m.fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    struct stat st {};
+    if (m.fd_ < 0 || ::fstat(m.fd_, &st) != 0) return internal_error("cannot read back the received body");
+    m.size_ = size_t(st.st_size);
+    if (m.size_ > 0) {
+      m.data_ = ::mmap(nullptr, m.size_, PROT_READ, MAP_PRIVATE, m.fd_, 0);
+      if (m.data_ == MAP_FAILED) return internal_error("cannot map the received body");
+    }
+    return m;
+  }
+  MappedFile() = default;
+  MappedFile(MappedFile&& o) noexcept : fd_(o.fd_), data_(o.data_), size_(o.size_) {
+    o.fd_ = -1;
+    o.data_ = nullptr;
+  }
+  MappedFile& operator=(MappedFile&&) = delete;
+  ~MappedFile() {
+    if (data_ != nullptr && data_ != MAP_FAILED) ::munmap(data_, size_);
+    if (fd_ >= 0) ::close(fd_);
+  }
+  std::string_view bytes() const {
+    return data_ == nullptr ? std::string_view() : std::string_view(static_cast<const char*>(data_), size_);
+  }
+
+ private:
+  int fd_ = -1;
+  void* data_ = nullptr;
+  size_t size_ = 0;
+};
+
+// The body, as it arrives, into `path`; RESOURCE_EXHAUSTED past `max_bytes`, from its Content-Length
+// before a byte is read, or as a chunked body passes it (nothing kept).
+Status receive_body(const httplib::Request& req, const httplib::ContentReader& reader, const std::string& path,
+                    int64_t max_bytes) {
+  const auto too_big = [&] {
+    return resource_exhausted("the request body is larger than this server accepts (--max-upload-bytes, " +
+                              std::to_string(max_bytes) + " bytes); send fewer instances per request");
+  };
+  if (const std::string length = req.get_header_value("Content-Length"); !length.empty()) {
+    int64_t announced = 0;
+    const auto [end, ec] = std::from_chars(length.data(), length.data() + length.size(), announced);
+    if (ec == std::errc::result_out_of_range) return too_big();
+    if (ec != std::errc() || end != length.data() + length.size()) return invalid_argument("malformed Content-Length");
+    if (announced > max_bytes) return too_big();
+  }
+  std::ofstream out(path, std::ios::binary);
+  int64_t total = 0;
+  bool over = false;
+  const bool read = reader([&](const char* data, size_t n) {
+    total += int64_t(n);
+    over = total > max_bytes;
+    if (!over) out.write(data, std::streamsize(n));
+    return !over && bool(out);
+  });
+  if (over) return too_big();
+  if (!read) return invalid_argument("the request body ended before its announced length");
+  out.close();
+  if (!out) return internal_error("cannot write the received body to soiqd's temporary folder");
+  return ok_status();
+}
+
 }  // namespace
 
-Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req) {
+Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req,
+                       const httplib::ContentReader& reader) {
   const std::string content_type = req.get_header_value("Content-Type");
   if (!is_multipart_related(content_type))
     return HttpReply{
         415, "", error_body(invalid_argument("STOW-RS takes multipart/related; type=\"application/dicom\""), 415), {}};
-  SOIQ_ASSIGN_OR_RETURN(const ParsedMultipart body, parse_multipart_related(content_type, req.body, kMaxParts));
+  SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
+  const std::string body_path = dir.path() + "/body";
+  SOIQ_RETURN_IF_ERROR(receive_body(req, reader, body_path, c.engines.config.max_upload_bytes));
+  SOIQ_ASSIGN_OR_RETURN(const MappedFile mapped, MappedFile::open(body_path));
+  std::filesystem::remove(body_path);  // the mapping keeps the bytes until it goes
+  SOIQ_ASSIGN_OR_RETURN(const ParsedMultipart body, parse_multipart_related(content_type, mapped.bytes(), kMaxParts));
   if (!body.type.empty() && body.type != "application/dicom")
     return HttpReply{415,
                      "",
@@ -112,7 +193,6 @@ Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, co
           415, "", error_body(invalid_argument("a part is " + p.content_type + ", not application/dicom"), 415), {}};
   }
 
-  SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
   std::vector<Part> parts(body.parts.size());
   std::vector<std::string> files;
   for (size_t i = 0; i < parts.size(); ++i) {

@@ -1,5 +1,6 @@
 #include "server/util/log.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -8,12 +9,15 @@
 namespace soiq::server {
 namespace {
 
+// A value as logfmt writes it: quoted when it has a space, a quote or '=', and never with a control
+// character (a client's path with %0A in it must not start a log line of its own).
 std::string quoted(const std::string& v) {
-  if (!v.empty() && v.find_first_of(" \"=") == std::string::npos) return v;
+  const auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; };
+  if (!v.empty() && v.find_first_of(" \"=") == std::string::npos && std::none_of(v.begin(), v.end(), control)) return v;
   std::string q = "\"";
   for (char c : v) {
     if (c == '"' || c == '\\') q += '\\';
-    q += (c == '\n' ? ' ' : c);
+    q += control(c) ? ' ' : c;
   }
   return q + "\"";
 }

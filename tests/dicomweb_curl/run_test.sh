@@ -48,6 +48,13 @@ expect 400 "boundary" -X POST -H 'Content-Type: multipart/related; type="applica
 head -c 5000000 /dev/zero >"$tmp/big"
 expect 413 "max-upload-bytes" -X POST -H 'Content-Type: multipart/related; type="application/dicom"; boundary=b' --data-binary "@$tmp/big" "$base/studies"
 
+# A path with a newline in it cannot forge a log line of its own.
+curl -s -o /dev/null "$base/studies%0Alevel=error%20event=forged"
+if grep -q '^level=error event=forged' "$tmp/dw.log"; then
+  echo "FAIL: a request's path started a log line of its own"
+  failures=$((failures + 1))
+fi
+
 # One STOW part for another study than the URL names: 409, nothing stored.
 printf -- '--b\r\nContent-Type: application/dicom\r\n\r\n' >"$tmp/stow"
 cat "$data/dicom/MR_small.dcm" >>"$tmp/stow"

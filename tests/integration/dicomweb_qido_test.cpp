@@ -143,6 +143,23 @@ TEST_F(DicomwebTest, NamesAreDroppedUnlessSoiqdKeepsThem) {
   EXPECT_NE(refused["error"]["message"].get<std::string>().find("--keep-patient-names"), std::string::npos);
 }
 
+TEST_F(DicomwebTest, HttpsWithTheCertificateOfGrpc) {
+  const std::string key = dir_.file("key.pem"), cert = dir_.file("cert.pem");
+  const std::string cmd = "openssl req -x509 -newkey rsa:2048 -nodes -keyout " + key + " -out " + cert +
+                          " -days 1 -subj /CN=localhost -addext subjectAltName=DNS:localhost 2>/dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "openssl could not make a test certificate";
+  start_http({"--tls-cert", cert, "--tls-key", key});
+  httplib::SSLClient https("localhost", server_->http_port());
+  https.set_ca_cert_path(cert.c_str());
+  https.enable_server_certificate_verification(true);
+  httplib::Result r = https.Get("/dicom-web/studies");
+  ASSERT_TRUE(r) << httplib::to_string(r.error()) << "\n" << server_->log();
+  EXPECT_EQ(r->status, 200);
+  // Plain HTTP to the TLS port gets no answer.
+  httplib::Result plain = http_->Get("/dicom-web/studies");
+  EXPECT_FALSE(plain && plain->status == 200);
+}
+
 TEST_F(DicomwebTest, TheTokenOfGrpcGuardsDicomwebToo) {
   const std::string token_file = dir_.file("token");
   { std::ofstream(token_file) << "0123456789abcdef0123\n"; }

@@ -139,3 +139,22 @@ def test_the_readmes_python_example_runs_as_printed(demo_soiqd, capsys):
     assert "120 structures" in out
     assert "did you mean 'sphericity'" in out
     assert "voxel_volume_mm3" in out and "mean[shell:3,MR]" in out
+
+
+def test_tls_with_a_verified_certificate(tmp_path):
+    import subprocess
+    from conftest import Soiqd
+    key, cert = tmp_path / "key.pem", tmp_path / "cert.pem"
+    subprocess.run(["openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", str(key), "-out", str(cert),
+                    "-days", "1", "-subj", "/CN=localhost", "-addext", "subjectAltName=DNS:localhost"],
+                   check=True, capture_output=True)
+    s = Soiqd("--tls-cert", str(cert), "--tls-key", str(key))
+    try:
+        port = s.address.split(":")[1]
+        with soiq.Client("localhost:" + port, tls=str(cert)) as c:
+            assert c.info().structures == 0
+        with soiq.Client("localhost:" + port, timeout=5) as c:  # plaintext to a TLS port
+            with pytest.raises(soiq.Unavailable):
+                c.info()
+    finally:
+        s.stop()
