@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench/orthanc_process.h"
+#include "dicom/dcmtk_file.h"
 #include "tests/support/soiqd_process.h"
 #include "tests/support/temp_dir.h"
 
@@ -60,21 +61,9 @@ std::optional<std::string> instance(DcmFileFormat& file, int n) {
             ds.putAndInsertString(DCM_AccessionNumber, ("A" + std::to_string(n)).c_str()).good() &&
             file.getMetaInfo()->putAndInsertString(DCM_MediaStorageSOPInstanceUID, sop.c_str()).good();
   if (!ok) return std::nullopt;
-  std::string out;
-  std::vector<char> buffer(1 << 16);
-  DcmOutputBufferStream stream(buffer.data(), offile_off_t(buffer.size()));
-  file.transferInit();
-  OFCondition c = EC_StreamNotifyClient;
-  while (c == EC_StreamNotifyClient) {
-    c = file.write(stream, EXS_LittleEndianExplicit, EET_ExplicitLength, nullptr);
-    void* data = nullptr;
-    offile_off_t length = 0;
-    stream.flushBuffer(data, length);
-    out.append(static_cast<const char*>(data), size_t(length));
-  }
-  file.transferEnd();
-  if (c.bad()) return std::nullopt;
-  return out;
+  Result<std::string> bytes = dicom::part10_bytes(file);
+  if (!bytes.ok()) return std::nullopt;
+  return std::move(*bytes);
 }
 
 // CT_small.dcm's header with 16 x 16 pixels.

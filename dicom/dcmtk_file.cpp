@@ -1,5 +1,7 @@
 #include "dicom/dcmtk_file.h"
 
+#include <dcmtk/dcmdata/dcostrmb.h>
+
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -88,6 +90,24 @@ std::optional<std::vector<double>> get_numbers(DcmItem& item, const DcmTagKey& t
     if (!v) return std::nullopt;
     out.push_back(*v);
   }
+  return out;
+}
+
+Result<std::string> part10_bytes(DcmFileFormat& file) {
+  std::string out;
+  std::vector<char> buffer(1 << 20);
+  DcmOutputBufferStream stream(buffer.data(), static_cast<offile_off_t>(buffer.size()));
+  file.transferInit();
+  OFCondition c = EC_StreamNotifyClient;
+  while (c == EC_StreamNotifyClient) {
+    c = file.write(stream, EXS_LittleEndianExplicit, EET_ExplicitLength, nullptr);
+    void* data = nullptr;
+    offile_off_t length = 0;
+    stream.flushBuffer(data, length);  // whatever the buffer holds, full or final
+    out.append(static_cast<const char*>(data), static_cast<size_t>(length));
+  }
+  file.transferEnd();
+  if (c.bad()) return internal_error(std::string("DICOM: encoding the file: ") + c.text());
   return out;
 }
 

@@ -39,4 +39,8 @@ std::optional<std::vector<double>> get_numbers(DcmItem& item, const DcmTagKey& t
 // "'<path>': <what> (<DCMTK's text>)" as a Status with `code`.
 Status condition_status(StatusCode code, const std::string& path, const std::string& what, const OFCondition& cond);
 
+// `file` as Part 10 bytes in Explicit VR Little Endian (what soiq writes and sends); INTERNAL with
+// DCMTK's words when it cannot encode it.
+Result<std::string> part10_bytes(DcmFileFormat& file);
+
 }  // namespace soiq::dicom

@@ -1,7 +1,6 @@
 #include "dicom/seg_export.h"
 
 #include <dcmtk/config/osconfig.h>  // must come first for DCMTK
-#include <dcmtk/dcmdata/dcostrmb.h>
 #include <dcmtk/dcmdata/dctk.h>
 #include <dcmtk/dcmseg/segdoc.h>
 
@@ -9,6 +8,7 @@
 #include <memory>
 #include <mutex>
 
+#include "dicom/dcmtk_file.h"
 #include "dicom/seg_export_steps.h"
 
 namespace soiq::dicom {
@@ -65,24 +65,6 @@ Status validate(const SegSource& source, const std::vector<SegSegment>& segments
     return resource_exhausted("the SEG would have " + std::to_string((bits + 7) / 8) +
                               " bytes of pixel data, over DICOM's 32-bit limit; write fewer segments per object");
   return ok_status();
-}
-
-Result<std::string> to_part10(DcmFileFormat& file) {
-  std::string out;
-  std::vector<char> buffer(1 << 20);
-  DcmOutputBufferStream stream(buffer.data(), static_cast<offile_off_t>(buffer.size()));
-  file.transferInit();
-  OFCondition c = EC_StreamNotifyClient;
-  while (c == EC_StreamNotifyClient) {
-    c = file.write(stream, EXS_LittleEndianExplicit, EET_ExplicitLength, nullptr);
-    void* data = nullptr;
-    offile_off_t length = 0;
-    stream.flushBuffer(data, length);  // whatever the buffer holds, full or final
-    out.append(static_cast<const char*>(data), static_cast<size_t>(length));
-  }
-  file.transferEnd();
-  if (c.bad()) return seg_export_error("encoding the file", c);
-  return out;
 }
 
 }  // namespace
@@ -148,7 +130,9 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
     return invalid_argument("DICOM SEG: content date '" + options.content_date + "' or time '" + options.content_time +
                             "' was refused");
   SOIQ_RETURN_IF_ERROR(put_pixel_data(*file.getDataset(), pixels));
-  SOIQ_ASSIGN_OR_RETURN(out.bytes, to_part10(file));
+  Result<std::string> bytes = part10_bytes(file);
+  if (!bytes.ok()) return Status(bytes.status().code(), "DICOM SEG: " + bytes.status().message());
+  out.bytes = std::move(*bytes);
   return out;
 }
 

@@ -21,6 +21,16 @@ _CHUNK = 1 << 20
 _MAX_MESSAGE = 16 << 20
 
 
+def _chunks(path):
+    """A file's bytes in pieces of _CHUNK, as the upload streams send them."""
+    with open(path, "rb") as f:
+        while True:
+            chunk = f.read(_CHUNK)
+            if not chunk:
+                return
+            yield chunk
+
+
 def _call(fn, *args, **kwargs):
     try:
         return fn(*args, **kwargs)
@@ -107,12 +117,8 @@ class Client:
 
         def requests():
             yield soiq_pb2.UploadSurfaceRequest(header=header)
-            with open(path, "rb") as f:
-                while True:
-                    chunk = f.read(_CHUNK)
-                    if not chunk:
-                        return
-                    yield soiq_pb2.UploadSurfaceRequest(chunk=chunk)
+            for chunk in _chunks(path):
+                yield soiq_pb2.UploadSurfaceRequest(chunk=chunk)
 
         return _call(self._stub.UploadSurface, requests(), timeout=self.timeout, metadata=self._metadata)
 
@@ -138,12 +144,8 @@ class Client:
             for full, relative in files:
                 yield soiq_pb2.ImportDicomRequest(
                     file=soiq_pb2.ImportFileHeader(path=relative, size_bytes=os.path.getsize(full)))
-                with open(full, "rb") as f:
-                    while True:
-                        chunk = f.read(_CHUNK)
-                        if not chunk:
-                            break
-                        yield soiq_pb2.ImportDicomRequest(chunk=chunk)
+                for chunk in _chunks(full):
+                    yield soiq_pb2.ImportDicomRequest(chunk=chunk)
 
         return _call(self._stub.ImportDicom, requests(), timeout=self.timeout, metadata=self._metadata)
 
