@@ -179,7 +179,9 @@ int run_dicomweb_bench(const CliArgs& args) {
       {"first page (limit=100)", "/dicom-web/studies?limit=100"},
       {"PatientID prefix (DW0123*)", "/dicom-web/studies?PatientID=DW0123*"},
       {"StudyDate, one month (limit=100)", "/dicom-web/studies?StudyDate=" + month + "01-" + month + "28&limit=100"},
-      {"PatientName wildcard (synthetic^dw0456*)", "/dicom-web/studies?PatientName=synthetic%5Edw0456*"},
+      // No '^' in the value: Orthanc 1.10 with DICOMweb 1.7 matches no PatientName holding one, not
+      // even an exact name (0 rows where soiqd had 100 in the first run).
+      {"PatientName wildcard (synthetic*dw0456*)", "/dicom-web/studies?PatientName=synthetic*dw0456*"},
       {"one StudyInstanceUID", "/dicom-web/studies?StudyInstanceUID=" + uid(1, n / 3)},
       {"deep page (offset=" + std::to_string(n / 2) + ", limit=100)",
        "/dicom-web/studies?offset=" + std::to_string(n / 2) + "&limit=100"},
