@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,14 +34,27 @@ int64_t count_series(db::Store& store) {
   return page.ok() ? int64_t(page->items.size()) : -1;
 }
 
-TEST(DicomImport, AFolderBecomesRecordsWithItsProblemsNamedByRelativePath) {
+// STS_002's CT received in a folder, and an empty store to import it into.
+class DicomImport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir);
+    sent = sts_002_ct(dir);
+    store = db::testing::open_store(tmp.file("soiq.db"));
+  }
+  Result<DicomImportResult> import(MemoryBudget& budget, bool keep_patient_names = false) {
+    return import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {}, keep_patient_names);
+  }
+
   TempDir tmp;
   const std::string dir = tmp.file("received");
-  fs::create_directories(dir);
-  const std::vector<std::string> sent = sts_002_ct(dir);
-  auto store = db::testing::open_store(tmp.file("soiq.db"));
+  std::vector<std::string> sent;
+  std::unique_ptr<db::Store> store;
+};
+
+TEST_F(DicomImport, AFolderBecomesRecordsWithItsProblemsNamedByRelativePath) {
   MemoryBudget budget(int64_t(1) << 30);
-  Result<DicomImportResult> r = import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {});
+  Result<DicomImportResult> r = import(budget);
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   EXPECT_EQ(r->files_received, 50);
   EXPECT_EQ(r->dicom_files_read, 49);
@@ -70,7 +84,7 @@ TEST(DicomImport, AFolderBecomesRecordsWithItsProblemsNamedByRelativePath) {
   EXPECT_GT(budget.peak(), 0);
 
   // The same files again: the structures are the stored ones, updated in place.
-  Result<DicomImportResult> again = import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {});
+  Result<DicomImportResult> again = import(budget);
   ASSERT_TRUE(again.ok()) << again.status().to_string();
   ASSERT_EQ(again->structures.size(), r->structures.size());
   for (size_t i = 0; i < again->structures.size(); ++i) {
@@ -86,26 +100,16 @@ TEST(DicomImport, AFolderBecomesRecordsWithItsProblemsNamedByRelativePath) {
 }
 
 // The files declare ISO_IR 100 (Latin-1): the name is stored converted to UTF-8, and only when asked.
-TEST(DicomImport, ThePatientsNameIsKeptOnlyWhenAsked) {
-  TempDir tmp;
-  const std::string dir = tmp.file("received");
-  fs::create_directories(dir);
-  const std::vector<std::string> sent = sts_002_ct(dir);
-  auto store = db::testing::open_store(tmp.file("soiq.db"));
+TEST_F(DicomImport, ThePatientsNameIsKeptOnlyWhenAsked) {
   MemoryBudget budget(int64_t(1) << 30);
-  Result<DicomImportResult> r = import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {}, true);
+  Result<DicomImportResult> r = import(budget, true);
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   EXPECT_EQ(store->get_patient("STS_002")->patient_name, "STS_002");
 }
 
-TEST(DicomImport, AnImportTheBudgetCanNeverAdmitStoresNothing) {
-  TempDir tmp;
-  const std::string dir = tmp.file("received");
-  fs::create_directories(dir);
-  const std::vector<std::string> sent = sts_002_ct(dir);
-  auto store = db::testing::open_store(tmp.file("soiq.db"));
+TEST_F(DicomImport, AnImportTheBudgetCanNeverAdmitStoresNothing) {
   MemoryBudget budget(int64_t(1) << 20);
-  Result<DicomImportResult> r = import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {});
+  Result<DicomImportResult> r = import(budget);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
   EXPECT_NE(r.status().message().find("161x143x48"), std::string::npos) << r.status().message();
@@ -113,7 +117,7 @@ TEST(DicomImport, AnImportTheBudgetCanNeverAdmitStoresNothing) {
   EXPECT_EQ(budget.peak(), 0);
 }
 
-TEST(DicomImport, NothingImportableIsInvalidArgumentNamingTheFile) {
+TEST(DicomImportNothing, NothingImportableIsInvalidArgumentNamingTheFile) {
   TempDir tmp;
   const std::string dir = tmp.file("received");
   fs::create_directories(dir);
