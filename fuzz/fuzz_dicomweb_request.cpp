@@ -52,8 +52,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                           "a part lies outside the body");
       parts.push_back(p.bytes);
     }
-    const http::WrittenMultipart w = http::write_multipart_related(parts, "application/dicom");
-    auto again = http::parse_multipart_related("multipart/related; boundary=" + w.boundary, w.body, 1000);
+    const http::WrittenMultipart w = http::write_multipart_related({parts.begin(), parts.end()}, "application/dicom");
+    const std::string written = w.body();
+    auto again = http::parse_multipart_related("multipart/related; boundary=" + w.boundary, written, 1000);
     soiq::fuzz::require(again.ok() && again->parts.size() == parts.size(), "written parts do not read back");
     for (size_t i = 0; i < parts.size(); ++i)
       soiq::fuzz::require(again->parts[i].bytes == parts[i], "a part read back differs");

@@ -64,6 +64,12 @@ constexpr OptionText kOptionTexts[] = {
      "also serve DICOMweb (QIDO-RS, WADO-RS, STOW-RS) and soiq's JSON queries there, with the same TLS "
      "and token; port 0 binds any free port (see --http-port-file)"},
     {"--http-port-file", "PATH", "none", "write the bound DICOMweb port there once soiqd serves"},
+    {"--http-timeout", "SECONDS", "20",
+     "an HTTP request's head must arrive whole within this, and its body or its answer may not stall "
+     "longer (then 408, or the connection closes)"},
+    {"--http-max-connections", "N", "256",
+     "HTTP connections served at once; more are answered 503 and closed (each holds at most 64 KiB "
+     "until its token is checked)"},
     {"--keep-patient-names", "on|off", "off",
      "store the Patient's Name of imported DICOM (QIDO-RS answers and matches it); off: names are "
      "dropped at import"},
@@ -162,6 +168,8 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--precompute", on_off(c.precompute)},
       {"--http", text(c.http_listen)},
       {"--http-port-file", text(c.http_port_file)},
+      {"--http-timeout", count(c.http_timeout_seconds, 1, 3600)},
+      {"--http-max-connections", count(c.http_max_connections, 1, 100'000)},
       {"--keep-patient-names", on_off(c.keep_patient_names)},
   };
   auto setter = [&](const char* flag) -> const Setter& { return setters.at(flag); };

@@ -37,6 +37,9 @@ struct ServerConfig {
   // DICOMweb (server/http/): "" serves none; HOST:PORT, port 0 any free one (see http_port_file).
   std::string http_listen;
   std::string http_port_file;
+  // A request's head must arrive whole, and a body or an answer may not stall, within this.
+  int http_timeout_seconds = 20;
+  int http_max_connections = 256;  // more are answered 503 and closed
   // Patient names from DICOM are stored (and answered by QIDO-RS) only when true.
   bool keep_patient_names = false;
   // Replicas on a shared database (PostgreSQL; shared_stage2.h). share_stage2 is set by soiqd from

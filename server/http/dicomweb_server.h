@@ -1,15 +1,8 @@
 #pragma once
 // soiqd's HTTP front end (soiqd --http): DICOMweb under /dicom-web (QIDO-RS, WADO-RS, STOW-RS;
-// docs/INTEROP.md) on cpp-httplib, with the gRPC side's TLS certificate and bearer token and the
-// same engines (app_engines.h). Every request is checked before a handler runs: the token
-// (401 with WWW-Authenticate: Bearer), the body size (--max-upload-bytes, 413), the route (404 with
-// the JSON error body of http_status.h). Requests are logged by method, path, status and time; the
-// query string is not (it may hold a patient's name).
-//
-// Why cpp-httplib: Debian packages it (libcpp-httplib-dev, built with OpenSSL), it is a server
-// with TLS, a thread pool, payload limits and keep-alive in one small library, and its requests
-// come parsed (path, query, headers) without a framework around them. Multipart bodies of STOW and
-// WADO are soiq's own code (multipart.h): httplib parses only multipart/form-data.
+// docs/INTEROP.md) and soiq's own /soiq/v1/query, on the bounded server of http_server.h, with the
+// gRPC side's TLS certificate and bearer token and the same engines (app_engines.h). This file
+// holds the routes; http_server.h how a request is read, checked and answered.
 
 #include <memory>
 #include <string>

@@ -3,23 +3,16 @@
 // (qido_handlers.cpp, …). Each turns a request into calls on the shared engines and returns the
 // reply or a Status, which the server maps to HTTP once (http_status.h); none writes to the socket.
 
-#include <httplib.h>
-
 #include <map>
 #include <string>
 
 #include "core/base/status.h"
 #include "server/app/app_engines.h"
 #include "server/http/dicomweb_attributes.h"
+#include "server/http/http_reply.h"
+#include "server/http/http_request.h"
 
 namespace soiq::server::http {
-
-struct HttpReply {
-  int status = 200;
-  std::string content_type;
-  std::string body;
-  std::multimap<std::string, std::string> headers;
-};
 
 // What every handler gets besides the request: the engines and the URL prefix of this server's
 // DICOMweb resources ("http://host:port/dicom-web"), for RetrieveURL.
@@ -30,27 +23,26 @@ struct HandlerContext {
 
 // Whether the request's Accept header admits `type` (absent, */*, type/* and the type itself do;
 // q-values are not weighed). NOT_ACCEPTABLE is not a Status code: the caller replies 406.
-bool accepts(const httplib::Request& req, const std::string& type);
+bool accepts(const HttpRequest& req, const std::string& type);
 
 // QIDO-RS: GET /dicom-web/studies, /series, /instances and below a study or series.
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
-                       const std::string& series_uid, const httplib::Request& req);
+                       const std::string& series_uid, const HttpRequest& req);
 
 // WADO-RS: the SEG series of structures, as DICOM (multipart/related), as metadata (DICOM JSON, Pixel
 // Data as a BulkDataURI) or the Pixel Data itself (bulkdata). series_uid and instance_uid "" for a
 // whole study or series.
 enum class WadoWhat { kInstances, kMetadata, kBulkData };
 Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
-                       const std::string& series_uid, const std::string& instance_uid, const httplib::Request& req);
+                       const std::string& series_uid, const std::string& instance_uid, const HttpRequest& req);
 
 // GET /soiq/v1/query: the two-stage query with soiq query's options as arguments; JSON rows, or CSV
 // with Accept: text/csv.
-Result<HttpReply> soiq_query(const HandlerContext& c, const httplib::Request& req);
+Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req);
 
 // STOW-RS: POST /dicom-web/studies[/{study}] with multipart/related DICOM, imported as ImportDicom
-// imports files; study_uid "" takes any study.
-// The body is read through `reader` (never held in memory).
-Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req,
-                       const httplib::ContentReader& reader);
+// imports files; study_uid "" takes any study. The body is the file the connection received it
+// into (req.body_path), read through a mapping, never held in memory.
+Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const HttpRequest& req);
 
 }  // namespace soiq::server::http

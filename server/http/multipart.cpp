@@ -93,7 +93,7 @@ Result<ParsedMultipart> parse_multipart_related(const std::string& content_type,
   return out;
 }
 
-WrittenMultipart write_multipart_related(const std::vector<std::string_view>& parts, const std::string& part_type) {
+WrittenMultipart write_multipart_related(std::vector<std::string> parts, const std::string& part_type) {
   WrittenMultipart out;
   std::random_device rd;
   static constexpr char kAlphabet[] = "0123456789abcdefghijklmnopqrstuvwxyz";
@@ -102,18 +102,21 @@ WrittenMultipart write_multipart_related(const std::vector<std::string_view>& pa
     for (int i = 0; i < 32; ++i) out.boundary += kAlphabet[rd() % 36];
     // 160 random bits make a collision with the bytes all but impossible; checked anyway.
     if (std::none_of(parts.begin(), parts.end(),
-                     [&](std::string_view p) { return p.find(out.boundary) != std::string_view::npos; }))
+                     [&](const std::string& p) { return p.find(out.boundary) != std::string::npos; }))
       break;
   }
-  size_t size = 0;
-  for (std::string_view p : parts) size += p.size() + out.boundary.size() + part_type.size() + 32;
-  out.body.reserve(size + out.boundary.size() + 8);
-  for (std::string_view p : parts) {
-    out.body += "--" + out.boundary + "\r\nContent-Type: " + part_type + "\r\n\r\n";
-    out.body.append(p);
-    out.body += "\r\n";
+  out.pieces.reserve(2 * parts.size() + 1);
+  for (size_t i = 0; i < parts.size(); ++i) {
+    out.pieces.push_back((i ? "\r\n--" : "--") + out.boundary + "\r\nContent-Type: " + part_type + "\r\n\r\n");
+    out.pieces.push_back(std::move(parts[i]));
   }
-  out.body += "--" + out.boundary + "--\r\n";
+  out.pieces.push_back((parts.empty() ? "--" : "\r\n--") + out.boundary + "--\r\n");
+  return out;
+}
+
+std::string WrittenMultipart::body() const {
+  std::string out;
+  for (const std::string& p : pieces) out += p;
   return out;
 }
 

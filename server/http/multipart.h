@@ -1,7 +1,7 @@
 #pragma once
 // multipart/related bodies (RFC 2387), as WADO-RS answers and STOW-RS requests carry DICOM
-// instances (PS3.18 8.6.1.2): soiq writes them for WADO and reads them for STOW. httplib parses
-// only multipart/form-data, so this is soiq's own, small and strict.
+// instances (PS3.18 8.6.1.2): soiq writes them for WADO and reads them for STOW. HTTP libraries
+// parse multipart/form-data at most, so this is soiq's own, small and strict.
 //
 // Reading
 //   Input   the Content-Type header's value and the body.
@@ -12,8 +12,9 @@
 //           Content-Type that is not multipart/related at all is the caller's 415:
 //           is_multipart_related.)
 // Writing
-//   Output  the body, each part with its Content-Type, and the boundary to put in the reply's
-//           Content-Type (random, checked against the parts so it occurs in none).
+//   Output  the body as pieces to send back to back (each delimiter, then the part itself, moved
+//           in, not copied: a WADO answer of many SEGs is held once), and the boundary to put in
+//           the reply's Content-Type (random, checked against the parts so it occurs in none).
 // Cost     O(body); no copy of part bytes on reading.
 
 #include <string>
@@ -41,10 +42,11 @@ Result<ParsedMultipart> parse_multipart_related(const std::string& content_type,
 
 struct WrittenMultipart {
   std::string boundary;
-  std::string body;
+  std::vector<std::string> pieces;
+  std::string body() const;  // the pieces joined (for tests; answers send the pieces)
 };
 
-WrittenMultipart write_multipart_related(const std::vector<std::string_view>& parts, const std::string& part_type);
+WrittenMultipart write_multipart_related(std::vector<std::string> parts, const std::string& part_type);
 
 // The value of parameter `name` of a header value such as 'multipart/related; type="a/b"' ("" when
 // absent), unquoted; names compare ignoring case.

@@ -71,10 +71,10 @@ Result<json> instances(const HandlerContext& c, const QidoQuery& q) {
 }  // namespace
 
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
-                       const std::string& series_uid, const httplib::Request& req) {
+                       const std::string& series_uid, const HttpRequest& req) {
   if (!accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
-    return HttpReply{406, "application/dicom+json", "", {}};
-  const QueryParams params(req.params.begin(), req.params.end());
+    return HttpReply{406, "application/dicom+json", "", {}, {}};
+  const QueryParams& params = req.params;
   SOIQ_ASSIGN_OR_RETURN(const QidoQuery q,
                         parse_qido(level, study_uid, series_uid, params, c.engines.config.keep_patient_names));
   // A study or series the path names must exist: an empty list would not say the UID is wrong.

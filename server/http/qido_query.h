@@ -33,6 +33,7 @@
 #include "core/base/status.h"
 #include "db/store.h"
 #include "server/http/dicomweb_attributes.h"
+#include "server/http/http_request.h"  // QueryParams
 
 namespace soiq::server::http {
 
@@ -50,8 +51,6 @@ struct QidoQuery {
   // The path names one study or series and a query key another: the answer is empty.
   bool matches_nothing = false;
 };
-
-using QueryParams = std::vector<std::pair<std::string, std::string>>;
 
 Result<QidoQuery> parse_qido(QidoLevel level, const std::string& path_study_uid, const std::string& path_series_uid,
                              const QueryParams& params, bool names_kept);

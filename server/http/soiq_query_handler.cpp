@@ -69,11 +69,11 @@ json summary_json(const QuerySummary& s) {
 
 }  // namespace
 
-Result<HttpReply> soiq_query(const HandlerContext& c, const httplib::Request& req) {
+Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
   // text/csv only when asked for by name; JSON otherwise.
-  const bool csv = req.has_header("Accept") && req.get_header_value("Accept").find("text/csv") != std::string::npos;
-  if (!csv && !accepts(req, "application/json")) return HttpReply{406, "application/json or text/csv", "", {}};
-  const std::vector<std::pair<std::string, std::string>> args(req.params.begin(), req.params.end());
+  const bool csv = req.has_header("Accept") && req.header("Accept").find("text/csv") != std::string::npos;
+  if (!csv && !accepts(req, "application/json")) return HttpReply{406, "application/json or text/csv", "", {}, {}};
+  const std::vector<std::pair<std::string, std::string>>& args = req.params;
   SOIQ_ASSIGN_OR_RETURN(const v1::QueryRequest request, parse_soiq_query_args(args));
   SOIQ_ASSIGN_OR_RETURN(const Query query, parse_query(request, c.engines.config.query_result_cap));
   std::vector<QueryRow> rows;
@@ -83,8 +83,11 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const httplib::Request& re
     rows.push_back(std::move(r));
     return ok_status();
   };
-  SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, c.engines.queries.run(
-                                                        query, [] { return ok_status(); }, out));
+  // A client that has gone stops the query: its conversions are not worth finishing.
+  const auto stop = [&req]() -> Status {
+    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
+  };
+  SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, c.engines.queries.run(query, stop, out));
   // The engine streams rows as their features are ready; a whole answer has one order: the query's,
   // else by structure id.
   if (!query.order_by)

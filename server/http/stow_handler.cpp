@@ -4,8 +4,9 @@
 // WarningReason where part of one was skipped, FailedSOPSequence with a FailureReason for the
 // others. The problems' words go in Warning headers (DICOM's response has codes only).
 //
-// The body goes to a temporary file as it arrives and is read through a read-only mapping, so a
-// request of --max-upload-bytes costs disk and page cache, not soiqd's memory (as gRPC's import).
+// The body reaches a temporary file as it arrives (http_connection.cpp) and is read here through a
+// read-only mapping, so a request of --max-upload-bytes costs disk and page cache, not soiqd's
+// memory (as gRPC's import).
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -119,7 +120,12 @@ class MappedFile {
     o.fd_ = -1;
     o.data_ = nullptr;
   }
-  MappedFile& operator=(MappedFile&&) = delete;
+  MappedFile& operator=(MappedFile&& o) noexcept {
+    std::swap(fd_, o.fd_);
+    std::swap(data_, o.data_);
+    std::swap(size_, o.size_);
+    return *this;
+  }
   ~MappedFile() {
     if (data_ != nullptr && data_ != MAP_FAILED) ::munmap(data_, size_);
     if (fd_ >= 0) ::close(fd_);
@@ -134,50 +140,21 @@ class MappedFile {
   size_t size_ = 0;
 };
 
-// The body, as it arrives, into `path`; RESOURCE_EXHAUSTED past `max_bytes`, from its Content-Length
-// before a byte is read, or as a chunked body passes it (nothing kept).
-Status receive_body(const httplib::Request& req, const httplib::ContentReader& reader, const std::string& path,
-                    int64_t max_bytes) {
-  const auto too_big = [&] {
-    return resource_exhausted("the request body is larger than this server accepts (--max-upload-bytes, " +
-                              std::to_string(max_bytes) + " bytes); send fewer instances per request");
-  };
-  if (const std::string length = req.get_header_value("Content-Length"); !length.empty()) {
-    int64_t announced = 0;
-    const auto [end, ec] = std::from_chars(length.data(), length.data() + length.size(), announced);
-    if (ec == std::errc::result_out_of_range) return too_big();
-    if (ec != std::errc() || end != length.data() + length.size()) return invalid_argument("malformed Content-Length");
-    if (announced > max_bytes) return too_big();
-  }
-  std::ofstream out(path, std::ios::binary);
-  int64_t total = 0;
-  bool over = false;
-  const bool read = reader([&](const char* data, size_t n) {
-    total += int64_t(n);
-    over = total > max_bytes;
-    if (!over) out.write(data, std::streamsize(n));
-    return !over && bool(out);
-  });
-  if (over) return too_big();
-  if (!read) return invalid_argument("the request body ended before its announced length");
-  out.close();
-  if (!out) return internal_error("cannot write the received body to soiqd's temporary folder");
-  return ok_status();
-}
-
 }  // namespace
 
-Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const httplib::Request& req,
-                       const httplib::ContentReader& reader) {
-  const std::string content_type = req.get_header_value("Content-Type");
+Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const HttpRequest& req) {
+  const std::string content_type = req.header("Content-Type");
   if (!is_multipart_related(content_type))
-    return HttpReply{
-        415, "", error_body(invalid_argument("STOW-RS takes multipart/related; type=\"application/dicom\""), 415), {}};
+    return HttpReply{415,
+                     "",
+                     error_body(invalid_argument("STOW-RS takes multipart/related; type=\"application/dicom\""), 415),
+                     {},
+                     {}};
   SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
-  const std::string body_path = dir.path() + "/body";
-  SOIQ_RETURN_IF_ERROR(receive_body(req, reader, body_path, c.engines.config.max_upload_bytes));
-  SOIQ_ASSIGN_OR_RETURN(const MappedFile mapped, MappedFile::open(body_path));
-  std::filesystem::remove(body_path);  // the mapping keeps the bytes until it goes
+  MappedFile mapped;
+  if (!req.body_path.empty()) {
+    SOIQ_ASSIGN_OR_RETURN(mapped, MappedFile::open(req.body_path));
+  }
   SOIQ_ASSIGN_OR_RETURN(const ParsedMultipart body, parse_multipart_related(content_type, mapped.bytes(), kMaxParts));
   if (!body.type.empty() && body.type != "application/dicom")
     return HttpReply{415,
@@ -185,12 +162,16 @@ Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, co
                      error_body(invalid_argument("soiq stores application/dicom parts, not " + body.type +
                                                  " (send the DICOM files themselves)"),
                                 415),
+                     {},
                      {}};
   if (body.parts.empty()) return invalid_argument("the request holds no DICOM part");
   for (const MultipartPart& p : body.parts) {
     if (!p.content_type.empty() && p.content_type.rfind("application/dicom", 0) != 0)
-      return HttpReply{
-          415, "", error_body(invalid_argument("a part is " + p.content_type + ", not application/dicom"), 415), {}};
+      return HttpReply{415,
+                       "",
+                       error_body(invalid_argument("a part is " + p.content_type + ", not application/dicom"), 415),
+                       {},
+                       {}};
   }
 
   std::vector<Part> parts(body.parts.size());

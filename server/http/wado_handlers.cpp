@@ -16,9 +16,9 @@ namespace {
 constexpr char kExplicitVrLittleEndian[] = "1.2.840.10008.1.2.1";
 
 // Accept admits multipart/related of application/dicom in the transfer syntax soiq writes.
-bool accepts_dicom(const httplib::Request& req) {
+bool accepts_dicom(const HttpRequest& req) {
   if (!req.has_header("Accept")) return true;
-  const std::string accept = req.get_header_value("Accept");
+  const std::string accept = req.header("Accept");
   size_t from = 0;
   while (from <= accept.size()) {
     size_t comma = accept.find(',', from);
@@ -99,18 +99,19 @@ std::string instance_url(const HandlerContext& c, const db::StructureRecord& s) 
 }  // namespace
 
 Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
-                       const std::string& series_uid, const std::string& instance_uid, const httplib::Request& req) {
+                       const std::string& series_uid, const std::string& instance_uid, const HttpRequest& req) {
   const bool metadata = what == WadoWhat::kMetadata;
   const bool bulk = what == WadoWhat::kBulkData;
   if (metadata && !accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
-    return HttpReply{406, "application/dicom+json", "", {}};
+    return HttpReply{406, "application/dicom+json", "", {}, {}};
   if (what == WadoWhat::kInstances && !accepts_dicom(req))
     return HttpReply{
         406,
         std::string("multipart/related; type=\"application/dicom\"; transfer-syntax=") + kExplicitVrLittleEndian,
         "",
+        {},
         {}};
-  if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}};
+  if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}, {}};
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures,
                         structures_of(c.engines, study_uid, series_uid, instance_uid));
   std::vector<std::string> files;
@@ -130,19 +131,17 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
     r.body = body + "]";
     return r;
   }
-  std::vector<std::string> pixels;
-  std::vector<std::string_view> parts;
+  std::vector<std::string> parts;
   if (bulk) {
     SOIQ_ASSIGN_OR_RETURN(std::string p, dicom::pixel_data_of(files.at(0)));
-    pixels.push_back(std::move(p));
-    parts.push_back(pixels.back());
+    parts.push_back(std::move(p));
   } else {
-    for (const std::string& f : files) parts.push_back(f);
+    parts = std::move(files);
   }
   const std::string part_type = bulk ? "application/octet-stream" : "application/dicom";
-  WrittenMultipart body = write_multipart_related(parts, part_type);
+  WrittenMultipart body = write_multipart_related(std::move(parts), part_type);
   r.content_type = "multipart/related; type=\"" + part_type + "\"; boundary=" + body.boundary;
-  r.body = std::move(body.body);
+  r.pieces = std::move(body.pieces);
   return r;
 }
 

@@ -11,9 +11,10 @@ namespace {
 TEST(Multipart, WhatIsWrittenIsReadBackByteForByte) {
   const std::string binary("\0\r\n--x\r\n\xff", 8);
   const std::vector<std::string_view> parts = {"first", binary, ""};
-  const WrittenMultipart w = write_multipart_related(parts, "application/dicom");
+  const WrittenMultipart w = write_multipart_related({parts.begin(), parts.end()}, "application/dicom");
+  const std::string body = w.body();
   Result<ParsedMultipart> r =
-      parse_multipart_related("multipart/related; type=\"application/dicom\"; boundary=" + w.boundary, w.body, 10);
+      parse_multipart_related("multipart/related; type=\"application/dicom\"; boundary=" + w.boundary, body, 10);
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   EXPECT_EQ(r->type, "application/dicom");
   ASSERT_EQ(r->parts.size(), 3u);
