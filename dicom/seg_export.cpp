@@ -136,4 +136,14 @@ Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegme
   return out;
 }
 
+int64_t seg_write_peak_bytes(const ImageGeometry& geometry, const std::vector<SegSegment>& segments) {
+  int64_t frames = 0;
+  for (const SegSegment& s : segments) {
+    if (static_cast<int64_t>(s.volume.line_start.size()) != s.volume.line_count() + 1) continue;
+    frames += static_cast<int64_t>(occupied_slices(s.volume).size());
+  }
+  const int64_t frame_pixels = geometry.dims[0] * geometry.dims[1];
+  return 3 * ((frames * frame_pixels + 7) / 8) + frame_pixels + frames * 4096 + (int64_t(1) << 20);
+}
+
 }  // namespace soiq::dicom

@@ -115,4 +115,9 @@ struct WrittenSeg {
 Result<WrittenSeg> write_seg(const SegSource& source, const std::vector<SegSegment>& segments,
                              const SegWriteOptions& options = {});
 
+// What write_seg holds at its peak for `segments` on `geometry`, to admit it against a memory
+// budget: the frames' packed bits three times (packed, in the dataset, in the Part 10 bytes), one
+// unpacked frame, and DCMTK's functional-group items per frame (4 KiB counted).
+int64_t seg_write_peak_bytes(const ImageGeometry& geometry, const std::vector<SegSegment>& segments);
+
 }  // namespace soiq::dicom

@@ -20,6 +20,10 @@ int64_t voxel_count(const RunLengthVolume& v) {
   return n;
 }
 
+int64_t run_length_bytes(const RunLengthVolume& v) {
+  return int64_t(v.line_start.capacity() * sizeof(int64_t) + v.runs.capacity() * sizeof(Run));
+}
+
 void fill_dense(const RunLengthVolume& v, uint8_t* out) {
   const int64_t nx = v.geometry.dims[0];
   const int64_t lines = v.line_count();

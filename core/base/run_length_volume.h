@@ -35,6 +35,9 @@ RunLengthVolume empty_volume(const ImageGeometry& g);
 // Number of inside voxels. O(runs).
 int64_t voxel_count(const RunLengthVolume& v);
 
+// The bytes the volume holds (its line index and runs, as allocated). O(1).
+int64_t run_length_bytes(const RunLengthVolume& v);
+
 // The dense 0/1 mask, filled by `threads` threads over slices. RESOURCE_EXHAUSTED when the grid
 // exceeds `max_voxels`. O(voxels).
 Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels = kDefaultMaxVoxels, int threads = 1);

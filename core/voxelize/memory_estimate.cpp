@@ -1,5 +1,6 @@
 #include "core/voxelize/memory_estimate.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -119,6 +120,19 @@ Result<int64_t> parse_byte_size(const std::string& text, const std::string& what
   return n * unit;
 }
 
+namespace {
+
+// What is left of a process limit (RLIMIT_AS, RLIMIT_DATA) over what the process already uses
+// there, less `headroom`; INT64_MAX when the limit is unlimited.
+int64_t rlimit_left(int resource, int64_t in_use, int64_t headroom) {
+  rlimit r{};
+  if (getrlimit(resource, &r) != 0 || r.rlim_cur == RLIM_INFINITY) return INT64_MAX;
+  const int64_t limit = r.rlim_cur > rlim_t(INT64_MAX) ? INT64_MAX : int64_t(r.rlim_cur);
+  return std::max<int64_t>(0, limit - in_use - headroom);
+}
+
+}  // namespace
+
 int64_t default_memory_budget_bytes() {
   int64_t total = int64_t(sysconf(_SC_PHYS_PAGES)) * int64_t(sysconf(_SC_PAGE_SIZE));
   // cgroup v2: a container's limit, "max" when there is none.
@@ -132,7 +146,18 @@ int64_t default_memory_budget_bytes() {
     }
   }
   if (total <= 0) total = int64_t(4) << 30;
-  return total / 2;
+  // The process's own limits (ulimit -v, -d): what is left of them now, less what a server's
+  // threads will map later (a stack and a malloc arena's reserve each, ~72 MiB of address space
+  // for each of some 16 threads). Work admitted past them would fail to allocate instead of
+  // queueing.
+  const int64_t page = int64_t(sysconf(_SC_PAGE_SIZE));
+  int64_t vm_pages = 0, resident = 0, shared = 0, text_pages = 0, lib = 0, data_pages = 0;
+  std::ifstream statm("/proc/self/statm");
+  statm >> vm_pages >> resident >> shared >> text_pages >> lib >> data_pages;
+  constexpr int64_t kThreadsHeadroom = int64_t(1152) << 20;
+  total = std::min(total, rlimit_left(RLIMIT_AS, vm_pages * page, kThreadsHeadroom));
+  total = std::min(total, rlimit_left(RLIMIT_DATA, data_pages * page, kThreadsHeadroom));
+  return std::max<int64_t>(total / 2, int64_t(64) << 20);
 }
 
 std::string human_bytes(int64_t bytes) {

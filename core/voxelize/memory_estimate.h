@@ -60,8 +60,10 @@ int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGe
 
 int64_t mask_export_extra_bytes(const ImageGeometry& geometry);
 
-// The default memory budget: half of the memory this process may use (the cgroup's memory.max
-// when it is set and lower than the machine's RAM, so a container's limit is respected).
+// The default memory budget: half of the memory this process may use: the least of the machine's
+// RAM, the cgroup's memory.max (a container's limit), and what is left of the process's
+// RLIMIT_AS and RLIMIT_DATA (ulimit -v, -d) past its present use and its threads' future stacks
+// and arenas (1.1 GiB). At least 64 MiB.
 int64_t default_memory_budget_bytes();
 
 // A byte size as people write it: "8589934592", "8G", "512M", "64K", "1T" (binary multiples; a

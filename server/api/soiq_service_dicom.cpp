@@ -43,9 +43,11 @@ grpc::Status SoiqService::ExportSeg(grpc::ServerContext* ctx, const v1::ExportSe
                                     grpc::ServerWriter<v1::ExportSegResponse>* writer) {
   return handle(__func__, *ctx, [&]() -> Status {
     const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
-    SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, on_pool<dicom::WrittenSeg>([&] {
-                            return structure_seg(store_, features_, ids, request->series_description());
+    SOIQ_ASSIGN_OR_RETURN(const BudgetedSeg written, on_pool<BudgetedSeg>([&] {
+                            return structure_seg(store_, features_, budget_, ids, request->series_description(),
+                                                 nullptr, [&] { return stop_status(*ctx); });
                           }));
+    const dicom::WrittenSeg& seg = written.seg;
     SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));
     v1::ExportSegResponse head;
     *head.mutable_info() = info_of(seg, ids, first);
@@ -121,9 +123,11 @@ grpc::Status SoiqService::PacsPush(grpc::ServerContext* ctx, const v1::PacsPushR
     SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
     const Clock::time_point start = Clock::now();
     const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
-    SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, on_pool<dicom::WrittenSeg>([&] {
-                            return structure_seg(store_, features_, ids, request->series_description());
+    SOIQ_ASSIGN_OR_RETURN(const BudgetedSeg written, on_pool<BudgetedSeg>([&] {
+                            return structure_seg(store_, features_, budget_, ids, request->series_description(),
+                                                 nullptr, [&] { return stop_status(*ctx); });
                           }));
+    const dicom::WrittenSeg& seg = written.seg;
     SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".dcm"));
     SOIQ_RETURN_IF_ERROR(file.write(seg.bytes));
     SOIQ_RETURN_IF_ERROR(dicom::pacs_store(peer, {file.path()}));

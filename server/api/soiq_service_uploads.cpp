@@ -2,10 +2,13 @@
 // the upload limit, checks the header's fields, and hands the bytes to its app engine
 // (server/app/upload_surface.h, upload_image.h, dicom_import.h), which parses from memory and
 // stores in one transaction.
+#include <algorithm>
+
 #include "server/api/proto_records.h"
 #include "server/api/received_dicom_files.h"
 #include "server/api/rpc_handling.h"
 #include "server/app/dicom_import.h"
+#include "server/app/memory_budget.h"
 #include "server/app/modality_names.h"
 #include "server/app/upload_image.h"
 #include "server/app/upload_surface.h"
@@ -22,10 +25,14 @@ Status stream_complete(const grpc::ServerContext& ctx, const char* what) {
   return Status(StatusCode::kCancelled, std::string(what) + " upload was cancelled by the client before it ended");
 }
 
-// Reads a client stream: the header first, then chunks up to `max_bytes` in all.
+// Reads a client stream: the header first, then chunks up to `max_bytes` in all. The bytes are
+// counted in the memory budget before they are kept: the buffer grows by doubling (from 4 MiB), and
+// each larger buffer is reserved before it is made, the smaller one given back once it is gone.
+// `held` keeps the count while the caller uses the bytes.
 template <typename Request, typename Header>
 Status read_upload(const grpc::ServerContext& ctx, grpc::ServerReader<Request>* reader, int64_t max_bytes,
-                   Header& header, std::string& bytes, const char* what) {
+                   MemoryBudget& budget, Header& header, std::string& bytes, MemoryBudget::Reservation& held,
+                   const char* what) {
   Request part;
   if (!reader->Read(&part) || part.part_case() != Request::kHeader)
     return invalid_argument(std::string(what) + " upload must start with a header message");
@@ -33,9 +40,23 @@ Status read_upload(const grpc::ServerContext& ctx, grpc::ServerReader<Request>* 
   while (reader->Read(&part)) {
     if (part.part_case() != Request::kChunk)
       return invalid_argument(std::string(what) + " upload has a second header; send one header, then chunks");
-    if (int64_t(bytes.size() + part.chunk().size()) > max_bytes)
+    const int64_t need = int64_t(bytes.size() + part.chunk().size());
+    if (need > max_bytes)
       return resource_exhausted(std::string(what) + " upload is larger than the server's limit of " +
                                 std::to_string(max_bytes) + " bytes (soiqd --max-upload-bytes)");
+    if (need > held.bytes()) {
+      const int64_t grown = std::min(max_bytes, std::max({need, 2 * held.bytes(), int64_t(4) << 20}));
+      SOIQ_ASSIGN_OR_RETURN(
+          MemoryBudget::Reservation bigger,
+          budget.reserve(
+              grown, std::string(what) + " upload of " + std::to_string(need) + "+ bytes",
+              stop_when_held_too_long([&ctx] { return stop_status(ctx); }, held.bytes() > 0, 30000,
+                                      std::string(what) + " upload does not fit the memory budget while other work "
+                                                          "holds it; try again later"),
+              "send a smaller file, or raise the budget"));
+      bytes.reserve(size_t(grown));
+      held = std::move(bigger);
+    }
     bytes += part.chunk();
   }
   return stream_complete(ctx, what);
@@ -76,7 +97,8 @@ grpc::Status SoiqService::UploadSurface(grpc::ServerContext* ctx, grpc::ServerRe
   return handle(__func__, *ctx, [&]() -> Status {
     v1::UploadSurfaceHeader h;
     std::string bytes;
-    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, h, bytes, "surface"));
+    MemoryBudget::Reservation held;
+    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, budget_, h, bytes, held, "surface"));
     SOIQ_ASSIGN_OR_RETURN(const SurfaceUpload upload, surface_upload_of(h));
     SOIQ_ASSIGN_OR_RETURN(const UploadedSurface stored, upload_surface(store_, upload, bytes));
     *response->mutable_structure() = to_proto(stored.added.structure);
@@ -92,7 +114,8 @@ grpc::Status SoiqService::UploadImage(grpc::ServerContext* ctx, grpc::ServerRead
   return handle(__func__, *ctx, [&]() -> Status {
     v1::UploadImageHeader h;
     std::string bytes;
-    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, h, bytes, "image"));
+    MemoryBudget::Reservation held;
+    SOIQ_RETURN_IF_ERROR(read_upload(*ctx, reader, config_.max_upload_bytes, budget_, h, bytes, held, "image"));
     SOIQ_ASSIGN_OR_RETURN(const ImageUpload upload, image_upload_of(h));
     SOIQ_ASSIGN_OR_RETURN(const UploadedImage stored, upload_image(store_, budget_, config_.max_grid_voxels, upload,
                                                                    bytes, [&] { return stop_status(*ctx); }));

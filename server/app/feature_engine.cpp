@@ -131,8 +131,11 @@ Result<std::shared_ptr<const Image>> FeatureEngine::image(const db::SeriesRecord
       [](const Image& img) { return int64_t(img.voxels.size() * sizeof(float)); });
 }
 
-Result<Voxelization> FeatureEngine::convert(const db::StructureRecord& structure, const ImageGeometry& geometry,
-                                            FillRule fill_rule) {
+Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db::StructureRecord& structure,
+                                            const ImageGeometry& geometry, FillRule fill_rule) {
+  if (admitted.structure_id_ != structure.id || !(admitted.geometry_ == geometry))
+    return internal_error("structure " + std::to_string(structure.id) +
+                          " was about to be converted outside its memory admission");
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
   VoxelizeOptions options;
@@ -147,9 +150,9 @@ Result<Voxelization> FeatureEngine::convert(const db::StructureRecord& structure
   return voxelize_1d(*mesh, geometry, options);
 }
 
-Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord& structure,
-                                                       const ImageGeometry& geometry, const WorkExtras& extras,
-                                                       const std::function<Status()>& stop) {
+Result<FeatureEngine::Admission> FeatureEngine::admit(const db::StructureRecord& structure,
+                                                      const ImageGeometry& geometry, const WorkExtras& extras,
+                                                      const std::function<Status()>& stop) {
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
   // The store keeps each surface's measure (SurfaceInfo): admission then needs no decode. A record
   // without one (0 and 0) is measured from its mesh, once.
@@ -170,21 +173,24 @@ Result<MemoryBudget::Reservation> FeatureEngine::admit(const db::StructureRecord
   return reserve_for(structure, geometry, extras, *measure, stop);
 }
 
-Result<MemoryBudget::Reservation> FeatureEngine::reserve_for(const db::StructureRecord& structure,
-                                                             const ImageGeometry& geometry, const WorkExtras& extras,
-                                                             const SurfaceMeasure& measure,
-                                                             const std::function<Status()>& stop) {
+Result<FeatureEngine::Admission> FeatureEngine::reserve_for(const db::StructureRecord& structure,
+                                                            const ImageGeometry& geometry, const WorkExtras& extras,
+                                                            const SurfaceMeasure& measure,
+                                                            const std::function<Status()>& stop) {
   const ConversionEstimate conversion = conversion_peak_bytes(measure, geometry, structure.robust);
   int64_t bytes = conversion.bytes;
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
   if (extras.mask_export) add(mask_export_extra_bytes(geometry));
   const auto& d = geometry.dims;
-  return budget_.reserve(bytes,
-                         "structure " + std::to_string(structure.id) + " on a grid of " + std::to_string(d[0]) + "x" +
-                             std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels (" +
-                             std::to_string(conversion.lines) + " row lines)",
-                         stop);
+  SOIQ_ASSIGN_OR_RETURN(
+      MemoryBudget::Reservation held,
+      budget_.reserve(bytes,
+                      "structure " + std::to_string(structure.id) + " on a grid of " + std::to_string(d[0]) + "x" +
+                          std::to_string(d[1]) + "x" + std::to_string(d[2]) + " voxels (" +
+                          std::to_string(conversion.lines) + " row lines)",
+                      stop));
+  return Admission(std::move(held), structure.id, geometry);
 }
 
 Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const FeatureAsk& ask,
@@ -198,9 +204,8 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   extras.features = true;
   for (const db::SeriesRecord& s : plan.images) extras.image_voxels += s.geometry.voxel_count();
   extras.regions = plan.images.empty() ? 0 : int(ask.regions.size());
-  SOIQ_ASSIGN_OR_RETURN(const MemoryBudget::Reservation held,
-                        admit(plan.structure, plan.grid.geometry, extras, check_cancel));
-  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(plan.structure, plan.grid.geometry, ask.fill_rule));
+  SOIQ_ASSIGN_OR_RETURN(const Admission admitted, admit(plan.structure, plan.grid.geometry, extras, check_cancel));
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(admitted, plan.structure, plan.grid.geometry, ask.fill_rule));
   SOIQ_RETURN_IF_ERROR(check_cancel());
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
 

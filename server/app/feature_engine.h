@@ -72,6 +72,27 @@ using FeatureValues = std::map<std::string, std::vector<double>>;  // entry -> v
 
 class FeatureEngine {
  public:
+  // The right to convert one structure on one grid: its estimated peak bytes held in the memory
+  // budget. Only admit() makes one, and convert() takes one, so a conversion outside the budget
+  // does not compile; convert() refuses an admission made for another structure or grid.
+  class Admission {
+   public:
+    Admission() = default;
+    Admission(Admission&&) noexcept = default;
+    Admission& operator=(Admission&&) noexcept = default;
+    int64_t bytes() const { return held_.bytes(); }
+    // Once converted, only the result stays: gives back all but `bytes`.
+    void shrink_to(int64_t bytes) { held_.shrink_to(bytes); }
+
+   private:
+    friend class FeatureEngine;
+    Admission(MemoryBudget::Reservation held, int64_t structure_id, const ImageGeometry& geometry)
+        : held_(std::move(held)), structure_id_(structure_id), geometry_(geometry) {}
+    MemoryBudget::Reservation held_;
+    int64_t structure_id_ = -1;
+    ImageGeometry geometry_;
+  };
+
   // `budget` admits every conversion and computation by its estimated peak bytes (memory_budget.h).
   FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBudget& budget,
                 int64_t cache_budget_bytes = int64_t(2) << 30);
@@ -86,9 +107,10 @@ class FeatureEngine {
 
   // The stored surface, decoded (cached).
   Result<std::shared_ptr<const TriangleMesh>> surface(const std::string& sha256);
-  // The structure on a grid by the 1D method (robust when the structure was uploaded so). The
-  // caller holds an admit() reservation for it.
-  Result<Voxelization> convert(const db::StructureRecord& structure, const ImageGeometry& geometry, FillRule fill_rule);
+  // The structure on a grid by the 1D method (robust when the structure was uploaded so), under
+  // `admitted` (admit() for this structure and grid; INTERNAL for another's).
+  Result<Voxelization> convert(const Admission& admitted, const db::StructureRecord& structure,
+                               const ImageGeometry& geometry, FillRule fill_rule);
 
   // What a piece of work will hold besides the conversion itself.
   struct WorkExtras {
@@ -102,17 +124,17 @@ class FeatureEngine {
   // when it can never fit; waits while others hold the budget, until `stop` says otherwise. Call it
   // on a worker: a reservation held while waiting for a worker could starve the workers waiting
   // for the budget (a cycle).
-  Result<MemoryBudget::Reservation> admit(const db::StructureRecord& structure, const ImageGeometry& geometry,
-                                          const WorkExtras& extras, const std::function<Status()>& stop = {});
+  Result<Admission> admit(const db::StructureRecord& structure, const ImageGeometry& geometry, const WorkExtras& extras,
+                          const std::function<Status()>& stop = {});
 
   int64_t max_grid_voxels() const { return max_grid_voxels_; }
 
  private:
   Result<std::shared_ptr<const Image>> image(const db::SeriesRecord& series);
   // admit()'s reservation once the surface's measure is known.
-  Result<MemoryBudget::Reservation> reserve_for(const db::StructureRecord& structure, const ImageGeometry& geometry,
-                                                const WorkExtras& extras, const SurfaceMeasure& measure,
-                                                const std::function<Status()>& stop);
+  Result<Admission> reserve_for(const db::StructureRecord& structure, const ImageGeometry& geometry,
+                                const WorkExtras& extras, const SurfaceMeasure& measure,
+                                const std::function<Status()>& stop);
 
   db::Store& store_;
   const int64_t max_grid_voxels_;

@@ -17,6 +17,13 @@ MemoryBudget::Reservation& MemoryBudget::Reservation::operator=(Reservation&& ot
   return *this;
 }
 
+void MemoryBudget::Reservation::shrink_to(int64_t bytes) {
+  bytes = std::max<int64_t>(bytes, 0);
+  if (budget_ == nullptr || bytes >= bytes_) return;
+  budget_->give_back(bytes_ - bytes);
+  bytes_ = bytes;
+}
+
 void MemoryBudget::Reservation::release() {
   if (budget_) budget_->give_back(bytes_);
   budget_ = nullptr;
@@ -95,6 +102,18 @@ int64_t MemoryBudget::peak() const {
 int64_t MemoryBudget::waiting() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return int64_t(next_ticket_ - serving_) - int64_t(abandoned_.size());
+}
+
+std::function<Status()> stop_when_held_too_long(std::function<Status()> stop, bool holding, int patience_ms,
+                                                std::string why) {
+  if (!holding) return stop;
+  const auto since = std::chrono::steady_clock::now();
+  return [stop = std::move(stop), since, patience_ms, why = std::move(why)]() -> Status {
+    if (stop) SOIQ_RETURN_IF_ERROR(stop());
+    if (std::chrono::steady_clock::now() - since > std::chrono::milliseconds(patience_ms))
+      return resource_exhausted(why);
+    return ok_status();
+  };
 }
 
 }  // namespace soiq::server

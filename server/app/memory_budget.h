@@ -24,6 +24,13 @@
 
 namespace soiq::server {
 
+// A `stop` for a reservation asked while the caller already holds others (the SEGs of a study
+// before the next one): waiting on while holding could wait forever for work that waits on the
+// caller, so after `patience` of waiting it gives up, RESOURCE_EXHAUSTED saying `why`. Until then,
+// and when `holding` is false, it is `stop`.
+std::function<Status()> stop_when_held_too_long(std::function<Status()> stop, bool holding, int patience_ms,
+                                                std::string why);
+
 class MemoryBudget {
  public:
   class Reservation {
@@ -37,6 +44,9 @@ class MemoryBudget {
     Reservation& operator=(const Reservation&) = delete;
     ~Reservation() { release(); }
     int64_t bytes() const { return bytes_; }
+    // Gives back all but `bytes` (when the work's peak is over and only its result stays held);
+    // never grows the reservation.
+    void shrink_to(int64_t bytes);
 
    private:
     friend class MemoryBudget;

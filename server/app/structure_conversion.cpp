@@ -19,7 +19,7 @@ Result<StructureConversion> convert_structure(db::Store& store, FeatureEngine& f
   extras.mask_export = mask_export;
   auto work = [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(out.held, features.admit(out.structure, out.grid.geometry, extras, stop));
-    SOIQ_ASSIGN_OR_RETURN(out.voxelization, features.convert(out.structure, out.grid.geometry, fill_rule));
+    SOIQ_ASSIGN_OR_RETURN(out.voxelization, features.convert(out.held, out.structure, out.grid.geometry, fill_rule));
     return ok_status();
   };
   SOIQ_RETURN_IF_ERROR(pool.call(work));

@@ -33,7 +33,7 @@ struct StructureConversion {
   db::StructureRecord structure;
   ResolvedGrid grid;
   Voxelization voxelization;
-  MemoryBudget::Reservation held;
+  FeatureEngine::Admission held;  // the runs, and a mask made from them, stay within it
 };
 
 Result<StructureConversion> convert_structure(db::Store& store, FeatureEngine& features, WorkerPool& pool,

@@ -7,6 +7,9 @@
 namespace soiq::server {
 namespace {
 
+// How long a reservation waits while this SEG holds others' bytes (memory_budget.h).
+constexpr int kHoldingPatienceMs = 30000;
+
 std::string named(const db::StructureRecord& s) { return "structure " + std::to_string(s.id) + " ('" + s.name + "')"; }
 
 Result<std::vector<db::StructureRecord>> structures_of_one_series(db::Store& store, const std::vector<int64_t>& ids) {
@@ -48,8 +51,9 @@ std::string seg_series_description(const std::string& name) {
   return check_series_description(name).ok() && !name.empty() ? name : dicom::SegWriteOptions{}.series_description;
 }
 
-Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
-                                        const std::string& series_description, const StructureSegUids* uids) {
+Result<BudgetedSeg> structure_seg(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
+                                  const std::vector<int64_t>& ids, const std::string& series_description,
+                                  const StructureSegUids* uids, const std::function<Status()>& stop) {
   SOIQ_RETURN_IF_ERROR(check_series_description(series_description));
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures, structures_of_one_series(store, ids));
   const std::string& series_uid = structures.front().source_series_uid;
@@ -85,14 +89,33 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
   source.geometry = series->geometry;
 
   std::vector<dicom::SegSegment> segments;
+  std::vector<FeatureEngine::Admission> admitted;  // each segment's runs, while they are held
   for (const db::StructureRecord& s : structures) {
+    const auto patient_stop = stop_when_held_too_long(
+        stop, !admitted.empty(), kHoldingPatienceMs,
+        "the structures of this SEG do not fit the memory budget together while other work holds it; export fewer "
+        "structures at once, or raise the budget");
+    SOIQ_ASSIGN_OR_RETURN(FeatureEngine::Admission a, features.admit(s, series->geometry, {}, patient_stop));
     // Imported surfaces are closed and free of self-intersections: both fill rules agree.
-    SOIQ_ASSIGN_OR_RETURN(Voxelization v, features.convert(s, series->geometry, FillRule::kNonZero));
+    SOIQ_ASSIGN_OR_RETURN(Voxelization v, features.convert(a, s, series->geometry, FillRule::kNonZero));
+    a.shrink_to(run_length_bytes(v.volume));
+    admitted.push_back(std::move(a));
     dicom::SegSegment segment;
     segment.label = s.name;
     segment.volume = std::move(v.volume);
     segments.push_back(std::move(segment));
   }
+  SOIQ_ASSIGN_OR_RETURN(
+      MemoryBudget::Reservation writing,
+      budget.reserve(dicom::seg_write_peak_bytes(series->geometry, segments),
+                     "writing the SEG of " + named(structures.front()) +
+                         (structures.size() > 1 ? " and " + std::to_string(structures.size() - 1) + " more structures"
+                                                : std::string()),
+                     stop_when_held_too_long(stop, true, kHoldingPatienceMs,
+                                             "the SEG's writing does not fit the memory budget "
+                                             "while other work holds it; export fewer structures "
+                                             "at once, or raise the budget"),
+                     "export fewer structures per SEG, or raise the budget"));
   dicom::SegWriteOptions options;
   if (!series_description.empty()) options.series_description = series_description;
   if (uids != nullptr) {
@@ -107,7 +130,10 @@ Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& feature
       options.content_time = at.substr(11, 2) + at.substr(14, 2) + at.substr(17, 2);
     }
   }
-  return dicom::write_seg(source, segments, options);
+  SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, dicom::write_seg(source, segments, options));
+  // Only the bytes stay: they are counted until the caller lets them go.
+  writing.shrink_to(int64_t(seg.bytes.capacity()));
+  return BudgetedSeg{std::move(seg), std::move(writing)};
 }
 
 }  // namespace soiq::server

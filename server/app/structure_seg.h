@@ -14,10 +14,15 @@
 //          to reference: import images and RT Structure Set with 'soiq import'), structures of
 //          different series, a series stored without DICOM references; RESOURCE_EXHAUSTED: a
 //          grid over max_grid_voxels; INVALID_ARGUMENT from write_seg (e.g. an empty structure).
+// Memory   each conversion is admitted against the budget (FeatureEngine::admit), and once done
+//          holds only its runs; the SEG's writing is admitted by its peak (seg_write_peak_bytes);
+//          the SEG's bytes stay counted in the budget as long as the BudgetedSeg lives (an HTTP
+//          answer keeps it until written). `stop` ends a wait for the budget (CANCELLED, ...).
 // Cost     one conversion per structure, then O(frames x rows x columns). Thread-safe as
 //          FeatureEngine and Store are.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,14 +30,22 @@
 #include "db/store.h"
 #include "dicom/seg_export.h"
 #include "server/app/feature_engine.h"
+#include "server/app/memory_budget.h"
 #include "server/app/structure_seg_uids.h"
 
 namespace soiq::server {
 
 inline constexpr int kMaxSegStructures = 256;
 
-Result<dicom::WrittenSeg> structure_seg(db::Store& store, FeatureEngine& features, const std::vector<int64_t>& ids,
-                                        const std::string& series_description, const StructureSegUids* uids = nullptr);
+// A written SEG and its bytes' share of the memory budget, given back when it goes.
+struct BudgetedSeg {
+  dicom::WrittenSeg seg;
+  MemoryBudget::Reservation held;
+};
+
+Result<BudgetedSeg> structure_seg(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
+                                  const std::vector<int64_t>& ids, const std::string& series_description,
+                                  const StructureSegUids* uids = nullptr, const std::function<Status()>& stop = {});
 
 // The Series Description of the SEG of one structure as DICOMweb lists and writes it: its name when
 // that is a valid LO value, else write_seg's default.

@@ -69,7 +69,7 @@ std::string one_line(std::string s) {
 }
 
 HttpReply error_reply(int status, const Status& why) {
-  return HttpReply{status, "application/json", error_body(why, status), {}, {}};
+  return HttpReply{status, "application/json", error_body(why, status), {}};
 }
 
 // A file the body is written to as it arrives (STOW-RS: a request costs disk, not memory).
@@ -335,6 +335,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     for (const auto& [name, value] : reply.headers) res.insert(one_line(name), one_line(value));
     if (reply.status == 200 && request_.method == "GET") res.set(bhttp::field::accept_ranges, "bytes");
     const int64_t size = reply.size();
+    held_ = std::move(reply.held);  // given back once the answer is out
     res.body().push_back(std::move(reply.body));
     for (std::string& p : reply.pieces) res.body().push_back(std::move(p));
     keep_alive_ = !close_after_ && parser_ && parser_->is_header_done() && parser_->keep_alive() && !stopping();
@@ -359,6 +360,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       if (!self->serializer_->is_done()) return self->write_some();
       self->serializer_.reset();
       self->response_.reset();
+      self->held_.clear();
       if (self->body_pending_) return self->drain();
       if (!self->keep_alive_) return self->close();
       self->read_head();
@@ -407,6 +409,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
   bool keep_alive_ = false;
   std::optional<bhttp::response<PiecesBody>> response_;
   std::optional<bhttp::response_serializer<PiecesBody>> serializer_;
+  std::vector<MemoryBudget::Reservation> held_;
   asio::steady_timer read_deadline_;
   uint64_t read_generation_ = 0;
   bool read_timed_out_ = false;

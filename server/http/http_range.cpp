@@ -53,7 +53,7 @@ std::optional<std::vector<Spec>> parse(std::string_view header, int max_ranges) 
 }
 
 void refuse(HttpReply& reply, int64_t length, const std::string& why) {
-  reply = HttpReply{416, "application/json", error_body(invalid_argument(why), 416), {}, {}};
+  reply = HttpReply{416, "application/json", error_body(invalid_argument(why), 416), {}};
   reply.headers.emplace("Content-Range", "bytes */" + std::to_string(length));
 }
 

@@ -8,14 +8,23 @@
 #include <string>
 #include <vector>
 
+#include "server/app/memory_budget.h"
+
 namespace soiq::server::http {
 
 struct HttpReply {
+  HttpReply() = default;
+  HttpReply(int status, std::string content_type, std::string body,
+            std::multimap<std::string, std::string> headers = {})
+      : status(status), content_type(std::move(content_type)), body(std::move(body)), headers(std::move(headers)) {}
+
   int status = 200;
   std::string content_type;  // "" for application/json
   std::string body;          // the body's bytes; then `pieces`, back to back
   std::multimap<std::string, std::string> headers;
   std::vector<std::string> pieces;
+  // The memory budget's share of the body's bytes, given back once the answer is written.
+  std::vector<MemoryBudget::Reservation> held;
 
   int64_t size() const {
     int64_t n = int64_t(body.size());

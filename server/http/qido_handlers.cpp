@@ -73,7 +73,7 @@ Result<json> instances(const HandlerContext& c, const QidoQuery& q) {
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
                        const std::string& series_uid, const HttpRequest& req) {
   if (!accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
-    return HttpReply{406, "application/dicom+json", "", {}, {}};
+    return HttpReply{406, "application/dicom+json", "", {}};
   const QueryParams& params = req.params;
   SOIQ_ASSIGN_OR_RETURN(const QidoQuery q,
                         parse_qido(level, study_uid, series_uid, params, c.engines.config.keep_patient_names));

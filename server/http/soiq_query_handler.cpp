@@ -72,7 +72,7 @@ json summary_json(const QuerySummary& s) {
 Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
   // text/csv only when asked for by name; JSON otherwise.
   const bool csv = req.has_header("Accept") && req.header("Accept").find("text/csv") != std::string::npos;
-  if (!csv && !accepts(req, "application/json")) return HttpReply{406, "application/json or text/csv", "", {}, {}};
+  if (!csv && !accepts(req, "application/json")) return HttpReply{406, "application/json or text/csv", "", {}};
   const std::vector<std::pair<std::string, std::string>>& args = req.params;
   SOIQ_ASSIGN_OR_RETURN(const v1::QueryRequest request, parse_soiq_query_args(args));
   SOIQ_ASSIGN_OR_RETURN(const Query query, parse_query(request, c.engines.config.query_result_cap));

@@ -145,11 +145,8 @@ class MappedFile {
 Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, const HttpRequest& req) {
   const std::string content_type = req.header("Content-Type");
   if (!is_multipart_related(content_type))
-    return HttpReply{415,
-                     "",
-                     error_body(invalid_argument("STOW-RS takes multipart/related; type=\"application/dicom\""), 415),
-                     {},
-                     {}};
+    return HttpReply{
+        415, "", error_body(invalid_argument("STOW-RS takes multipart/related; type=\"application/dicom\""), 415), {}};
   SOIQ_ASSIGN_OR_RETURN(TempDir dir, TempDir::create());  // removed with the files on return
   MappedFile mapped;
   if (!req.body_path.empty()) {
@@ -162,16 +159,12 @@ Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, co
                      error_body(invalid_argument("soiq stores application/dicom parts, not " + body.type +
                                                  " (send the DICOM files themselves)"),
                                 415),
-                     {},
                      {}};
   if (body.parts.empty()) return invalid_argument("the request holds no DICOM part");
   for (const MultipartPart& p : body.parts) {
     if (!p.content_type.empty() && p.content_type.rfind("application/dicom", 0) != 0)
-      return HttpReply{415,
-                       "",
-                       error_body(invalid_argument("a part is " + p.content_type + ", not application/dicom"), 415),
-                       {},
-                       {}};
+      return HttpReply{
+          415, "", error_body(invalid_argument("a part is " + p.content_type + ", not application/dicom"), 415), {}};
   }
 
   std::vector<Part> parts(body.parts.size());

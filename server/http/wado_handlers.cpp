@@ -55,14 +55,31 @@ Result<db::StructureRecord> seg_structure(const AppEngines& e, const std::string
   return *s;
 }
 
-// The SEG of one structure, as a Part 10 file; conversions share soiqd's worker pool.
-Result<std::string> seg_bytes(const AppEngines& e, const db::StructureRecord& s) {
-  const StructureSegUids uids = structure_seg_uids(s);
-  auto work = [&]() -> Result<dicom::WrittenSeg> {
-    return structure_seg(e.store, e.features, {s.id}, seg_series_description(s.name), &uids);
+// The SEGs of `structures`, as Part 10 files, each with its share of the budget, into `reply.held`.
+// One task on soiqd's worker pool for them all: waiting for a worker while holding SEGs could
+// leave the workers waiting for the budget those SEGs hold. A wait for the budget while holding
+// gives up after 30 s (memory_budget.h); a client that has gone stops it.
+Result<std::vector<std::string>> segs_of(const AppEngines& e, const std::vector<db::StructureRecord>& structures,
+                                         const HttpRequest& req, HttpReply& reply) {
+  const auto client_here = [&req] {
+    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
   };
-  SOIQ_ASSIGN_OR_RETURN(dicom::WrittenSeg seg, e.pool.call(work));
-  return std::move(seg.bytes);
+  std::vector<std::string> files;
+  auto work = [&]() -> Status {
+    for (const db::StructureRecord& s : structures) {
+      const StructureSegUids uids = structure_seg_uids(s);
+      const auto stop = stop_when_held_too_long(client_here, !reply.held.empty(), 30000,
+                                                "the study's SEGs do not fit the memory budget together while other "
+                                                "work holds it; retrieve them series by series");
+      SOIQ_ASSIGN_OR_RETURN(BudgetedSeg written, structure_seg(e.store, e.features, e.budget, {s.id},
+                                                               seg_series_description(s.name), &uids, stop));
+      files.push_back(std::move(written.seg.bytes));
+      reply.held.push_back(std::move(written.held));
+    }
+    return ok_status();
+  };
+  SOIQ_RETURN_IF_ERROR(e.pool.call(work));
+  return files;
 }
 
 // The structures of what the path names: one series, or every SEG series of a study.
@@ -103,23 +120,19 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
   const bool metadata = what == WadoWhat::kMetadata;
   const bool bulk = what == WadoWhat::kBulkData;
   if (metadata && !accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
-    return HttpReply{406, "application/dicom+json", "", {}, {}};
+    return HttpReply{406, "application/dicom+json", "", {}};
   if (what == WadoWhat::kInstances && !accepts_dicom(req))
     return HttpReply{
         406,
         std::string("multipart/related; type=\"application/dicom\"; transfer-syntax=") + kExplicitVrLittleEndian,
         "",
-        {},
         {}};
-  if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}, {}};
+  if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}};
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures,
                         structures_of(c.engines, study_uid, series_uid, instance_uid));
-  std::vector<std::string> files;
-  for (const db::StructureRecord& s : structures) {
-    SOIQ_ASSIGN_OR_RETURN(std::string bytes, seg_bytes(c.engines, s));
-    files.push_back(std::move(bytes));
-  }
+  // Each SEG's bytes stay counted in the budget until the answer holding them is written.
   HttpReply r;
+  SOIQ_ASSIGN_OR_RETURN(std::vector<std::string> files, segs_of(c.engines, structures, req, r));
   if (metadata) {
     std::string body = "[";
     for (size_t i = 0; i < files.size(); ++i) {
@@ -129,6 +142,7 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
     }
     r.content_type = "application/dicom+json";
     r.body = body + "]";
+    r.held.clear();  // the SEGs go with this function; their JSON is small
     return r;
   }
   std::vector<std::string> parts;

@@ -236,7 +236,7 @@ TEST_F(FeatureEngineTest, WorkThatCanNeverFitTheBudgetIsRefusedNamingTheStructur
   FeatureAsk ask = ask_of({"voxel_count"});
   Result<FeaturePlan> p = plan(ask);
   ASSERT_TRUE(p.ok()) << p.status().to_string();
-  Result<MemoryBudget::Reservation> held = engine.admit(p->structure, p->grid.geometry, {});
+  Result<FeatureEngine::Admission> held = engine.admit(p->structure, p->grid.geometry, {});
   EXPECT_EQ(held.status().code(), StatusCode::kResourceExhausted);
   EXPECT_TRUE(contains(held.status().message(), "structure " + std::to_string(id_))) << held.status().message();
   EXPECT_EQ(tiny.in_use(), 0);
@@ -249,8 +249,34 @@ TEST_F(FeatureEngineTest, AGridOverTheVoxelLimitIsNeverConverted) {
   Result<std::vector<db::SeriesRecord>> series = store_->list_series("S1");
   ASSERT_TRUE(series.ok());
   const ImageGeometry image_grid = series->at(0).geometry;  // 1120 voxels
-  EXPECT_EQ(small.convert(*s, image_grid, FillRule::kNonZero).status().code(), StatusCode::kResourceExhausted);
   EXPECT_EQ(small.admit(*s, image_grid, {}).status().code(), StatusCode::kResourceExhausted);
+}
+
+// convert() takes an admission (a conversion outside the budget does not compile), and only the
+// one made for its structure and grid.
+TEST_F(FeatureEngineTest, AConversionRunsOnlyUnderItsOwnAdmission) {
+  Result<db::StructureRecord> s = store_->get_structure(id_);
+  ASSERT_TRUE(s.ok());
+  Result<std::vector<db::SeriesRecord>> series = store_->list_series("S1");
+  ASSERT_TRUE(series.ok());
+  const ImageGeometry grid = series->at(0).geometry;
+  ImageGeometry other = grid;
+  other.spacing_mm[0] *= 2;
+  Result<FeatureEngine::Admission> admitted = features_.admit(*s, grid, {});
+  ASSERT_TRUE(admitted.ok()) << admitted.status().to_string();
+  EXPECT_GT(admitted->bytes(), 0);
+  EXPECT_EQ(budget_.in_use(), admitted->bytes());
+  EXPECT_EQ(features_.convert(*admitted, *s, other, FillRule::kNonZero).status().code(), StatusCode::kInternal);
+  db::StructureRecord another = *s;
+  another.id += 1;
+  EXPECT_EQ(features_.convert(*admitted, another, grid, FillRule::kNonZero).status().code(), StatusCode::kInternal);
+  Result<Voxelization> v = features_.convert(*admitted, *s, grid, FillRule::kNonZero);
+  ASSERT_TRUE(v.ok()) << v.status().to_string();
+  EXPECT_GT(voxel_count(v->volume), 0);
+  admitted->shrink_to(run_length_bytes(v->volume));
+  EXPECT_EQ(budget_.in_use(), run_length_bytes(v->volume));
+  admitted = Result<FeatureEngine::Admission>(FeatureEngine::Admission());
+  EXPECT_EQ(budget_.in_use(), 0);
 }
 
 TEST_F(FeatureEngineTest, AStoredSurfaceIsDecodedOnceAndShared) {

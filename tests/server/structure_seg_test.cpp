@@ -38,29 +38,44 @@ class StructureSeg : public ::testing::Test {
 };
 
 TEST_F(StructureSeg, ImportedStructuresBecomeOneSegOnTheirSeries) {
-  Result<dicom::WrittenSeg> seg = structure_seg(*store_, features_, imported_, "GTV as SEG");
-  ASSERT_TRUE(seg.ok()) << seg.status().to_string();
-  ASSERT_GT(seg->bytes.size(), 132u);
-  EXPECT_EQ(seg->bytes.substr(128, 4), "DICM");  // a Part 10 file
-  EXPECT_GT(seg->frame_count, 0);
-  EXPECT_FALSE(seg->series_uid.empty());
-  EXPECT_FALSE(seg->sop_instance_uid.empty());
+  Result<BudgetedSeg> written = structure_seg(*store_, features_, budget_, imported_, "GTV as SEG");
+  ASSERT_TRUE(written.ok()) << written.status().to_string();
+  const dicom::WrittenSeg& seg = written->seg;
+  ASSERT_GT(seg.bytes.size(), 132u);
+  EXPECT_EQ(seg.bytes.substr(128, 4), "DICM");  // a Part 10 file
+  EXPECT_GT(seg.frame_count, 0);
+  EXPECT_FALSE(seg.series_uid.empty());
+  EXPECT_FALSE(seg.sop_instance_uid.empty());
+  // The SEG's bytes stay counted in the budget while they are held, and only they.
+  EXPECT_GE(budget_.in_use(), int64_t(seg.bytes.size()));
+  EXPECT_EQ(budget_.in_use(), written->held.bytes());
+  written = Result<BudgetedSeg>(not_found("dropped"));
+  EXPECT_EQ(budget_.in_use(), 0);
+}
+
+TEST_F(StructureSeg, ASegThatCanNeverFitTheBudgetIsRefusedBeforeItIsWritten) {
+  MemoryBudget small(int64_t(64) << 10);
+  FeatureEngine features(*store_, int64_t(1) << 26, small);
+  Result<BudgetedSeg> written = structure_seg(*store_, features, small, imported_, "");
+  EXPECT_EQ(written.status().code(), StatusCode::kResourceExhausted) << written.status().to_string();
+  EXPECT_EQ(small.in_use(), 0);
 }
 
 TEST_F(StructureSeg, NoIdsOrARepeatedIdIsInvalidArgument) {
-  EXPECT_EQ(structure_seg(*store_, features_, {}, "").status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(structure_seg(*store_, features_, budget_, {}, "").status().code(), StatusCode::kInvalidArgument);
   const std::vector<int64_t> twice = {imported_[0], imported_[0]};
-  EXPECT_EQ(structure_seg(*store_, features_, twice, "").status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(structure_seg(*store_, features_, budget_, twice, "").status().code(), StatusCode::kInvalidArgument);
 }
 
 TEST_F(StructureSeg, AnUnknownStructureIsNotFound) {
-  EXPECT_EQ(structure_seg(*store_, features_, {imported_.back() + 100}, "").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(structure_seg(*store_, features_, budget_, {imported_.back() + 100}, "").status().code(),
+            StatusCode::kNotFound);
 }
 
 TEST_F(StructureSeg, AnUploadedStructureHasNoImagesToReferenceAndSaysHowToGetThem) {
   Result<db::AddedStructure> uploaded = store_->add_structure(db::testing::new_structure("P", "S", "uploaded", 1));
   ASSERT_TRUE(uploaded.ok());
-  Result<dicom::WrittenSeg> seg = structure_seg(*store_, features_, {uploaded->structure.id}, "");
+  Result<BudgetedSeg> seg = structure_seg(*store_, features_, budget_, {uploaded->structure.id}, "");
   EXPECT_EQ(seg.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_NE(seg.status().message().find("soiq import"), std::string::npos) << seg.status().message();
 }
