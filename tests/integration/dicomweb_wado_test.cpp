@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dicom/dicom_json_metadata.h"
@@ -106,6 +107,65 @@ TEST_F(DicomwebTest, WhatSoiqCannotSendIsRefusedSayingWhy) {
                  {{"Accept", "multipart/related; type=\"application/dicom\"; transfer-syntax=1.2.840.10008.1.2.4.50"}});
   ASSERT_TRUE(other_syntax);
   EXPECT_EQ(other_syntax->status, 406);
+}
+
+}  // namespace
+}  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+// SEGs written on demand are within the memory budget, from the conversion to the last byte of the
+// answer: with a budget that fits two at a time, many concurrent WADO-RS retrievals and
+// export-segs all succeed (they queue), the budget's peak stays under it, and nothing stays held.
+TEST_F(DicomwebTest, ConcurrentSegRetrievalsAndExportsStayWithinTheBudget) {
+  import("sts/STS_002/dicom/CT");
+  const json series = get("/dicom-web/series?Modality=SEG");
+  ASSERT_EQ(series.size(), 1u);
+  const std::string url = "/dicom-web/studies/" + value(series[0], kStudyUid) + "/series/" + value(series[0], kSeriesUid);
+  Result<v1::ListStructuresResponse> page = client_->list_structures(v1::ListStructuresRequest());
+  ASSERT_TRUE(page.ok() && page->structures_size() == 1);
+  const int64_t id = page->structures(0).id();
+  // One SEG's peak, on a soiqd that has done nothing else (the import's peak is larger).
+  start_http({"--keep-patient-names", "on"});
+  ASSERT_EQ(http_->Get(url.c_str())->status, 200);
+  Result<v1::ServerInfo> alone = client_->server_info();
+  ASSERT_TRUE(alone.ok());
+  const int64_t one = alone->memory_peak_bytes();
+  ASSERT_GT(one, 0);
+  const int64_t budget = 2 * one + one / 2;
+  start_http({"--memory-budget", std::to_string(budget), "--workers", "4"});
+  const long long rss_before = server_->peak_rss_bytes();
+
+  constexpr int kRetrievals = 6, kExports = 3;
+  std::vector<std::thread> clients;
+  std::vector<std::string> failures(kRetrievals + kExports);
+  for (int n = 0; n < kRetrievals; ++n) {
+    clients.emplace_back([&, n] {
+      httplib::Client http("127.0.0.1", server_->http_port());
+      http.set_read_timeout(120, 0);
+      httplib::Result r = http.Get(url.c_str());
+      if (!r || r->status != 200) failures[size_t(n)] = "WADO: " + (r ? r->body : std::string("no answer"));
+    });
+  }
+  for (int n = 0; n < kExports; ++n) {
+    clients.emplace_back([&, n] {
+      client::Client own = connect();
+      v1::ExportSegRequest req;
+      req.add_structure_ids(id);
+      const Status s = own.export_seg(req, dir_.file("export" + std::to_string(n) + ".dcm")).status();
+      if (!s.ok()) failures[size_t(kRetrievals + n)] = "export: " + s.to_string();
+    });
+  }
+  for (std::thread& t : clients) t.join();
+  for (const std::string& f : failures) EXPECT_EQ(f, "");
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  // Nine SEGs at once would have needed 9x one; the budget held them to at most 2.5x.
+  EXPECT_LE(info->memory_peak_bytes(), budget);
+  EXPECT_EQ(info->memory_in_use_bytes(), 0);
+  const long long rss_after = server_->peak_rss_bytes();
+  EXPECT_LT(rss_after - rss_before, budget + (16ll << 20)) << "VmHWM " << rss_before << " -> " << rss_after;
 }
 
 }  // namespace
