@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include "core/geometry/primitives.h"
@@ -88,6 +93,37 @@ TEST(MemoryEstimate, ByteSizesAreReadAndWrittenAsPeopleDo) {
   EXPECT_EQ(human_bytes(15'600'000'000), "15.6 GB");
   EXPECT_EQ(human_bytes(int64_t(1) << 30), "1.07 GB");
   EXPECT_GT(default_memory_budget_bytes(), 0);
+}
+
+// Under ulimit -v the default budget is what the address space has left, halved: work admitted
+// past it would fail to allocate instead of queueing. Measured in a child, whose limit goes with it.
+TEST(MemoryEstimate, TheDefaultBudgetRespectsTheProcessAddressSpaceLimit) {
+  const int64_t unlimited = default_memory_budget_bytes();
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    int64_t vm_pages = 0;
+    std::ifstream("/proc/self/statm") >> vm_pages;
+    const int64_t in_use = vm_pages * sysconf(_SC_PAGE_SIZE);
+    const rlimit limit{rlim_t(in_use + (int64_t(3) << 30)), rlim_t(in_use + (int64_t(3) << 30))};
+    int64_t budget = -1;
+    if (setrlimit(RLIMIT_AS, &limit) == 0) budget = default_memory_budget_bytes();
+    const int64_t out[2] = {budget, in_use};
+    (void)!write(fds[1], out, sizeof out);
+    _exit(0);
+  }
+  close(fds[1]);
+  int64_t got[2] = {0, 0};
+  ASSERT_EQ(read(fds[0], got, sizeof got), ssize_t(sizeof got));
+  close(fds[0]);
+  waitpid(child, nullptr, 0);
+  ASSERT_GT(got[0], 0) << "setrlimit failed in the child";
+  // 3 GiB left, less 1.1 GiB for the threads to come, halved: about 0.94 GiB, whatever the RAM.
+  EXPECT_LE(got[0], (int64_t(3) << 30) / 2);
+  EXPECT_GE(got[0], int64_t(900) << 20);
+  EXPECT_LE(got[0], unlimited);
 }
 
 }  // namespace
