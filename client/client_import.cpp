@@ -11,8 +11,8 @@ namespace soiq::client {
 
 namespace v1 = soiq::v1;
 
-Result<v1::ImportDicomResponse> Client::import_dicom(const std::vector<std::string>& paths,
-                                                     const ProgressFn& progress) const {
+Result<v1::ImportDicomResponse> Client::import_dicom(const std::vector<std::string>& paths, const ProgressFn& progress,
+                                                     bool replace) const {
   SOIQ_ASSIGN_OR_RETURN(const std::vector<FileToSend> files, dicom_files_to_send(paths));
   int64_t total = 0;
   for (const FileToSend& f : files) total += f.size_bytes;
@@ -24,6 +24,11 @@ Result<v1::ImportDicomResponse> Client::import_dicom(const std::vector<std::stri
   std::string buffer(chunk, '\0');
   int64_t sent = 0;
   bool open = true;
+  if (replace) {
+    v1::ImportDicomRequest options;
+    options.mutable_options()->set_replace(true);
+    open = writer->Write(options);
+  }
   Status local = ok_status();
   for (const FileToSend& f : files) {
     std::ifstream in(f.local_path, std::ios::binary);

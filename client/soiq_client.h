@@ -91,9 +91,10 @@ class Client {
 
   // Imports DICOM files and folders (walked recursively, client/dicom_files_to_send.h) through the
   // server's ImportDicom; progress counts bytes. Not retried: an import the server committed
-  // before the connection failed would be stored twice.
+  // before the connection failed would be stored twice. `replace`: content stored under the same
+  // UIDs is replaced (else ALREADY_EXISTS when it differs; soiq.proto ImportOptions).
   Result<soiq::v1::ImportDicomResponse> import_dicom(const std::vector<std::string>& paths,
-                                                     const ProgressFn& progress = {}) const;
+                                                     const ProgressFn& progress = {}, bool replace = false) const;
 
   Result<soiq::v1::ListPatientsResponse> list_patients(const soiq::v1::ListPatientsRequest& request) const;
   Result<soiq::v1::Patient> get_patient(const std::string& patient_id) const;

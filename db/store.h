@@ -41,6 +41,11 @@ struct NewStructure {
   // same voxels on the same grid) is this structure. Nothing is written for it (its source_uid
   // stays the one it was first imported with) and it is returned with `recognised`.
   bool same_content_is_same_structure = false;
+  // False for DICOM (an RT Structure Set ROI or SEG segment, whose source_uid holds its SOP
+  // Instance UID): a UID names one content, so a structure stored under source_uid with another
+  // surface or name is ALREADY_EXISTS naming what differs, unless the caller asks to replace.
+  // The same content is a no-op.
+  bool replace_other_content = true;
 };
 
 struct AddedStructure {
@@ -55,6 +60,10 @@ struct NewSeries {
   StudyRecord study;
   SeriesRecord series;     // sha256 filled by the caller from the blob
   std::string image_blob;  // encoded (db/image_blob.h)
+  // False for DICOM: a series stored under this uid with other voxels or other slice SOP
+  // Instance UIDs is ALREADY_EXISTS naming what differs, unless the caller asks to replace; the
+  // same content is a no-op.
+  bool replace_other_content = true;
 };
 
 // Everything one DICOM import adds (server/app/dicom_import.h), written by import_batch in one

@@ -66,12 +66,16 @@ std::vector<CommandSpec> record_commands() {
        run_upload_image_command},
       {"import",
        CommandGroup::kRemote,
-       {"import PATH... [--format table|json|csv] [--wait]"},
+       {"import PATH... [--format table|json|csv] [--wait] [--replace]"},
        "sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
        "Structure Set ROIs structures on their series' grid; prints what was imported, problems on stderr",
        "Sends DICOM files and folders (recursively) to soiqd: CT, MR and PET series become images, RT "
        "Structure Set ROIs structures on their series' grid. Prints what was imported; problems on stderr.",
-       {rows, wait},
+       {rows,
+        wait,
+        {"--replace", "", "",
+         "replace what soiqd stores under the same DICOM UIDs with the files' content (without it, a series, RT "
+         "Structure Set or SEG stored with other content is refused, naming the UID and what differs)"}},
        {"soiq import data/STS_002/", "soiq import --wait data/STS_002/"},
        run_import_command},
       {"export-seg",

@@ -22,6 +22,7 @@ struct ImportArgs {
   std::vector<std::string> paths;
   std::string format = "table";
   bool wait = false;
+  bool replace = false;
 };
 
 Result<ImportArgs> parse(int argc, char** argv) {
@@ -33,6 +34,8 @@ Result<ImportArgs> parse(int argc, char** argv) {
       SOIQ_RETURN_IF_ERROR(check_row_format(a.format));
     } else if (arg == "--wait") {
       a.wait = true;
+    } else if (arg == "--replace") {
+      a.replace = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       return invalid_argument("unknown option '" + arg + "'");
     } else {
@@ -47,10 +50,13 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
   ProgressBar bar;
   bool sent_all = false;
-  auto r = c.import_dicom(a.paths, [&](int64_t done, int64_t total) {
-    bar.update("sending", done, total);
-    sent_all = done == total;
-  });
+  auto r = c.import_dicom(
+      a.paths,
+      [&](int64_t done, int64_t total) {
+        bar.update("sending", done, total);
+        sent_all = done == total;
+      },
+      a.replace);
   bar.clear();
   if (!r.ok() && interrupted()) {
     // soiqd stores an import only once it has every file, and asks once more just before writing.

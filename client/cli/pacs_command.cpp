@@ -66,6 +66,8 @@ Result<PacsArgs> parse(int argc, char** argv) {
       SOIQ_RETURN_IF_ERROR(parse_find_option(argc, argv, i, a.find));
     } else if (a.verb == "pull" && arg == "--study") {
       SOIQ_ASSIGN_OR_RETURN(*a.pull.add_study_uids(), option_value(argc, argv, i));
+    } else if (a.verb == "pull" && arg == "--replace") {
+      a.pull.set_replace(true);
     } else if (a.verb == "pull" && arg == "--patient") {
       SOIQ_ASSIGN_OR_RETURN(*a.pull.mutable_patient_id(), option_value(argc, argv, i));
     } else if (a.verb == "push" && arg == "--description") {

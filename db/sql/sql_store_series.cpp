@@ -1,6 +1,7 @@
 // The series half of SqlStore::import_batch: the image blob stored once per
 // sha256 and the series inserted or replaced in place, never moved to another patient. One write
 // transaction, so any error leaves the database as it was.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <utility>
@@ -25,7 +26,7 @@ Status insert_image_blob(SqlSession& c, const NewSeries& s) {
 }
 
 constexpr char kSeriesOwnerSql[] = R"sql(
-  SELECT se.image_sha256, st.patient_pk, p.patient_id
+  SELECT se.image_sha256, st.patient_pk, p.patient_id, se.slice_instance_uids
   FROM series se
   JOIN studies st ON st.pk = se.study_pk
   JOIN patients p ON p.pk = st.patient_pk
@@ -35,7 +36,22 @@ constexpr char kSeriesOwnerSql[] = R"sql(
 struct StoredSeries {
   std::string image_sha256;
   int64_t patient_pk = 0;
+  std::string slice_instance_uids;  // as stored (join_uid_list)
 };
+
+// What differs between the stored series and `s` ("" when they are the same content).
+std::string what_differs(const StoredSeries& old, const NewSeries& s) {
+  const std::string sent = join_uid_list(s.series.slice_instance_uids);
+  if (old.slice_instance_uids != sent) {
+    return "its slices have other SOP Instance UIDs (" +
+           std::to_string(split_uid_list(old.slice_instance_uids).size()) + " slices stored, " +
+           std::to_string(s.series.slice_instance_uids.size()) + " sent)";
+  }
+  if (old.image_sha256 != s.series.sha256)
+    return "its voxels differ (image sha256 " + old.image_sha256.substr(0, 12) + "... stored, " +
+           s.series.sha256.substr(0, 12) + "... sent)";
+  return "";
+}
 
 // FAILED_PRECONDITION when the series is stored under another patient than `patient_pk`.
 Result<std::optional<StoredSeries>> stored_series(SqlSession& c, const NewSeries& s, int64_t patient_pk) {
@@ -43,7 +59,7 @@ Result<std::optional<StoredSeries>> stored_series(SqlSession& c, const NewSeries
   q.bind(1, s.series.series_uid);
   SOIQ_ASSIGN_OR_RETURN(const bool found, q.step());
   if (!found) return std::optional<StoredSeries>();
-  StoredSeries stored{q.text(0), q.int64(1)};
+  StoredSeries stored{q.text(0), q.int64(1), q.text(3)};
   // A series UID is the image's identity: another patient's upload that names it is a mistake
   // (or an attack), never a reason to move the images.
   if (stored.patient_pk != patient_pk) {
@@ -101,6 +117,14 @@ Result<bool> insert_series(SqlSession& c, const NewSeries& s) {
   SOIQ_ASSIGN_OR_RETURN(const StudyKeys keys, upsert_patient_and_study(c, s.patient, s.study));
   SOIQ_RETURN_IF_ERROR(insert_image_blob(c, s));
   SOIQ_ASSIGN_OR_RETURN(const std::optional<StoredSeries> old, stored_series(c, s, keys.patient_pk));
+  if (old && !s.replace_other_content) {
+    const std::string differs = what_differs(*old, s);
+    if (differs.empty()) return true;  // the same content: nothing to write
+    return Status(StatusCode::kAlreadyExists,
+                  "series '" + s.series.series_uid + "' is stored with other content: " + differs +
+                      "; a DICOM UID names one content: send the series as stored, or replace it (soiq import "
+                      "--replace)");
+  }
   SOIQ_RETURN_IF_ERROR(upsert_series_row(c, s.series, keys.study_pk));
   if (old && old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, old->image_sha256));
   // A new image, or new pixels: the study's structures have intensities to compute on it.

@@ -43,7 +43,7 @@ Result<bool> insert_surface(SqlSession& c, const NewStructure& s) {
 }
 
 constexpr char kStructureBySourceUidSql[] = R"sql(
-  SELECT s.id, s.surface_sha256, st.patient_pk, p.patient_id
+  SELECT s.id, s.surface_sha256, st.patient_pk, p.patient_id, s.name
   FROM structures s
   JOIN studies st ON st.pk = s.study_pk
   JOIN patients p ON p.pk = st.patient_pk
@@ -70,6 +70,23 @@ Result<std::optional<int64_t>> replace_by_source_uid(SqlSession& c, const NewStr
     return failed_precondition("structure " + std::to_string(id) + " (source '" + s.source_uid +
                                "') belongs to patient '" + q.text(3) + "', not to '" + s.patient.patient_id +
                                "': an import never moves a structure to another patient");
+  }
+  if (!s.replace_other_content) {
+    const std::string old_name = q.text(4);
+    if (old_sha == s.surface.sha256 && old_name == s.name) return std::optional<int64_t>(id);  // the same: a no-op
+    const size_t slash = s.source_uid.rfind('/');
+    const std::string what =
+        slash == std::string::npos
+            ? "'" + s.source_uid + "'"
+            : "ROI " + s.source_uid.substr(slash + 1) + " of DICOM object '" + s.source_uid.substr(0, slash) + "'";
+    const std::string differs = old_sha != s.surface.sha256
+                                    ? "another surface (sha256 " + old_sha.substr(0, 12) + "... stored, " +
+                                          s.surface.sha256.substr(0, 12) + "... sent)"
+                                    : "another name ('" + old_name + "' stored, '" + s.name + "' sent)";
+    return Status(StatusCode::kAlreadyExists,
+                  what + " is stored as structure " + std::to_string(id) + " with " + differs +
+                      "; a DICOM UID names one content: send the object as stored, or replace it (soiq import "
+                      "--replace)");
   }
   SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpdateStructureSql));
   up.bind(1, id);

@@ -52,6 +52,12 @@ Result<ReceivedFiles> receive_dicom_files(grpc::ServerReaderInterface<v1::Import
   bool open = false;
   v1::ImportDicomRequest part;
   while (reader.Read(&part)) {
+    if (part.part_case() == v1::ImportDicomRequest::kOptions) {
+      if (open || out.options_given) return invalid_argument("DICOM import options must come once, before any file");
+      out.options_given = true;
+      out.replace = part.options().replace();
+      continue;
+    }
     if (part.part_case() == v1::ImportDicomRequest::kFile) {
       if (open) SOIQ_RETURN_IF_ERROR(finish(current));
       const v1::ImportFileHeader& h = part.file();

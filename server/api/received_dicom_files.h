@@ -23,6 +23,8 @@ namespace soiq::server {
 struct ReceivedFiles {
   std::vector<std::string> paths;  // relative, in the order received
   int64_t bytes = 0;
+  bool options_given = false;
+  bool replace = false;  // ImportOptions.replace
 };
 
 Result<ReceivedFiles> receive_dicom_files(grpc::ServerReaderInterface<v1::ImportDicomRequest>& reader,

@@ -11,6 +11,7 @@
 #include "db/validate_records.h"
 #include "dicom/import_dicom.h"
 #include "server/app/dicom_import_bytes.h"
+#include "server/util/log.h"
 
 namespace soiq::server {
 namespace {
@@ -103,7 +104,7 @@ struct Planned {
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names,
+Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names, bool replace,
                      DicomImportResult& r) {
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
@@ -126,6 +127,7 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
     }
     s.series.slice_instance_uids = image.slice_sop_instance_uids;
     s.image_blob = std::move(encoded.blob);
+    s.replace_other_content = replace;
     out.batch.series.push_back(std::move(s));
   }
   for (const dicom::ImportedStructureSet& set : in.structure_sets) {
@@ -157,6 +159,7 @@ Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relat
       // double every cohort count. RT Structure Sets keep replace-by-source-uid only: their ROIs
       // are the originals that SEGs are exported from.
       s.same_content_is_same_structure = set.segmentation;
+      s.replace_other_content = replace;
       SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(roi.surface));
       s.surface = encoded.info;
       s.surface_blob = std::move(encoded.blob);
@@ -188,7 +191,7 @@ void list_records(const db::ImportBatch& batch, DicomImportResult& r) {
 Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
-                                              bool keep_patient_names) {
+                                              bool keep_patient_names, bool replace) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
   // Held to the end: the decoded images and their blobs live until the write is done.
@@ -211,7 +214,7 @@ Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::strin
     add_problem(r, "", StatusCode::kInvalidArgument,
                 std::to_string(in.scan.non_dicom_skipped) + " of the files sent are not DICOM and were skipped");
   }
-  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, keep_patient_names, r));
+  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, keep_patient_names, replace, r));
   if (planned.batch.series.empty() && planned.batch.structures.empty()) {
     const std::string why = !r.problems.empty() && !r.problems[0].path.empty()
                                 ? r.problems[0].path + ": " + r.problems[0].message
@@ -225,6 +228,18 @@ Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::strin
   // gets nothing stored, as it is told.
   if (stop) SOIQ_RETURN_IF_ERROR(stop());
   SOIQ_ASSIGN_OR_RETURN(const db::ImportedBatch stored, store.import_batch(planned.batch));
+  // What an import asked to replace, it may have replaced: a DICOM UID's content changed, which an
+  // operator must be able to find later.
+  if (replace) {
+    for (size_t i = 0; i < stored.series_replaced.size(); ++i)
+      if (stored.series_replaced[i])
+        log_event("warning", {{"event", "dicom_replaced"}, {"series", planned.batch.series[i].series.series_uid}});
+    for (const db::AddedStructure& s : stored.structures)
+      if (s.replaced)
+        log_event("warning", {{"event", "dicom_replaced"},
+                              {"structure", std::to_string(s.structure.id)},
+                              {"source", s.structure.source_uid}});
+  }
   list_records(planned.batch, r);
   for (const auto& s : planned.batch.series) r.series.push_back(s.series);
   for (size_t i = 0; i < stored.structures.size(); ++i) {

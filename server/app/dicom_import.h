@@ -79,6 +79,6 @@ struct DicomImportResult {
 Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
-                                              bool keep_patient_names = false);
+                                              bool keep_patient_names = false, bool replace = false);
 
 }  // namespace soiq::server

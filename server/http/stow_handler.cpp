@@ -35,6 +35,7 @@ constexpr int kMaxWarningHeaders = 20;
 
 // PS3.4 Annex GG / PS3.18 Table 10.5.3-2 reasons.
 constexpr int kProcessingFailure = 0x0110;
+constexpr int kDuplicateSopInstance = 0x0111;  // stored under this UID with other content
 constexpr int kSopClassNotSupported = 0x0122;
 constexpr int kOutOfResources = 0xA700;
 constexpr int kStudyMismatch = 0xA900;  // "data set does not match": not of the study the URL names
@@ -207,7 +208,18 @@ Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, co
           [] { return ok_status(); }, c.engines.config.keep_patient_names);
     };
     Result<DicomImportResult> imported = c.engines.pool.call(work);
-    if (!imported.ok()) {
+    if (!imported.ok() && imported.status().code() == StatusCode::kAlreadyExists) {
+      // Nothing was stored: the parts whose UIDs are stored with other content are duplicates, the
+      // others failed with them (an import is stored whole or not at all).
+      const std::string& why = imported.status().message();
+      for (Part& p : parts) {
+        if (p.failure != 0) continue;
+        const bool named = why.find("'" + p.series + "'") != std::string::npos ||
+                           why.find("'" + p.sop_instance + "'") != std::string::npos;
+        p.failure = named ? kDuplicateSopInstance : kProcessingFailure;
+      }
+      warn(why);
+    } else if (!imported.ok()) {
       // Nothing was stored: every part failed, for the reason the import gives.
       if (imported.status().code() != StatusCode::kInvalidArgument &&
           imported.status().code() != StatusCode::kResourceExhausted)

@@ -140,3 +140,33 @@ TEST_F(DicomwebStowTest, BadRequestsGetTheirStatus) {
 
 }  // namespace
 }  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+// A study sent again with one slice's pixels changed: the stored series keeps its content, each
+// part of that series fails as a duplicate SOP instance (0111), and the Warning says what differs.
+TEST_F(DicomwebStowTest, InstancesStoredWithOtherContentAreDuplicatesAndNothingChanges) {
+  std::vector<std::string> slices = dicom_files("sts/STS_002/dicom/CT/image");
+  httplib::Result first = post("/dicom-web/studies", slices);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200) << first->body;
+  httplib::Result same = post("/dicom-web/studies", slices);
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->status, 200) << same->body;  // the same content: stored already, a no-op
+  slices[10].back() = char(slices[10].back() ^ 0x01);
+  httplib::Result other = post("/dicom-web/studies", slices);
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 409) << other->body;
+  const json response = json::parse(other->body);
+  ASSERT_EQ(count(response, "00081198"), slices.size());
+  for (const json& failed : response["00081198"]["Value"]) EXPECT_EQ(failed["00081197"]["Value"][0], 0x0111);
+  EXPECT_NE(other->get_header_value("Warning").find("voxels differ"), std::string::npos)
+      << other->get_header_value("Warning");
+  Result<v1::ServerInfo> info = client_->server_info();
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->series(), 1);
+}
+
+}  // namespace
+}  // namespace soiq::testing

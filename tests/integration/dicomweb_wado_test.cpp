@@ -122,7 +122,8 @@ TEST_F(DicomwebTest, ConcurrentSegRetrievalsAndExportsStayWithinTheBudget) {
   import("sts/STS_002/dicom/CT");
   const json series = get("/dicom-web/series?Modality=SEG");
   ASSERT_EQ(series.size(), 1u);
-  const std::string url = "/dicom-web/studies/" + value(series[0], kStudyUid) + "/series/" + value(series[0], kSeriesUid);
+  const std::string url =
+      "/dicom-web/studies/" + value(series[0], kStudyUid) + "/series/" + value(series[0], kSeriesUid);
   Result<v1::ListStructuresResponse> page = client_->list_structures(v1::ListStructuresRequest());
   ASSERT_TRUE(page.ok() && page->structures_size() == 1);
   const int64_t id = page->structures(0).id();
