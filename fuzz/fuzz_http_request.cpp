@@ -38,11 +38,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Beast reads from a buffer that keeps what it did not consume, as the connection's does.
     while (at < end && !ec && !parser.is_done()) {
       const size_t used = parser.put(boost::asio::buffer(bytes.data() + at, end - at), ec);
+      at += used;  // consumed even when it asks for more; the rest is presented again
       if (ec == boost::beast::http::error::need_more) {
         ec = {};
         break;
       }
-      at += used;
       if (!ec && parser.is_header_done() && !body_accepted) {
         body_accepted = true;
         parser.accept_body(kMaxBody, "the fuzz limit", [&](std::string_view piece) {

@@ -203,7 +203,8 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       return write(std::move(r));
     }
     route_ = shared_->router.find(request_.method, request_.path, request_.matches);
-    if (route_ == nullptr) return refuse(404, not_found("no such resource: " + request_.method + " " + request_.path));
+    if (route_ == nullptr)  // the connection stays open unless a body was sent with the request
+      return write(error_reply(404, not_found("no such resource: " + request_.method + " " + request_.path)));
     if (!has_body) return dispatch();
     const std::uint64_t announced = parser_->content_length().value_or(0);
     if (route_->max_body_bytes == 0 || announced > std::uint64_t(route_->max_body_bytes)) {

@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "tests/integration/pacs_service_fixture.h"
@@ -219,6 +221,42 @@ TEST_F(PacsServiceTest, PacsThatRefusesTheAssociationGivesItsReason) {
   EXPECT_TRUE(contains(r.status().message(), "Called AE Title Not Recognized")) << r.status().message();
   EXPECT_EQ(pull_sts().status().code(), StatusCode::kPermissionDenied);
   EXPECT_EQ(stored_structures(), 0);
+}
+
+}  // namespace
+}  // namespace soiq::testing
+
+namespace soiq::testing {
+namespace {
+
+// A pull of a study whose structure set soiqd stores with another ROI name (imported from a copy
+// renamed since): refused as ALREADY_EXISTS naming the object, nothing stored; with replace, the
+// PACS's content replaces it.
+TEST_F(PacsServiceTest, APullOfObjectsStoredWithOtherContentIsRefusedUnlessReplaced) {
+  std::ifstream in(data("sts/STS_002/dicom/CT/mask/RS.dcm"), std::ios::binary);
+  std::string rs((std::istreambuf_iterator<char>(in)), {});
+  for (size_t at = rs.find("GTV_Mass"); at != std::string::npos; at = rs.find("GTV_Mass", at)) rs[at + 4] = 'Z';
+  const std::string renamed = dir_.file("RS_renamed.dcm");
+  std::ofstream(renamed, std::ios::binary) << rs;
+  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT/image"), renamed}).ok());
+  const int64_t before = stored_structures();
+
+  Result<v1::ImportDicomResponse> refused = pull_sts();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kAlreadyExists) << refused.status().to_string();
+  EXPECT_TRUE(contains(refused.status().message(), "another name ('GTV_Zass_CT' stored, 'GTV_Mass_CT' sent)"))
+      << refused.status().message();
+  EXPECT_EQ(stored_structures(), before);
+
+  v1::PacsPullRequest replace;
+  replace.add_study_uids(kStsStudyUid);
+  replace.set_replace(true);
+  Result<v1::ImportDicomResponse> replaced = client_->pacs_pull(replace);
+  ASSERT_TRUE(replaced.ok()) << replaced.status().to_string();
+  const v1::ImportedStructure* ct = on_modality(*replaced, "CT");
+  ASSERT_NE(ct, nullptr);
+  EXPECT_EQ(ct->structure().name(), "GTV_Mass_CT");
+  EXPECT_TRUE(contains(server_->log(), "event=dicom_replaced structure="));
 }
 
 }  // namespace

@@ -79,6 +79,8 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
       {parse({"--db"}), "--db"},
       {parse({"--http-port-file", "p"}), "--http"},
       {parse({"--keep-patient-names", "yes"}), "--keep-patient-names"},
+      {parse({"--http-timeout", "0"}), "--http-timeout"},
+      {parse({"--http-max-connections", "none"}), "--http-max-connections"},
   };
   for (const auto& [p, name] : cases) {
     EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
@@ -92,7 +94,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 22u);
+  EXPECT_EQ(flags.size(), 24u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
