@@ -45,8 +45,9 @@ constexpr OptionText kOptionTexts[] = {
     {"--port-file", "PATH", "none", "write the bound port there once soiqd serves"},
     {"--max-upload-bytes", "N", "268435456 (256 MiB)", "the largest upload or import soiqd accepts"},
     {"--max-grid-voxels", "N", "500000000", "the largest grid of a conversion or an image"},
-    {"--memory-budget", "BYTES", "half the RAM (or of the cgroup's limit)",
-     "the peak bytes all conversions, features and imports may hold at once (8G, 512M or bytes)"},
+    {"--memory-budget", "BYTES", "half the RAM, the cgroup's limit or what ulimit -v/-d leave",
+     "the peak bytes all conversions, features, imports, uploads and SEGs being written or sent may hold at "
+     "once (8G, 512M or bytes)"},
     {"--workers", "N", "the hardware threads", "conversions and feature computations at once"},
     {"--query-result-cap", "N", "10000", "the most rows one query returns"},
     {"--stage1-cap", "N", "100000", "the most candidate structures stage 1 of a query may select"},
