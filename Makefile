@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps build run demo test test-sanitize fuzz bench format clean
+.PHONY: deps build run demo test test-sanitize fuzz soak bench format clean
 
 deps:
 	scripts/install-deps
@@ -38,6 +38,12 @@ fuzz: deps
 	cmake -C fuzz/config.cmake -S . -B build-fuzz >/dev/null
 	cmake --build build-fuzz --target soiq_fuzzers -j $(JOBS)
 	fuzz/run build-fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
+
+# A soak of mixed load (uploads, imports, STOW, WADO, queries, deletes) against a real soiqd for
+# SOAK_MINUTES (30): fails on any error or on memory that keeps growing (scripts/soak).
+SOAK_MINUTES ?= 30
+soak: build
+	scripts/soak $(BUILD) $(SOAK_MINUTES)
 
 # Benchmarks build apart (build-bench) with -march=x86-64-v2, as BENCHMARKS.md's figures assume.
 bench:
