@@ -9,71 +9,20 @@
 
 #include "core/voxelize/memory_estimate.h"
 #include "db/deflate.h"
-#include "db/delta_planes.h"
+#include "tests/db/surface_blob_testing.h"
 
 namespace soiq::db {
 namespace {
 
-// Bitwise equality: == on doubles would accept -0.0 for +0.0.
-bool same_bits(const TriangleMesh& a, const TriangleMesh& b) {
-  return a.vertices_mm.size() == b.vertices_mm.size() && a.triangles == b.triangles &&
-         (a.vertices_mm.empty() ||
-          std::memcmp(a.vertices_mm.data(), b.vertices_mm.data(), a.vertices_mm.size() * sizeof(Vec3)) == 0);
-}
-
-TriangleMesh random_mesh(std::mt19937_64& rng, size_t nv, size_t nt) {
-  // Ordinary values mixed with the ones a lossy encoding would get wrong.
-  const double specials[] = {0.0,
-                             -0.0,
-                             std::numeric_limits<double>::denorm_min(),
-                             -std::numeric_limits<double>::denorm_min(),
-                             std::numeric_limits<double>::min() / 3,
-                             std::numeric_limits<double>::max(),
-                             -std::numeric_limits<double>::max(),
-                             1e300,
-                             0.1,
-                             1.0 / 3.0};
-  std::uniform_real_distribution<double> coord(-500, 500);
-  std::uniform_int_distribution<int> pick(0, 19);
-  TriangleMesh m;
-  for (size_t i = 0; i < nv; ++i) {
-    Vec3 v;
-    for (double& x : v) {
-      const int k = pick(rng);
-      x = k < 10 ? specials[k] : coord(rng);
-    }
-    m.vertices_mm.push_back(v);
-  }
-  std::uniform_int_distribution<int32_t> index(0, int32_t(nv) - 1);
-  for (size_t t = 0; t < nt; ++t) m.triangles.push_back({index(rng), index(rng), index(rng)});
-  return m;
-}
-
-// Builds a blob from canonical bytes written by hand, to reach the checks behind zlib.
-std::string blob_of(const std::string& canonical) { return *deflate_bytes(canonical.data(), canonical.size()); }
-
-std::string header(uint32_t version, uint64_t nv, uint64_t nt) {
-  std::string h("SOIQSURF", 8);
-  h.append(reinterpret_cast<const char*>(&version), 4);
-  h.append(4, '\0');
-  h.append(reinterpret_cast<const char*>(&nv), 8);
-  h.append(reinterpret_cast<const char*>(&nt), 8);
-  return h;
-}
-
-// Version 1's canonical bytes of `m`: what the sha256 is taken over, and deflated, a version 1 blob.
-std::string canonical_bytes(const TriangleMesh& m) {
-  std::string c = header(1, m.vertices_mm.size(), m.triangles.size());
-  c.append(reinterpret_cast<const char*>(m.vertices_mm.data()), m.vertices_mm.size() * sizeof(Vec3));
-  c.append(reinterpret_cast<const char*>(m.triangles.data()), m.triangles.size() * 12);
-  return c;
-}
+using testing::blob_of;
+using testing::canonical_bytes;
+using testing::header;
+using testing::random_mesh;
+using testing::same_bits;
+using testing::smooth_sphere;
+using testing::version2_of;
 
 void expect_data_loss(const std::string& blob, const std::string& phrase);
-
-// The version 2 blob of the same mesh: version 3 without its checksum, under version 2's magic
-// (db/surface_blob.cpp: magic, CRC-32, then what version 2 holds after its magic).
-std::string version2_of(const std::string& v3) { return std::string("SOIQSRF2", 8) + v3.substr(12); }
 
 TEST(SurfaceBlob, RandomMeshesRoundTripBitwise) {
   std::mt19937_64 rng(7);
@@ -237,21 +186,7 @@ TEST(SurfaceBlob, MeshesAroundBlockAndGroupBoundariesRoundTripBitwise) {
 // A smooth surface (neighbouring vertices close, corners near each other) is what the codec is
 // for: it must come out smaller than version 1's zlib of the same mesh.
 TEST(SurfaceBlob, ASmoothSurfaceIsSmallerThanItsVersion1Blob) {
-  TriangleMesh m;
-  const int rings = 120, segments = 240;
-  for (int r = 0; r <= rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const double th = 3.14159265358979 * r / rings, ph = 2 * 3.14159265358979 * s / segments;
-      m.vertices_mm.push_back({20 * std::sin(th) * std::cos(ph), 20 * std::sin(th) * std::sin(ph), 20 * std::cos(th)});
-    }
-  }
-  for (int r = 0; r < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      m.triangles.push_back({a, b, a + segments});
-      m.triangles.push_back({b, b + segments, a + segments});
-    }
-  }
+  const TriangleMesh m = smooth_sphere(120);
   auto e = encode_surface(m);
   ASSERT_TRUE(e.ok());
   const std::string v1 = blob_of(canonical_bytes(m));
@@ -288,118 +223,6 @@ TEST(SurfaceBlob, StoredIndexOutOfRangeIsDataLoss) {
   const uint32_t idx[3] = {0, 0, 0xffffffffu};
   canonical.append(reinterpret_cast<const char*>(idx), 12);
   expect_data_loss(blob_of(canonical), "refers to vertex 4294967295");
-}
-
-// --- version 3: a CRC-32 over every stored byte ------------------------------------------------
-
-TEST(SurfaceBlob, NewBlobsAreVersion3AndTheVersion2BlobOfTheSameMeshStillDecodes) {
-  std::mt19937_64 rng(21);
-  const TriangleMesh m = random_mesh(rng, 200, 300);
-  auto e = encode_surface(m);
-  ASSERT_TRUE(e.ok());
-  EXPECT_EQ(e->blob.substr(0, 8), "SOIQSRC3");
-  EXPECT_EQ(surface_blob_version(e->blob), 3);
-  const std::string v2 = version2_of(e->blob);
-  EXPECT_EQ(surface_blob_version(v2), 2);
-  auto d = decode_surface(v2);
-  ASSERT_TRUE(d.ok()) << d.status().to_string();
-  EXPECT_TRUE(same_bits(m, *d));
-  EXPECT_EQ(surface_blob_version(blob_of(canonical_bytes(m))), 1);
-}
-
-TEST(SurfaceBlob, TheShaOfAMeshIsTheOneItsEncodingGivesWithoutEncodingIt) {
-  std::mt19937_64 rng(22);
-  const TriangleMesh m = random_mesh(rng, 50, 80);
-  auto e = encode_surface(m);
-  ASSERT_TRUE(e.ok());
-  EXPECT_EQ(surface_sha256(m), e->info.sha256);
-  EXPECT_EQ(surface_sha256(m), sha256_hex(canonical_bytes(m).data(), canonical_bytes(m).size()));
-}
-
-// Decodes `blob` with bit `bit` of byte `at` flipped (and flips it back): DATA_LOSS, never a mesh,
-// and past the magic, the checksum is what says so.
-void expect_flip_refused(std::string& blob, size_t at, int bit) {
-  blob[at] = char(blob[at] ^ (1 << bit));
-  auto d = decode_surface(blob);
-  blob[at] = char(blob[at] ^ (1 << bit));
-  ASSERT_FALSE(d.ok()) << "byte " << at << " bit " << bit << " decoded to a mesh";
-  EXPECT_EQ(d.status().code(), StatusCode::kDataLoss) << d.status().to_string();
-  if (at >= 8) {
-    EXPECT_TRUE(d.status().message().find("checksum mismatch") != std::string::npos) << d.status().message();
-  }
-}
-
-TEST(SurfaceBlob, EveryFlippedBitOfASmallVersion3BlobIsDataLoss) {
-  std::mt19937_64 rng(23);
-  auto e = encode_surface(random_mesh(rng, 12, 20));
-  ASSERT_TRUE(e.ok());
-  std::string blob = e->blob;
-  for (size_t at = 0; at < blob.size(); ++at)
-    for (int bit = 0; bit < 8; ++bit) expect_flip_refused(blob, at, bit);
-  EXPECT_TRUE(decode_surface(blob).ok());  // every bit flipped back
-}
-
-// A smooth sphere of `rings` x 240 vertices: its planes compress, so its blocks are LZ4's.
-TriangleMesh smooth_sphere(int rings) {
-  const int segments = 240;
-  TriangleMesh m;
-  for (int r = 0; r <= rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const double th = 3.14159265358979 * r / rings, ph = 2 * 3.14159265358979 * s / segments;
-      m.vertices_mm.push_back({20 * std::sin(th) * std::cos(ph), 20 * std::sin(th) * std::sin(ph), 20 * std::cos(th)});
-    }
-  }
-  for (int r = 0; r < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      m.triangles.push_back({a, b, a + segments});
-      m.triangles.push_back({b, b + segments, a + segments});
-    }
-  }
-  return m;
-}
-
-// Meshes of more than one 512 KiB block per plane (65536 float64, 131072 int32), smooth and random
-// (LZ4 blocks), and a small random one whose blocks LZ4 cannot shrink, stored as they are: the case
-// where a flipped bit in a version 2 blob reads as another coordinate. Every bit of the header
-// (magic, checksum, counts), of each block's size word, and of the first, middle and last byte of
-// each block of each plane stream is flipped in turn, and the last byte of the blob.
-TEST(SurfaceBlob, FlippedBitsInEachPartOfVersion3BlobsAreDataLoss) {
-  std::mt19937_64 rng(24);
-  int lz4_blocks = 0, stored_blocks = 0, planes_of_several_blocks = 0;
-  for (const TriangleMesh& m : {smooth_sphere(300), random_mesh(rng, 70000, 140000), random_mesh(rng, 5, 3)}) {
-    auto e = encode_surface(m);
-    ASSERT_TRUE(e.ok());
-    std::string blob = e->blob;
-    for (size_t at = 0; at < 28; ++at)
-      for (int bit = 0; bit < 8; ++bit) expect_flip_refused(blob, at, bit);
-    size_t at = 28;
-    for (int plane = 0; plane < 6; ++plane) {
-      const size_t count = plane < 3 ? m.vertices_mm.size() : m.triangles.size();
-      const size_t per_block = kBlockBytes / (plane < 3 ? 8 : 4);
-      planes_of_several_blocks += count > per_block;
-      for (size_t from = 0; from < count; from += per_block) {
-        uint32_t header = 0;
-        ASSERT_LE(at + 4, blob.size());
-        std::memcpy(&header, blob.data() + at, 4);
-        const size_t size = header & 0x7fffffffu;
-        ++(header >> 31 ? stored_blocks : lz4_blocks);
-        for (size_t b = at; b < at + 4; ++b)
-          for (int bit = 0; bit < 8; ++bit) expect_flip_refused(blob, b, bit);
-        for (const size_t b : {at + 4, at + 4 + size / 2, at + 3 + size})
-          for (int bit = 0; bit < 8; ++bit) expect_flip_refused(blob, b, bit);
-        at += 4 + size;
-      }
-    }
-    EXPECT_EQ(at, blob.size()) << "the walk over the blocks must end where the blob does";
-    for (int bit = 0; bit < 8; ++bit) expect_flip_refused(blob, blob.size() - 1, bit);
-    auto d = decode_surface(blob);
-    ASSERT_TRUE(d.ok()) << d.status().to_string();
-    EXPECT_TRUE(same_bits(m, *d));
-  }
-  EXPECT_EQ(planes_of_several_blocks, 12);  // every plane of both large meshes
-  EXPECT_GT(lz4_blocks, 0);
-  EXPECT_GT(stored_blocks, 0);
 }
 
 }  // namespace
