@@ -62,19 +62,22 @@ bool has_planes_magic(const std::string& blob) {
 
 bool is_deflated_image_blob(const std::string& blob) { return !has_planes_magic(blob); }
 
+std::string image_sha256(const Image& image) {
+  Sha256 hasher;
+  const std::string text = canonical_geometry_text(image.geometry);
+  hasher.update(text.data(), text.size());
+  hasher.update(image.voxels.data(), image.voxels.size() * sizeof(float));
+  return hasher.hex_digest();
+}
+
 Result<EncodedImage> encode_image(const Image& image) {
   const auto& dims = image.geometry.dims;
   if (dims[0] < 0 || dims[1] < 0 || dims[2] < 0 || image.voxels.size() != size_t(image.geometry.voxel_count())) {
     return invalid_argument("image has " + std::to_string(image.voxels.size()) + " voxels but its grid is " +
                             describe(image.geometry));
   }
-  const size_t bytes = image.voxels.size() * sizeof(float);
   EncodedImage out;
-  Sha256 hasher;
-  const std::string text = canonical_geometry_text(image.geometry);
-  hasher.update(text.data(), text.size());
-  hasher.update(image.voxels.data(), bytes);
-  out.sha256 = hasher.hex_digest();
+  out.sha256 = image_sha256(image);
   out.blob.assign(kPlanesMagic, sizeof kPlanesMagic);
   const uint32_t sum = voxel_checksum(image.voxels);
   out.blob.append(reinterpret_cast<const char*>(&sum), sizeof sum);

@@ -8,6 +8,8 @@
 //
 // decode_image(encode_image(img).blob, img.geometry) == img exactly.
 // Errors: DATA_LOSS for a truncated or corrupt blob or one whose size does not match the geometry.
+// Every version is checked on decode: version 2 by its own Adler-32 of the voxels ("checksum
+// differs"), version 1 by the Adler-32 of its zlib stream.
 
 #include <string>
 
@@ -26,5 +28,9 @@ Result<Image> decode_image(const std::string& blob, const ImageGeometry& geometr
 
 // True for a version-1 (zlib) blob.
 bool is_deflated_image_blob(const std::string& blob);
+
+// The sha256 of the image (EncodedImage::sha256) without encoding it: what soiq-admin verify
+// checks a decoded blob against.
+std::string image_sha256(const Image& image);
 
 }  // namespace soiq::db

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <string_view>
 
 #include "core/voxelize/memory_estimate.h"
+#include "db/crc32.h"
 #include "db/deflate.h"
 #include "db/delta_planes.h"
+#include "db/sha256.h"
 
 namespace soiq::db {
 namespace {
@@ -43,17 +47,29 @@ T get(const std::string& in, size_t at) {
 // (delta_planes.h). Neighbouring vertices share their high bytes, and corners their neighbours'
 // indices, so the streams are mostly zero runs; LZ4 decodes them at memory speed.
 constexpr char kPlanesMagic[8] = {'S', 'O', 'I', 'Q', 'S', 'R', 'F', '2'};
-constexpr size_t kPlanesHeaderSize = 8 + 8 + 8;
+// Version 3: version 2 with the CRC-32 (crc32.h) of every byte after it, right after the magic:
+// magic, checksum, counts, streams. A block LZ4 could not shrink is stored as is, and a flipped bit
+// in a coordinate's high bytes decodes to a vertex elsewhere, so without it a damaged blob can
+// decode to a plausible mesh. The magic differs from version 2's in three bits ('C' for checked,
+// '3'), so no flipped bit turns a version 3 blob into an unchecked version 2 one; a version 3 blob
+// with any other damage to its magic reads as zlib, which refuses it at its first byte.
+constexpr char kCheckedMagic[8] = {'S', 'O', 'I', 'Q', 'S', 'R', 'C', '3'};
+constexpr size_t kChecksumAt = 8;
+constexpr size_t kCheckedHeaderSize = 8 + 4 + 8 + 8;
 // LZ4 expands at most 255-fold: a header claiming more than that of the blob's size is corrupt,
 // and is refused before anything that large is allocated.
 constexpr size_t kMaxExpansion = 255;
 
+bool has_magic(std::string_view blob, const char (&magic)[8]) {
+  return blob.size() >= sizeof magic && std::memcmp(blob.data(), magic, sizeof magic) == 0;
+}
+
 std::string encode_planes(const TriangleMesh& mesh) {
   const size_t nv = mesh.vertices_mm.size(), nt = mesh.triangles.size();
-  std::string out(kPlanesHeaderSize, '\0');
+  std::string out(kCheckedHeaderSize, '\0');
   size_t at = 0;
-  std::memcpy(out.data(), kPlanesMagic, sizeof kPlanesMagic);
-  at += sizeof kPlanesMagic;
+  std::memcpy(out.data(), kCheckedMagic, sizeof kCheckedMagic);
+  at += sizeof kCheckedMagic + sizeof(uint32_t);  // the checksum, written last
   put(out, at, uint64_t(nv));
   put(out, at, uint64_t(nt));
   for (int a = 0; a < 3; ++a) {
@@ -62,6 +78,9 @@ std::string encode_planes(const TriangleMesh& mesh) {
   for (int k = 0; k < 3; ++k) {
     append_delta_planes(nt ? &mesh.triangles[0][k] : nullptr, nt, 4, sizeof(mesh.triangles[0]), out);
   }
+  const uint32_t crc = crc32_of(std::string_view(out).substr(kChecksumAt + sizeof crc));
+  at = kChecksumAt;
+  put(out, at, crc);
   return out;
 }
 
@@ -79,10 +98,11 @@ Status check_indices(const TriangleMesh& mesh) {
   return ok_status();
 }
 
-Result<TriangleMesh> decode_planes(const std::string& blob) {
-  if (blob.size() < kPlanesHeaderSize) return data_loss("surface blob is truncated (no header)");
-  const auto nv = get<uint64_t>(blob, 8);
-  const auto nt = get<uint64_t>(blob, 16);
+// The counts at `counts_at`, then the six streams up to the blob's end (versions 2 and 3).
+Result<TriangleMesh> decode_planes(const std::string& blob, size_t counts_at) {
+  if (blob.size() < counts_at + 16) return data_loss("surface blob is truncated (no header)");
+  const auto nv = get<uint64_t>(blob, counts_at);
+  const auto nt = get<uint64_t>(blob, counts_at + 8);
   const size_t limit = std::min(kMaxCanonicalBytes, blob.size() * kMaxExpansion);
   if (nv > limit / 24 || nt > limit / 12 || nv * 24 + nt * 12 > limit) {
     return data_loss("surface blob header says " + std::to_string(nv) + " vertices and " + std::to_string(nt) +
@@ -91,7 +111,7 @@ Result<TriangleMesh> decode_planes(const std::string& blob) {
   TriangleMesh mesh;
   mesh.vertices_mm.resize(nv);
   mesh.triangles.resize(nt);
-  size_t at = kPlanesHeaderSize;
+  size_t at = counts_at + 16;
   // The codec's errors speak of "blob": say which.
   auto planes = [&](size_t count, int width, size_t stride, void* values) -> Status {
     const Status read = read_delta_planes(blob, at, count, width, stride, values);
@@ -103,6 +123,19 @@ Result<TriangleMesh> decode_planes(const std::string& blob) {
   if (at != blob.size()) return data_loss("surface blob has " + std::to_string(blob.size() - at) + " extra bytes");
   SOIQ_RETURN_IF_ERROR(check_indices(mesh));
   return mesh;
+}
+
+// Version 3: the checksum first, so that no damaged byte reaches the decoder.
+Result<TriangleMesh> decode_checked(const std::string& blob) {
+  if (blob.size() < kCheckedHeaderSize) return data_loss("surface blob is truncated (no header)");
+  const auto stored = get<uint32_t>(blob, kChecksumAt);
+  const uint32_t computed = crc32_of(std::string_view(blob).substr(kChecksumAt + sizeof stored));
+  if (computed != stored) {
+    char sums[64];
+    std::snprintf(sums, sizeof sums, "stored %08x, computed %08x", stored, computed);
+    return data_loss("surface blob checksum mismatch (crc32 " + std::string(sums) + ")");
+  }
+  return decode_planes(blob, kChecksumAt + sizeof stored);
 }
 
 Result<TriangleMesh> decode_deflated(const std::string& blob);
@@ -142,21 +175,7 @@ Result<EncodedSurface> encode_surface(const TriangleMesh& mesh) {
     }
   }
 
-  std::string canonical(kHeaderSize + nv * 3 * sizeof(double) + nt * 3 * sizeof(uint32_t), '\0');
-  size_t at = 0;
-  std::memcpy(canonical.data(), kMagic, sizeof kMagic);
-  at += sizeof kMagic;
-  put(canonical, at, kVersion);
-  put(canonical, at, uint32_t{0});
-  put(canonical, at, uint64_t(nv));
-  put(canonical, at, uint64_t(nt));
-  // Vec3 is std::array<double, 3> and the triangles std::array<int32_t, 3>: contiguous, so the
-  // payload is two block copies (int32 >= 0 has the same bytes as uint32).
-  if (nv > 0) std::memcpy(canonical.data() + at, mesh.vertices_mm.data(), nv * 3 * sizeof(double));
-  at += nv * 3 * sizeof(double);
-  if (nt > 0) std::memcpy(canonical.data() + at, mesh.triangles.data(), nt * 3 * sizeof(uint32_t));
-
-  info.sha256 = sha256_hex(canonical.data(), canonical.size());
+  info.sha256 = surface_sha256(mesh);
   // Coordinates near the largest double overflow the bounds: those stay unknown (0 and 0), so
   // admission measures the mesh itself and refuses it as it always has (SQLite cannot hold a NaN).
   const SurfaceMeasure measure = surface_measure(mesh);
@@ -168,15 +187,37 @@ Result<EncodedSurface> encode_surface(const TriangleMesh& mesh) {
   return out;
 }
 
+std::string surface_sha256(const TriangleMesh& mesh) {
+  const uint64_t nv = mesh.vertices_mm.size(), nt = mesh.triangles.size();
+  std::string header(kHeaderSize, '\0');
+  size_t at = 0;
+  std::memcpy(header.data(), kMagic, sizeof kMagic);
+  at += sizeof kMagic;
+  put(header, at, kVersion);
+  put(header, at, uint32_t{0});
+  put(header, at, nv);
+  put(header, at, nt);
+  // Vec3 is std::array<double, 3> and the triangles std::array<int32_t, 3>: contiguous, so the
+  // payload is two blocks, hashed where they lie (int32 >= 0 has the same bytes as uint32).
+  Sha256 hash;
+  hash.update(header.data(), header.size());
+  if (nv > 0) hash.update(mesh.vertices_mm.data(), nv * 3 * sizeof(double));
+  if (nt > 0) hash.update(mesh.triangles.data(), nt * 3 * sizeof(uint32_t));
+  return hash.hex_digest();
+}
+
 Result<TriangleMesh> decode_surface(const std::string& blob) {
-  if (blob.size() >= sizeof kPlanesMagic && std::memcmp(blob.data(), kPlanesMagic, sizeof kPlanesMagic) == 0)
-    return decode_planes(blob);
+  if (has_magic(blob, kCheckedMagic)) return decode_checked(blob);
+  if (has_magic(blob, kPlanesMagic)) return decode_planes(blob, sizeof kPlanesMagic);
   return decode_deflated(blob);
 }
 
-bool is_deflated_surface_blob(const std::string& blob) {
-  return blob.size() < sizeof kPlanesMagic || std::memcmp(blob.data(), kPlanesMagic, sizeof kPlanesMagic) != 0;
+int surface_blob_version(std::string_view blob) {
+  if (has_magic(blob, kCheckedMagic)) return 3;
+  return has_magic(blob, kPlanesMagic) ? 2 : 1;
 }
+
+bool is_deflated_surface_blob(const std::string& blob) { return surface_blob_version(blob) == 1; }
 
 namespace {
 

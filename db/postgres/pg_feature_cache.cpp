@@ -67,7 +67,7 @@ Status pg_put_cached_features(PgConnection& c, const std::vector<SurfaceFeatures
     keys.push_back(f.key);
     names.push_back(f.entry);
     surfaces.push_back(*row.first);
-    values.push_back(pg_bytea_hex(cached_value_bytes(f.value)));
+    values.push_back(pg_bytea_hex(cached_value_bytes(f)));
   }
   if (keys.empty()) return ok_status();
   return c

@@ -8,7 +8,8 @@
 //                         entries of a surface that is gone (deleted meanwhile) are skipped, as on
 //                         SQLite. Run it inside the caller's transaction.
 // Errors   INVALID_ARGUMENT for a malformed sha256 or an empty key or entry (nothing written);
-//          DATA_LOSS for a stored value that is not whole float64s; PostgreSQL's as pg_error.h.
+//          DATA_LOSS for a stored value whose checksum differs (cached_value.h); PostgreSQL's as
+//          pg_error.h.
 
 #include <string>
 #include <vector>

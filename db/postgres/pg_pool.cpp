@@ -4,7 +4,7 @@
 
 namespace soiq::db {
 
-Result<std::unique_ptr<PgPool>> PgPool::open(const std::string& conninfo, int size) {
+Result<std::unique_ptr<PgPool>> PgPool::open(const std::string& conninfo, int size, bool read_only) {
   if (size < 1 || size > 1000) {
     return invalid_argument("PostgreSQL connection pool size must be 1 to 1000, got " + std::to_string(size));
   }
@@ -12,10 +12,13 @@ Result<std::unique_ptr<PgPool>> PgPool::open(const std::string& conninfo, int si
   pool->connections_.reserve(size_t(size));
   for (int i = 0; i < size; ++i) {
     SOIQ_ASSIGN_OR_RETURN(PgConnection c, PgConnection::open(conninfo));
+    if (read_only) {
+      SOIQ_RETURN_IF_ERROR(c.run("SET default_transaction_read_only = on", "open the connection for reading only"));
+    }
     pool->connections_.push_back(std::move(c));
     pool->free_.push_back(size_t(i));
   }
-  SOIQ_RETURN_IF_ERROR(pg_migrate(pool->connections_[0]));
+  SOIQ_RETURN_IF_ERROR(read_only ? pg_check_schema_readable(pool->connections_[0]) : pg_migrate(pool->connections_[0]));
   return pool;
 }
 

@@ -4,7 +4,9 @@
 // pool bounds what one replica asks of the server; a lease waits, bounded, when all are out.
 //
 // open      connects all `size` connections at once (a wrong address fails at start, not at the
-//           first query) and brings the schema up to date on the first (pg_schema.h).
+//           first query) and brings the schema up to date on the first (pg_schema.h); read only,
+//           leaves the schema as it is (pg_check_schema_readable) and makes every transaction
+//           of the connections read only, so PostgreSQL itself refuses any write.
 // acquire   a free connection, waiting up to `wait`; DEADLINE_EXCEEDED naming the pool's size
 //           when none came free. A connection found broken when leased is reset first; UNAVAILABLE
 //           when that fails (the server is down).
@@ -42,7 +44,7 @@ class PgPool {
     size_t slot_;
   };
 
-  static Result<std::unique_ptr<PgPool>> open(const std::string& conninfo, int size);
+  static Result<std::unique_ptr<PgPool>> open(const std::string& conninfo, int size, bool read_only = false);
 
   Result<Lease> acquire(std::chrono::milliseconds wait);
   int size() const { return int(connections_.size()); }

@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "db/postgres/pg_session.h"
+#include "db/sql/checksum_stored_bytes.h"
+
 namespace soiq::db {
 namespace {
 
@@ -205,9 +208,24 @@ ALTER TABLE series ADD COLUMN series_number bigint NOT NULL DEFAULT 0;
 ALTER TABLE series ADD COLUMN description text COLLATE "C" NOT NULL DEFAULT '';
 )sql";
 
+// Version 5: SQLite's version 9, no stored byte unchecked: surface blobs in version 3 and cached
+// values with their checksum (db/sql/checksum_stored_bytes.h, the same step). No table changes.
+Status checksum_stored_bytes_step(PgConnection& c) {
+  PgSession session(c);
+  return checksum_stored_bytes(session);
+}
+
+struct Step {
+  const char* sql;
+  // A step SQL cannot say (re-encoding blobs), run after `sql` in the same transaction.
+  Status (*run)(PgConnection& c) = nullptr;
+};
+
 // Append new steps here; never edit a released one.
-const std::vector<const char*>& steps() {
-  static const std::vector<const char*> kSteps = {kSchemaV1, kSchemaV2, kSchemaV3, kSchemaV4};
+const std::vector<Step>& steps() {
+  static const std::vector<Step> kSteps = {
+      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step},
+  };
   return kSteps;
 }
 
@@ -223,19 +241,38 @@ Result<int> pg_schema_version(PgConnection& c) {
   return v.rows() == 0 ? 0 : int(v.int64(0, 0));
 }
 
+namespace {
+
+Status newer_schema(int version) {
+  return failed_precondition("PostgreSQL database has schema version " + std::to_string(version) +
+                             ", newer than version " + std::to_string(pg_latest_schema_version()) +
+                             " that this soiqd knows; run a newer soiqd");
+}
+
+}  // namespace
+
+Status pg_check_schema_readable(PgConnection& c) {
+  SOIQ_ASSIGN_OR_RETURN(const int version, pg_schema_version(c));
+  if (version > pg_latest_schema_version()) return newer_schema(version);
+  if (version == 0) return failed_precondition("the PostgreSQL database holds no soiq store (no schema version)");
+  return ok_status();
+}
+
 Status pg_migrate(PgConnection& c) {
   return pg_transaction(c, [&]() -> Status {
     SOIQ_RETURN_IF_ERROR(c.exec(kMigrationLockSql, {}, "take the migration lock").status());
     SOIQ_RETURN_IF_ERROR(
         c.run("CREATE TABLE IF NOT EXISTS soiq_schema (version integer NOT NULL)", "create soiq_schema"));
     SOIQ_ASSIGN_OR_RETURN(const int version, pg_schema_version(c));
-    if (version > pg_latest_schema_version()) {
-      return failed_precondition("PostgreSQL database has schema version " + std::to_string(version) +
-                                 ", newer than version " + std::to_string(pg_latest_schema_version()) +
-                                 " that this soiqd knows; run a newer soiqd");
-    }
+    if (version > pg_latest_schema_version()) return newer_schema(version);
     for (int v = version; v < pg_latest_schema_version(); ++v) {
-      SOIQ_RETURN_IF_ERROR(c.run(steps()[size_t(v)], "migrate to schema version " + std::to_string(v + 1)));
+      const Step& step = steps()[size_t(v)];
+      const std::string what = "migrate to schema version " + std::to_string(v + 1);
+      if (step.sql[0] != '\0') SOIQ_RETURN_IF_ERROR(c.run(step.sql, what));
+      if (step.run != nullptr) {
+        const Status s = step.run(c);
+        if (!s.ok()) return Status(s.code(), what + ": " + s.message());
+      }
     }
     if (version == pg_latest_schema_version()) return ok_status();
     SOIQ_RETURN_IF_ERROR(c.run("DELETE FROM soiq_schema", "set the schema version"));

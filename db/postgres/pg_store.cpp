@@ -9,12 +9,13 @@ Result<std::unique_ptr<PgStore>> PgStore::open(const std::string& conninfo, cons
   if (options.lease_wait.count() < 0) return invalid_argument("PostgreSQL lease wait must be >= 0 ms");
   if (options.write_attempts < 1) return invalid_argument("PostgreSQL write attempts must be >= 1");
   std::unique_ptr<PgStore> store(new PgStore());
-  SOIQ_ASSIGN_OR_RETURN(store->pool_, PgPool::open(conninfo, options.connections));
+  SOIQ_ASSIGN_OR_RETURN(store->pool_, PgPool::open(conninfo, options.connections, options.read_only));
   store->options_ = options;
   return store;
 }
 
 Status PgStore::write(const std::function<Status(SqlSession&)>& fn) {
+  if (options_.read_only) return failed_precondition("the PostgreSQL store is open for reading only");
   SOIQ_ASSIGN_OR_RETURN(PgPool::Lease c, pool_->acquire(options_.lease_wait));
   PgSession session(*c);
   return pg_transaction(
@@ -29,6 +30,7 @@ Status PgStore::read(const std::function<Status(SqlSession&)>& fn) {
 }
 
 Status PgStore::write_queue(const std::function<Status(SqlSession&)>& fn) {
+  if (options_.read_only) return failed_precondition("the PostgreSQL store is open for reading only");
   SOIQ_ASSIGN_OR_RETURN(PgPool::Lease c, pool_->acquire(options_.lease_wait));
   PgSession session(*c);
   return pg_transaction(

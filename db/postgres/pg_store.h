@@ -34,6 +34,9 @@ struct PgOptions {
   int connections = 8;                          // the pool's size (soiqd --db-connections)
   std::chrono::milliseconds lease_wait{30000};  // how long a method waits for a connection
   int write_attempts = 10;                      // runs of a write that keeps conflicting
+  // Only read the database (soiq-admin verify, beside running replicas): no migration (a store of
+  // an older schema is read as it is) and every transaction read only, so any write fails.
+  bool read_only = false;
 };
 
 class PgStore : public SqlStore {

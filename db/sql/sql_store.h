@@ -35,6 +35,19 @@ struct TableDigest {
   std::string sha256;
 };
 
+// One stored blob or cached value as it is stored, for soiq-admin verify (SqlStore::scan_stored).
+enum class StoredKind { kSurface, kImage, kCachedValue };
+struct StoredItem {
+  StoredKind kind = StoredKind::kSurface;
+  std::string key;                     // a surface's or an image's sha256; a cached value's cache key
+  std::string entry;                   // a cached value's entry
+  std::string surface_sha256;          // a cached value's surface
+  std::string bytes;                   // the blob or the value
+  std::vector<int64_t> structure_ids;  // a surface's structures
+  std::string series_uid;              // an image: the first series that holds it ("" for none),
+  ImageGeometry geometry;              // and its grid, which the blob needs to be decoded
+};
+
 class SqlStore : public Store {
  public:
   // Copies every record (patients to the feature cache, keys included) into `to`, an empty store of
@@ -48,6 +61,12 @@ class SqlStore : public Store {
   // Each record table's row count and digest: equal in two stores exactly when they hold the same
   // records (soiq-admin migrate compares them after a copy).
   Result<std::vector<TableDigest>> table_digests();
+  // Every stored item of `kind` to `visit`, in key order, each read in a read transaction of its
+  // own (cached values a page at a time), so that a scrub of a large store beside a running soiqd
+  // holds no snapshot for long; `visit` runs outside them. An item removed meanwhile is not
+  // visited. Stops at, and returns, the first error of `visit`. Reads only columns every schema
+  // version has, so a store opened read only and not migrated can be scanned.
+  Status scan_stored(StoredKind kind, const std::function<Status(const StoredItem&)>& visit);
 
   Result<ImportedBatch> import_batch(const ImportBatch& b) override;
   Result<int64_t> remove(const Removal& r) override;

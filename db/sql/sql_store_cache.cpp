@@ -1,5 +1,5 @@
-// SqlStore's feature cache: values are little-endian float64 arrays (cached_value.h) keyed by
-// (key, entry).
+// SqlStore's feature cache: values are little-endian float64 arrays with a checksum
+// (cached_value.h), keyed by (key, entry), checked as they are read.
 #include <string_view>
 #include <unordered_set>
 
@@ -82,10 +82,11 @@ Status SqlStore::upsert_cached_features(SqlSession& c, const std::vector<Surface
     if (!stored) continue;
     for (const CachedFeature& f : s.entries) {
       SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertCachedFeatureSql));
+      const std::string value = cached_value_bytes(f);  // bound blobs must outlive the step
       up.bind(1, f.key);
       up.bind(2, f.entry);
       up.bind(3, s.surface_sha256);
-      up.bind_blob(4, cached_value_bytes(f.value));
+      up.bind_blob(4, value);
       SOIQ_RETURN_IF_ERROR(up.run());
     }
   }

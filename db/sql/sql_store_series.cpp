@@ -18,7 +18,11 @@ constexpr char kInsertImageBlobSql[] = R"sql(
   INSERT INTO image_blobs(sha256, blob) VALUES (?1, ?2)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
+// A stored blob whose bytes differ is replaced (replace_differing_blob).
 Status insert_image_blob(SqlSession& c, const NewSeries& s) {
+  SOIQ_ASSIGN_OR_RETURN(const StoredBlob stored,
+                        replace_differing_blob(c, "image_blobs", s.series.sha256, s.image_blob));
+  if (stored != StoredBlob::kAbsent) return ok_status();
   SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertImageBlobSql));
   ins.bind(1, s.series.sha256);
   ins.bind_blob(2, s.image_blob);

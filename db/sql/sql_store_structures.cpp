@@ -1,6 +1,7 @@
 // The structure half of SqlStore::import_batch: the surface blob stored once
-// per sha256, and a structure that is new, replaces the one with its source_uid, or is recognised
-// as one already stored. One write transaction, so any error leaves the database as it was.
+// per sha256 (and stored again when the stored one is damaged), and a structure that is new, replaces the one with its
+// source_uid, or is recognised as one already stored. One write transaction, so any error leaves the database as it
+// was.
 
 #include <optional>
 #include <string>
@@ -30,8 +31,12 @@ constexpr char kInsertSurfaceSql[] = R"sql(
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)
   ON CONFLICT(sha256) DO NOTHING)sql";
 
-// Stores the surface blob unless one with its sha256 is there; true when it already was.
+// Stores the surface blob unless one with its sha256 is there; true when it already was. A stored
+// blob whose bytes differ is replaced (replace_differing_blob).
 Result<bool> insert_surface(SqlSession& c, const NewStructure& s) {
+  SOIQ_ASSIGN_OR_RETURN(const StoredBlob stored,
+                        replace_differing_blob(c, "surfaces", s.surface.sha256, s.surface_blob));
+  if (stored != StoredBlob::kAbsent) return true;
   SOIQ_ASSIGN_OR_RETURN(SqlStatement ins, c.prepare(kInsertSurfaceSql));
   ins.bind(1, s.surface.sha256);
   ins.bind(2, s.surface.vertex_count);

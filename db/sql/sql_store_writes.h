@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/base/status.h"
@@ -45,6 +46,13 @@ Status queue_precompute_of_study(SqlSession& c, int64_t study_pk);
 
 // sql_store_cache.cpp: whether the surface is stored.
 Result<bool> surface_exists(SqlSession& c, const std::string& sha256);
+
+// sql_store_blobs.cpp: the blob stored under `sha256` in `table` (surfaces or image_blobs), if
+// any, compared with `blob` and replaced by it when they differ (a damaged blob, or one of an older
+// version: `blob` was just encoded from what its sha256 names). kAbsent: the caller inserts it.
+enum class StoredBlob { kAbsent, kSame, kReplaced };
+Result<StoredBlob> replace_differing_blob(SqlSession& c, std::string_view table, const std::string& sha256,
+                                          std::string_view blob);
 
 // sql_store_deletes.cpp: delete the blob when nothing refers to it any more (a surface takes
 // its cached features with it).

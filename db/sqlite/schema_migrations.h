@@ -18,4 +18,9 @@ Status migrate_schema(Connection& c);
 // PRAGMA user_version of the database on `c`.
 Result<int> schema_version(Connection& c);
 
+// For a store opened without migrating (read only): OK when the database on `c` holds a store of
+// a schema version this code knows (up to latest_schema_version(), older ones included);
+// FAILED_PRECONDITION naming the path when it is newer (both versions) or holds none (version 0).
+Status check_schema_readable(Connection& c);
+
 }  // namespace soiq::db

@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "db/image_blob.h"
+#include "db/sql/checksum_stored_bytes.h"
+#include "db/sqlite/sqlite_session.h"
 #include "db/sqlite/sqlite_statement.h"
 #include "db/surface_blob.h"
 
@@ -92,6 +94,11 @@ Status reencode_image_blobs(Connection& c) {
     SOIQ_RETURN_IF_ERROR(write.step().status());
   }
   return ok_status();
+}
+
+Status sqlite_checksum_stored_bytes(Connection& c) {
+  SqliteSession session(c);
+  return checksum_stored_bytes(session);
 }
 
 }  // namespace soiq::db

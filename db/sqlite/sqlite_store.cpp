@@ -12,16 +12,19 @@ Result<std::unique_ptr<SqliteStore>> SqliteStore::open(const std::string& path, 
   if (options.read_connections < 1) return invalid_argument("read_connections must be >= 1");
   if (options.cache_mib < 1) return invalid_argument("cache_mib must be >= 1");
   std::unique_ptr<SqliteStore> store(new SqliteStore());
-  SOIQ_ASSIGN_OR_RETURN(store->writer_,
-                        Connection::open(path, options.busy_timeout_ms, options.cache_mib, ConnectionRole::kWriter));
-  // Migrate before any reader exists, so readers only ever see the current schema.
-  SOIQ_RETURN_IF_ERROR(migrate_schema(*store->writer_));
+  if (!options.read_only) {
+    SOIQ_ASSIGN_OR_RETURN(store->writer_,
+                          Connection::open(path, options.busy_timeout_ms, options.cache_mib, ConnectionRole::kWriter));
+    // Migrate before any reader exists, so readers only ever see the current schema.
+    SOIQ_RETURN_IF_ERROR(migrate_schema(*store->writer_));
+  }
   for (int i = 0; i < options.read_connections; ++i) {
     SOIQ_ASSIGN_OR_RETURN(auto reader,
                           Connection::open(path, options.busy_timeout_ms, options.cache_mib, ConnectionRole::kReader));
     store->free_readers_.push_back(reader.get());
     store->readers_.push_back(std::move(reader));
   }
+  if (options.read_only) SOIQ_RETURN_IF_ERROR(store->read_connection(check_schema_readable));
   return store;
 }
 
@@ -49,6 +52,7 @@ Status SqliteStore::read_connection(const std::function<Status(Connection&)>& fn
 }
 
 Status SqliteStore::write_connection(const std::function<Status(Connection&)>& fn) {
+  if (!writer_) return failed_precondition("the store '" + readers_.front()->path() + "' is open for reading only");
   std::lock_guard lock(writer_mutex_);
   return run_transaction(*writer_, TransactionKind::kWrite, [&] { return fn(*writer_); });
 }

@@ -29,18 +29,23 @@ struct SqliteOptions {
   int busy_timeout_ms = 5000;  // how long a method waits for another process's lock
   int read_connections = 4;    // >= 1; more than the worker threads that read at once gains nothing
   int cache_mib = 64;          // page cache per connection, so stage 1 reads memory, not the file
+  // Only read the file (soiq-admin verify, beside a running soiqd): no writer connection, no
+  // migration (a store of an older schema is read as it is), and every write FAILED_PRECONDITION.
+  // The file must exist and hold a store of a schema version this code knows.
+  bool read_only = false;
 };
 
 class SqliteStore : public SqlStore {
  public:
   // Opens (creating if absent) the database at `path` and migrates it to the current schema.
   // FAILED_PRECONDITION (naming the path) when the file is not a SQLite database or cannot be
-  // opened, or when its schema version is newer than this code knows (both versions named).
+  // opened, or when its schema version is newer than this code knows (both versions named); read
+  // only, also when it holds no store (schema version 0).
   // INVALID_ARGUMENT for bad options.
   static Result<std::unique_ptr<SqliteStore>> open(const std::string& path, const SqliteOptions& options);
   ~SqliteStore() override;
 
-  // The schema version of the open database (latest_schema_version() after open).
+  // The schema version of the open database (latest_schema_version() after open, unless read only).
   Result<int> schema_version();
   // The EXPLAIN QUERY PLAN lines ("SEARCH r USING INDEX …") of stage1's id query for `f`: for the
   // tests that every stage-1 filter is an index search, and for diagnosing a slow one.

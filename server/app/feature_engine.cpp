@@ -109,26 +109,49 @@ Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
   return p;
 }
 
-Result<std::shared_ptr<const TriangleMesh>> FeatureEngine::surface(const std::string& sha256) {
-  return surfaces_.get_or_load(
+Result<std::shared_ptr<const TriangleMesh>> FeatureEngine::surface(const db::StructureRecord& structure) {
+  const std::string& sha256 = structure.surface.sha256;
+  // The loader knows only the surface: another structure of the same surface may be waiting for
+  // its result (lru_cache.h), so the structure is named here, after it.
+  Result<std::shared_ptr<const TriangleMesh>> mesh = surfaces_.get_or_load(
       sha256,
       [&]() -> Result<TriangleMesh> {
         SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_surface_blob(sha256));
-        return db::decode_surface(blob);
+        SOIQ_ASSIGN_OR_RETURN(TriangleMesh decoded, db::decode_surface(blob));
+        // A blob without a checksum of its own (version 2, or one the migration found damaged and
+        // left) is checked against the sha256 it is stored under: slower, and only for those.
+        const int version = db::surface_blob_version(blob);
+        if (version < 3) {
+          const std::string got = db::surface_sha256(decoded);
+          if (got != sha256) {
+            return data_loss("its blob (version " + std::to_string(version) +
+                             ", without a checksum) decodes to a mesh of sha256 " + got);
+          }
+        }
+        return decoded;
       },
       [](const TriangleMesh& m) {
         return int64_t(m.vertices_mm.size() * sizeof(Vec3) + m.triangles.size() * sizeof(m.triangles[0]));
       });
+  if (mesh.ok() || mesh.status().code() != StatusCode::kDataLoss) return mesh;
+  return data_loss("structure " + std::to_string(structure.id) + " (surface sha256 " + sha256 +
+                   "): stored surface is corrupt: " + mesh.status().message() +
+                   "; restore the store from a backup, or upload the surface again (an upload of the same mesh "
+                   "replaces the damaged blob)");
 }
 
 Result<std::shared_ptr<const Image>> FeatureEngine::image(const db::SeriesRecord& series) {
-  return images_.get_or_load(
+  Result<std::shared_ptr<const Image>> image = images_.get_or_load(
       series.sha256,
       [&]() -> Result<Image> {
         SOIQ_ASSIGN_OR_RETURN(std::string blob, store_.get_image_blob(series.series_uid));
         return db::decode_image(blob, series.geometry);
       },
       [](const Image& img) { return int64_t(img.voxels.size() * sizeof(float)); });
+  if (image.ok() || image.status().code() != StatusCode::kDataLoss) return image;
+  return data_loss("image of series " + series.series_uid + " (sha256 " + series.sha256 +
+                   "): stored image is corrupt: " + image.status().message() +
+                   "; restore the store from a backup, or import the series again");
 }
 
 Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db::StructureRecord& structure,
@@ -137,7 +160,7 @@ Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db:
     return internal_error("structure " + std::to_string(structure.id) +
                           " was about to be converted outside its memory admission");
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
-  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure.surface.sha256));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure));
   VoxelizeOptions options;
   options.fill_rule = fill_rule;
   options.robust = structure.robust;
@@ -165,8 +188,7 @@ Result<FeatureEngine::Admission> FeatureEngine::admit(const db::StructureRecord&
                         measures_.get_or_load(
                             structure.surface.sha256,
                             [&]() -> Result<SurfaceMeasure> {
-                              SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh,
-                                                    surface(structure.surface.sha256));
+                              SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure));
                               return surface_measure(*mesh);
                             },
                             [](const SurfaceMeasure&) { return int64_t(sizeof(SurfaceMeasure)); }));
@@ -207,7 +229,7 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   SOIQ_ASSIGN_OR_RETURN(const Admission admitted, admit(plan.structure, plan.grid.geometry, extras, check_cancel));
   SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(admitted, plan.structure, plan.grid.geometry, ask.fill_rule));
   SOIQ_RETURN_IF_ERROR(check_cancel());
-  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure.surface.sha256));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure));
 
   // structure_features computes the convex hull only for the features that read it. Every stored
   // structure has a surface: the mesh is passed (no copy otherwise) whenever a surface value of it,
@@ -224,9 +246,13 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   request.regions = ask.regions;
   request.interpolation = ask.interpolation;
   for (const db::SeriesRecord& s : plan.images) {
-    SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const Image> img, image(s));
-    images.push_back(img);
-    request.images.push_back(NamedImage{s.sha256, img.get()});
+    Result<std::shared_ptr<const Image>> img = image(s);
+    if (!img.ok()) {
+      return Status(img.status().code(),
+                    "structure " + std::to_string(plan.structure.id) + ": " + img.status().message());
+    }
+    images.push_back(*img);
+    request.images.push_back(NamedImage{s.sha256, img->get()});
   }
   StructureInput input{std::move(v.volume), std::nullopt};
   if (core_needs_mesh) input.surface = *mesh;

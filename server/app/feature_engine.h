@@ -13,7 +13,8 @@
 // compute() caches every value the report gives, not only those asked.
 //
 // Errors: those of grid resolution (grid_choice.h), of finding an image (NOT_FOUND, naming the
-// study), of the conversion (RESOURCE_EXHAUSTED grid, DATA_LOSS blob) and of the features
+// study), of the conversion (RESOURCE_EXHAUSTED grid, DATA_LOSS naming the structure for a damaged
+// surface or image blob) and of the features
 // (INVALID_ARGUMENT: empty region, image in another frame). CANCELLED when `cancelled` turns true.
 // Thread-safe: many workers call compute() at once.
 
@@ -105,8 +106,10 @@ class FeatureEngine {
   Result<FeatureValues> compute(const FeaturePlan& plan, const FeatureAsk& ask,
                                 const std::atomic<bool>* cancelled = nullptr, db::SurfaceFeatures* to_store = nullptr);
 
-  // The stored surface, decoded (cached).
-  Result<std::shared_ptr<const TriangleMesh>> surface(const std::string& sha256);
+  // The structure's stored surface, decoded (cached). DATA_LOSS naming the structure and its
+  // surface when the blob is damaged: its checksum differs, or, for a blob without one, its mesh's
+  // sha256 (db/surface_blob.h).
+  Result<std::shared_ptr<const TriangleMesh>> surface(const db::StructureRecord& structure);
   // The structure on a grid by the 1D method (robust when the structure was uploaded so), under
   // `admitted` (admit() for this structure and grid; INTERNAL for another's).
   Result<Voxelization> convert(const Admission& admitted, const db::StructureRecord& structure,

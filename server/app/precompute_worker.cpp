@@ -68,9 +68,13 @@ Result<FeatureValues> PrecomputeWorker::values(const db::StructureRecord& struct
                                                db::Precomputed& out) {
   SOIQ_RETURN_IF_ERROR(complete_feature_ask(ask));
   SOIQ_ASSIGN_OR_RETURN(const FeaturePlan plan, features_.plan(structure, series, ask));
-  SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> cached, store_.cached_features({plan.cache_key}));
+  Result<std::vector<db::CachedFeature>> cached = store_.cached_features({plan.cache_key});
+  if (!cached.ok()) {
+    return Status(cached.status().code(),
+                  "structure " + std::to_string(structure.id) + ": " + cached.status().message());
+  }
   FeatureValues have;
-  for (db::CachedFeature& e : cached) have[e.entry] = std::move(e.value);
+  for (db::CachedFeature& e : *cached) have[e.entry] = std::move(e.value);
   const bool complete =
       std::all_of(plan.wants.begin(), plan.wants.end(), [&](const WantedValue& w) { return have.count(w.entry) > 0; });
   if (complete) return have;

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "core/features/asymmetry_index.h"
+#include "server/app/query_cached_values.h"
 #include "server/app/query_skips.h"
 #include "server/app/query_subjects.h"
 #include "server/util/log.h"
@@ -20,10 +21,11 @@ namespace soiq::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using query_run::CachedValues;
 using query_run::Completions;
 using query_run::Computed;
+using query_run::read_cached_values;
 using query_run::Subject;
-using CachedByKey = std::map<std::string, FeatureValues>;  // cache key -> its entries
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
@@ -110,11 +112,16 @@ class QueryRun {
       s.plan = std::move(plan).value();
       planned.push_back(i);
     }
-    SOIQ_ASSIGN_OR_RETURN(CachedByKey cached, cached_values(planned));
+    SOIQ_ASSIGN_OR_RETURN(CachedValues cached, read_cached_values(store_, subjects_, planned));
+    for (auto& [i, error] : cached.damaged) {
+      subjects_[i].error = std::move(error);
+      subjects_[i].ready = true;
+    }
     std::vector<size_t> misses;
     for (size_t i : planned) {
       Subject& s = subjects_[i];
-      const FeatureValues& have = cached[s.plan->cache_key];
+      if (s.ready) continue;  // its stored values are damaged
+      const FeatureValues& have = cached.by_key[s.plan->cache_key];
       if (!has_all(s, have)) {
         misses.push_back(i);
         continue;
@@ -124,25 +131,6 @@ class QueryRun {
       ++summary_.cache_hits;
     }
     return misses;
-  }
-
-  // The cached values of the planned subjects, by cache key, in one round trip: only the entries
-  // some plan wants (a key holds every value its context ever computed).
-  Result<CachedByKey> cached_values(const std::vector<size_t>& planned) {
-    std::vector<std::string> keys, entries;
-    for (size_t i : planned) {
-      keys.push_back(subjects_[i].plan->cache_key);
-      for (const WantedValue& w : subjects_[i].plan->wants) entries.push_back(w.entry);
-    }
-    for (auto* list : {&keys, &entries}) {
-      std::sort(list->begin(), list->end());
-      list->erase(std::unique(list->begin(), list->end()), list->end());
-    }
-    CachedByKey cached;
-    if (keys.empty()) return cached;
-    SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> found, store_.cached_features(keys, entries));
-    for (auto& e : found) cached[e.key][e.entry] = std::move(e.value);
-    return cached;
   }
 
   static bool has_all(const Subject& s, const FeatureValues& have) {
@@ -160,10 +148,12 @@ class QueryRun {
     SOIQ_RETURN_IF_ERROR(sharing_->share(q_.ask, ids, stop_, [&](int64_t finished) {
       return progress("stage2", std::min(candidates, done_ + finished));
     }));
-    SOIQ_ASSIGN_OR_RETURN(CachedByKey cached, cached_values(misses));
+    SOIQ_ASSIGN_OR_RETURN(CachedValues cached, read_cached_values(store_, subjects_, misses));
+    for (auto& [i, error] : cached.damaged) SOIQ_RETURN_IF_ERROR(complete(i, std::move(error)));
     std::vector<size_t> left;
     for (size_t i : misses) {
-      const FeatureValues& have = cached[subjects_[i].plan->cache_key];
+      if (subjects_[i].ready) continue;  // its stored values are damaged
+      const FeatureValues& have = cached.by_key[subjects_[i].plan->cache_key];
       if (!has_all(subjects_[i], have)) {
         left.push_back(i);
         continue;

@@ -54,14 +54,17 @@ Result<std::unique_ptr<db::SqlStore>> open_sql_store(const StoreLocation& where,
   if (where.kind == StoreLocation::Kind::kPostgres) {
     db::PgOptions pg;
     pg.connections = options.connections;
+    pg.read_only = options.read_only;
     SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::PgStore> store, db::PgStore::open(where.target, pg));
     return std::unique_ptr<db::SqlStore>(std::move(store));
   }
   const std::filesystem::path dir = std::filesystem::path(where.target).parent_path();
   std::error_code ec;
-  if (!dir.empty()) std::filesystem::create_directories(dir, ec);  // a failure shows as the open's
+  // A failure shows as the open's.
+  if (!dir.empty() && !options.read_only) std::filesystem::create_directories(dir, ec);
   db::SqliteOptions sqlite;
   sqlite.read_connections = options.read_connections;
+  sqlite.read_only = options.read_only;
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqliteStore> store, db::SqliteStore::open(where.target, sqlite));
   return std::unique_ptr<db::SqlStore>(std::move(store));
 }

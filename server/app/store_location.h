@@ -32,6 +32,9 @@ std::string redacted_store_location(const std::string& db);
 struct StoreOpenOptions {
   int read_connections = 4;  // SQLite: reader connections
   int connections = 8;       // PostgreSQL: the pool's size
+  // Only read the store, as it is (no migration, every write refused): soiq-admin verify beside a
+  // running soiqd. A SQLite file must exist then.
+  bool read_only = false;
 };
 
 Result<std::unique_ptr<db::Store>> open_store(const StoreLocation& where, const StoreOpenOptions& options);

@@ -11,8 +11,11 @@ Result<StoredStructureFeatures> stored_structure_features(db::Store& store, Feat
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store.list_series(s.study_uid));
   StoredStructureFeatures out;
   SOIQ_ASSIGN_OR_RETURN(out.plan, features.plan(s, series, ask));
-  SOIQ_ASSIGN_OR_RETURN(std::vector<db::CachedFeature> cached, store.cached_features({out.plan.cache_key}));
-  for (db::CachedFeature& c : cached) out.values[c.entry] = std::move(c.value);
+  Result<std::vector<db::CachedFeature>> cached = store.cached_features({out.plan.cache_key});
+  if (!cached.ok()) {
+    return Status(cached.status().code(), "structure " + std::to_string(s.id) + ": " + cached.status().message());
+  }
+  for (db::CachedFeature& c : *cached) out.values[c.entry] = std::move(c.value);
   out.from_cache = std::all_of(out.plan.wants.begin(), out.plan.wants.end(),
                                [&](const WantedValue& w) { return out.values.count(w.entry) > 0; });
   if (out.from_cache) return out;

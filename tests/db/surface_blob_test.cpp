@@ -9,64 +9,18 @@
 
 #include "core/voxelize/memory_estimate.h"
 #include "db/deflate.h"
+#include "tests/db/surface_blob_testing.h"
 
 namespace soiq::db {
 namespace {
 
-// Bitwise equality: == on doubles would accept -0.0 for +0.0.
-bool same_bits(const TriangleMesh& a, const TriangleMesh& b) {
-  return a.vertices_mm.size() == b.vertices_mm.size() && a.triangles == b.triangles &&
-         (a.vertices_mm.empty() ||
-          std::memcmp(a.vertices_mm.data(), b.vertices_mm.data(), a.vertices_mm.size() * sizeof(Vec3)) == 0);
-}
-
-TriangleMesh random_mesh(std::mt19937_64& rng, size_t nv, size_t nt) {
-  // Ordinary values mixed with the ones a lossy encoding would get wrong.
-  const double specials[] = {0.0,
-                             -0.0,
-                             std::numeric_limits<double>::denorm_min(),
-                             -std::numeric_limits<double>::denorm_min(),
-                             std::numeric_limits<double>::min() / 3,
-                             std::numeric_limits<double>::max(),
-                             -std::numeric_limits<double>::max(),
-                             1e300,
-                             0.1,
-                             1.0 / 3.0};
-  std::uniform_real_distribution<double> coord(-500, 500);
-  std::uniform_int_distribution<int> pick(0, 19);
-  TriangleMesh m;
-  for (size_t i = 0; i < nv; ++i) {
-    Vec3 v;
-    for (double& x : v) {
-      const int k = pick(rng);
-      x = k < 10 ? specials[k] : coord(rng);
-    }
-    m.vertices_mm.push_back(v);
-  }
-  std::uniform_int_distribution<int32_t> index(0, int32_t(nv) - 1);
-  for (size_t t = 0; t < nt; ++t) m.triangles.push_back({index(rng), index(rng), index(rng)});
-  return m;
-}
-
-// Builds a blob from canonical bytes written by hand, to reach the checks behind zlib.
-std::string blob_of(const std::string& canonical) { return *deflate_bytes(canonical.data(), canonical.size()); }
-
-std::string header(uint32_t version, uint64_t nv, uint64_t nt) {
-  std::string h("SOIQSURF", 8);
-  h.append(reinterpret_cast<const char*>(&version), 4);
-  h.append(4, '\0');
-  h.append(reinterpret_cast<const char*>(&nv), 8);
-  h.append(reinterpret_cast<const char*>(&nt), 8);
-  return h;
-}
-
-// Version 1's canonical bytes of `m`: what the sha256 is taken over, and deflated, a version 1 blob.
-std::string canonical_bytes(const TriangleMesh& m) {
-  std::string c = header(1, m.vertices_mm.size(), m.triangles.size());
-  c.append(reinterpret_cast<const char*>(m.vertices_mm.data()), m.vertices_mm.size() * sizeof(Vec3));
-  c.append(reinterpret_cast<const char*>(m.triangles.data()), m.triangles.size() * 12);
-  return c;
-}
+using testing::blob_of;
+using testing::canonical_bytes;
+using testing::header;
+using testing::random_mesh;
+using testing::same_bits;
+using testing::smooth_sphere;
+using testing::version2_of;
 
 void expect_data_loss(const std::string& blob, const std::string& phrase);
 
@@ -173,31 +127,35 @@ TEST(SurfaceBlob, TruncatedBlobIsDataLoss) {
     ASSERT_FALSE(d.ok()) << keep;
     EXPECT_EQ(d.status().code(), StatusCode::kDataLoss) << keep << ": " << d.status().to_string();
   }
-  expect_data_loss(e->blob + "x", "1 extra bytes");
+  expect_data_loss(e->blob + "x", "checksum mismatch");
+  expect_data_loss(version2_of(e->blob) + "x", "1 extra bytes");
   expect_data_loss("not a blob at all", "");
 }
 
-// The blob has no checksum of its own (SQLite's pages hold it): a changed byte is refused when LZ4,
-// the block sizes or the indices notice, and otherwise reads as other coordinates, never out of
-// bounds (the sanitizer build would say).
-TEST(SurfaceBlob, ChangedBytesNeverReadOutOfBounds) {
+// A version 2 blob has no checksum of its own: a changed byte is refused when LZ4, the block sizes
+// or the indices notice, and otherwise reads as other coordinates, never out of bounds (the
+// sanitizer build would say). This is what version 3's checksum is for.
+TEST(SurfaceBlob, ChangedBytesOfAVersion2BlobNeverReadOutOfBounds) {
   std::mt19937_64 rng(4);
   auto e = encode_surface(random_mesh(rng, 300, 300));
   ASSERT_TRUE(e.ok());
-  int refused = 0;
-  for (size_t at = 8; at < e->blob.size(); at += 7) {
-    std::string blob = e->blob;
+  const std::string v2 = version2_of(e->blob);
+  int refused = 0, read = 0;
+  for (size_t at = 8; at < v2.size(); at += 7) {
+    std::string blob = v2;
     blob[at] = char(blob[at] ^ 0x5a);
     auto d = decode_surface(blob);
     if (!d.ok()) {
       EXPECT_EQ(d.status().code(), StatusCode::kDataLoss) << d.status().to_string();
       ++refused;
     } else {
+      ++read;
       for (const auto& t : d->triangles)
         for (int32_t v : t) EXPECT_TRUE(v >= 0 && size_t(v) < d->vertices_mm.size());
     }
   }
   EXPECT_GT(refused, 0);
+  EXPECT_GT(read, 0) << "some changed bytes of a version 2 blob decode to another mesh: the silent case";
 }
 
 TEST(SurfaceBlob, AHeaderClaimingMoreThanTheBlobCanHoldIsRefusedBeforeAllocating) {
@@ -218,7 +176,7 @@ TEST(SurfaceBlob, MeshesAroundBlockAndGroupBoundariesRoundTripBitwise) {
     const TriangleMesh m = random_mesh(rng, nv, nt);
     auto e = encode_surface(m);
     ASSERT_TRUE(e.ok()) << e.status().to_string();
-    EXPECT_FALSE(is_deflated_surface_blob(e->blob));
+    EXPECT_EQ(surface_blob_version(e->blob), 3);
     auto d = decode_surface(e->blob);
     ASSERT_TRUE(d.ok()) << nv << ": " << d.status().to_string();
     EXPECT_TRUE(same_bits(m, *d)) << nv;
@@ -228,21 +186,7 @@ TEST(SurfaceBlob, MeshesAroundBlockAndGroupBoundariesRoundTripBitwise) {
 // A smooth surface (neighbouring vertices close, corners near each other) is what the codec is
 // for: it must come out smaller than version 1's zlib of the same mesh.
 TEST(SurfaceBlob, ASmoothSurfaceIsSmallerThanItsVersion1Blob) {
-  TriangleMesh m;
-  const int rings = 120, segments = 240;
-  for (int r = 0; r <= rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const double th = 3.14159265358979 * r / rings, ph = 2 * 3.14159265358979 * s / segments;
-      m.vertices_mm.push_back({20 * std::sin(th) * std::cos(ph), 20 * std::sin(th) * std::sin(ph), 20 * std::cos(th)});
-    }
-  }
-  for (int r = 0; r < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      m.triangles.push_back({a, b, a + segments});
-      m.triangles.push_back({b, b + segments, a + segments});
-    }
-  }
+  const TriangleMesh m = smooth_sphere(120);
   auto e = encode_surface(m);
   ASSERT_TRUE(e.ok());
   const std::string v1 = blob_of(canonical_bytes(m));

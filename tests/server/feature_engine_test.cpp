@@ -282,10 +282,10 @@ TEST_F(FeatureEngineTest, AConversionRunsOnlyUnderItsOwnAdmission) {
 TEST_F(FeatureEngineTest, AStoredSurfaceIsDecodedOnceAndShared) {
   Result<db::StructureRecord> s = store_->get_structure(id_);
   ASSERT_TRUE(s.ok());
-  Result<std::shared_ptr<const TriangleMesh>> first = features_.surface(s->surface.sha256);
+  Result<std::shared_ptr<const TriangleMesh>> first = features_.surface(*s);
   ASSERT_TRUE(first.ok()) << first.status().to_string();
   EXPECT_EQ((*first)->triangles.size(), size_t(s->surface.triangle_count));
-  Result<std::shared_ptr<const TriangleMesh>> second = features_.surface(s->surface.sha256);
+  Result<std::shared_ptr<const TriangleMesh>> second = features_.surface(*s);
   ASSERT_TRUE(second.ok());
   EXPECT_EQ(first->get(), second->get());
 }
