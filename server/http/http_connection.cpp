@@ -171,17 +171,9 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     read_done();
     started_ = std::chrono::steady_clock::now();
     if (ec) {
-      // On TLS a cancelled read leaves the session unusable: the connection just closes.
-      if (read_timed_out_ && (kTls || !parser_->got_some())) return close();
-      if (read_timed_out_)
-        return refuse(408, Status(StatusCode::kDeadlineExceeded, "the request's head did not arrive whole within " +
-                                                                     std::to_string(limits_.timeout_seconds) +
-                                                                     " s (--http-timeout)"));
-      const auto data = buffer_.data();
-      const std::string_view buffered(static_cast<const char*>(data.data()), data.size());
-      if (const std::optional<Refusal> r = refusal_of(*parser_, ec, buffered, limits_))
-        return refuse(r->http_status, r->why);
-      return close();  // the client went, or stayed silent: nothing to answer
+      // A client that stayed silent is not owed an answer.
+      if (read_timed_out_ && !parser_->got_some()) return close();
+      return on_read_error(ec, "the request's head did not arrive whole within");
     }
     phase_ = Phase::kReading;
     const HttpRequestHead& head = parser_->head();
@@ -212,6 +204,22 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       return refuse(413, parser_->body_refusal());
     }
     return receive_body();
+  }
+
+  // A read of the head or the body that failed: 408 when it ran out of time (`stalled` says how),
+  // the parser's refusal for a request past a limit or not HTTP, else the client went: close.
+  void on_read_error(beast::error_code ec, const char* stalled) {
+    // On TLS a cancelled read leaves the session unusable: the connection just closes.
+    if (read_timed_out_ && kTls) return close();
+    if (read_timed_out_)
+      return refuse(
+          408, Status(StatusCode::kDeadlineExceeded,
+                      std::string(stalled) + " " + std::to_string(limits_.timeout_seconds) + " s (--http-timeout)"));
+    const auto data = buffer_.data();
+    const std::string_view buffered(static_cast<const char*>(data.data()), data.size());
+    if (const std::optional<Refusal> r = refusal_of(*parser_, ec, buffered, limits_))
+      return refuse(r->http_status, r->why);
+    return close();
   }
 
   // The body into a temporary file, as it arrives; then the handler.
@@ -252,18 +260,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
 
   void on_body(beast::error_code ec) {
     read_done();
-    if (ec) {
-      if (read_timed_out_ && kTls) return close();
-      if (read_timed_out_)
-        return refuse(408, Status(StatusCode::kDeadlineExceeded, "the request body stalled for more than " +
-                                                                     std::to_string(limits_.timeout_seconds) +
-                                                                     " s (--http-timeout)"));
-      const auto data = buffer_.data();
-      const std::string_view buffered(static_cast<const char*>(data.data()), data.size());
-      if (const std::optional<Refusal> r = refusal_of(*parser_, ec, buffered, limits_))
-        return refuse(r->http_status, r->why);
-      return close();
-    }
+    if (ec) return on_read_error(ec, "the request body stalled for more than");
     if (!parser_->is_done()) return read_body();
     body_pending_ = false;
     ::close(body_->fd);
