@@ -17,6 +17,7 @@
 #include "server/http/http_range.h"
 #include "server/http/http_request_parser.h"
 #include "server/http/http_status.h"
+#include "server/http/pieces_body.h"
 #include "server/util/log.h"
 #include "server/util/temp_file.h"
 
@@ -27,37 +28,6 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace bhttp = boost::beast::http;
 using tcp = asio::ip::tcp;
-
-// A body written piece after piece (HttpReply's body, then its pieces): a large answer goes out as
-// the handler built it, never gathered into one more buffer.
-struct PiecesBody {
-  using value_type = std::vector<std::string>;
-  static std::uint64_t size(const value_type& v) {
-    std::uint64_t n = 0;
-    for (const std::string& p : v) n += p.size();
-    return n;
-  }
-  class writer {
-   public:
-    using const_buffers_type = asio::const_buffer;
-    template <bool isRequest, class Fields>
-    writer(const bhttp::header<isRequest, Fields>&, const value_type& v) : v_(v) {}
-    void init(beast::error_code& ec) { ec = {}; }
-    boost::optional<std::pair<const_buffers_type, bool>> get(beast::error_code& ec) {
-      ec = {};
-      while (next_ < v_.size() && v_[next_].empty()) ++next_;
-      if (next_ == v_.size()) return boost::none;
-      const std::string& piece = v_[next_++];
-      bool more = false;
-      for (size_t i = next_; i < v_.size() && !more; ++i) more = !v_[i].empty();
-      return std::make_pair(asio::const_buffer(piece.data(), piece.size()), more);
-    }
-
-   private:
-    const value_type& v_;
-    size_t next_ = 0;
-  };
-};
 
 constexpr size_t kDrainBytes = size_t{1} << 20;  // read and dropped after refusing a body, at most
 constexpr int kDrainSeconds = 2;
