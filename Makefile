@@ -1,6 +1,8 @@
 # The two commands of the README: `make run` and `make test`. Both install what is missing first.
 BUILD ?= build
 JOBS ?= $(shell nproc)
+# How `make build` configures a tree: a release build unless a target says otherwise.
+CMAKE_CONFIG ?= -DCMAKE_BUILD_TYPE=Release
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
 
@@ -10,14 +12,14 @@ deps:
 	scripts/install-deps
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
+	cmake -S . -B $(BUILD) $(CMAKE_CONFIG) $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 
 # soiqd on 127.0.0.1:50051 with the SQLite store var/soiq.db, in the foreground (scripts/run-server).
 # It builds only the programs (and their man pages and completion), not the tests and benchmarks:
 # a newcomer's first answer comes minutes sooner, and `make test` builds the rest.
 run: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
+	cmake -S . -B $(BUILD) $(CMAKE_CONFIG) $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS) --target soiqd soiq soiq_generated_docs
 	scripts/run-server $(BUILD)
 
@@ -28,22 +30,32 @@ demo: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# The same tests under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs this too).
-test-sanitize:
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DSOIQ_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+# The sanitizer tree (cmake/sanitize.cmake: clang-14, ASan + UBSan, libFuzzer's coverage): the
+# same tests under the sanitizers, and the fuzzing harnesses. CI runs both.
+SANITIZE_BUILD = build-sanitize
+SANITIZE_CONFIG = -C $(CURDIR)/cmake/sanitize.cmake
 
-# Every libFuzzer harness of fuzz/ (clang-14, ASan + UBSan, build-fuzz/) for FUZZ_SECONDS each, after
-# replaying fuzz/regressions/; fails on any crash, leak, timeout or out-of-memory (FUZZING.md).
+# The same tests under AddressSanitizer + UndefinedBehaviorSanitizer.
+test-sanitize:
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=$(SANITIZE_BUILD) CMAKE_CONFIG="$(SANITIZE_CONFIG)"
+
+# Every libFuzzer harness of fuzz/ for FUZZ_SECONDS each, after replaying fuzz/regressions/; fails on
+# any crash, leak, timeout or out-of-memory (FUZZING.md).
 fuzz: deps
-	cmake -C fuzz/config.cmake -S . -B build-fuzz >/dev/null
-	cmake --build build-fuzz --target soiq_fuzzers -j $(JOBS)
-	fuzz/run build-fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
+	cmake $(SANITIZE_CONFIG) -S . -B $(SANITIZE_BUILD) >/dev/null
+	cmake --build $(SANITIZE_BUILD) --target soiq_fuzzers -j $(JOBS)
+	fuzz/run $(SANITIZE_BUILD) $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
 # A soak of mixed load (uploads, imports, STOW, WADO, queries, deletes) against a real soiqd for
-# SOAK_MINUTES (30): fails on any error or on memory that keeps growing (scripts/soak).
+# SOAK_MINUTES (30): fails on any error or on memory that keeps growing (scripts/soak). Then the
+# store's faults FAULT_ROUNDS times over: PostgreSQL down and back under replicas' load, a SQLite
+# store's disk full (tests/integration/store_faults_test.cpp; `make test` runs them once).
 SOAK_MINUTES ?= 30
+FAULT_ROUNDS ?= 10
 soak: build
 	scripts/soak $(BUILD) $(SOAK_MINUTES)
+	$(BUILD)/tests/integration/soiq_integration_tests --gtest_filter='StoreFaultsTest.*' --gtest_repeat=$(FAULT_ROUNDS) \
+	  --gtest_brief=1
 
 # Benchmarks build apart (build-bench) with -march=x86-64-v2, as BENCHMARKS.md's figures assume.
 bench:
@@ -54,4 +66,4 @@ format:
 	git ls-files '*.h' '*.cpp' | xargs clang-format -i
 
 clean:
-	rm -rf build build-asan build-bench build-fuzz
+	rm -rf build build-sanitize build-bench build-asan build-fuzz

@@ -20,8 +20,15 @@ class Buckets {
     if (!(hi > lo) || !std::isfinite(width) || !std::isfinite(scale_)) scale_ = 0;
   }
   size_t size() const { return count_; }
-  // Through int64_t: a signed conversion is one instruction; (x - lo) * scale is in [0, buckets].
-  uint16_t of(double x) const { return uint16_t(std::min(size_t(int64_t((x - lo_) * scale_)), count_ - 1)); }
+  // (x - lo) * scale is in [0, buckets], or NaN when a range wider than a double made the scale 0
+  // and x - lo is infinite: converting NaN (or anything out of range) to an integer is undefined,
+  // so both ends are decided by comparisons first (NaN fails every one: bucket 0).
+  uint16_t of(double x) const {
+    const double t = (x - lo_) * scale_;
+    if (!(t >= 1)) return 0;
+    if (t >= double(count_ - 1)) return uint16_t(count_ - 1);
+    return uint16_t(int64_t(t));
+  }
 
  private:
   double lo_, scale_ = 0;

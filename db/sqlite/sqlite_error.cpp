@@ -25,8 +25,13 @@ Status sqlite_status(sqlite3* db, int rc, std::string_view what) {
     case SQLITE_PERM:
     case SQLITE_AUTH:
       return failed_precondition(message);
-    case SQLITE_FULL:
-      return resource_exhausted(message);
+    case SQLITE_FULL: {
+      // The operator's next step is on that disk: say which file it is (soiqd may run several).
+      const char* file = db != nullptr ? sqlite3_db_filename(db, "main") : nullptr;
+      const std::string store = file != nullptr && *file != '\0' ? std::string(file) : "the SQLite store";
+      return resource_exhausted(message + "; the disk of " + store +
+                                " is full: free space there (or move the store), then retry");
+    }
     default:
       return internal_error(message);
   }

@@ -1,10 +1,9 @@
 #pragma once
-// Test support for the PostgreSQL store's tests: one real PostgreSQL server per test suite
-// (tests/support/postgres_process.h) and a fresh database of its own for each test.
+// Test support for the PostgreSQL store's tests: the tests' real PostgreSQL server
+// (tests/support/postgres_process.h, shared_postgres) and a fresh database of its own for each test.
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <string>
 
 #include "db/postgres/pg_connection.h"
@@ -14,28 +13,18 @@ namespace soiq::db {
 
 class PgTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    server_ = new soiq::testing::PostgresProcess;
-    why_ = server_->start();
-  }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
   void SetUp() override {
-    ASSERT_EQ(why_, "");
+    std::string why;
+    server_ = &soiq::testing::shared_postgres(why);
+    ASSERT_EQ(why, "");
     // A database of its own per test.
-    static std::atomic<int> next{0};
-    database_ = "t" + std::to_string(next++);
-    auto admin = PgConnection::open(server_->conninfo("postgres"));
-    ASSERT_TRUE(admin.ok()) << admin.status().to_string();
-    ASSERT_TRUE(admin->run("CREATE DATABASE " + database_, "create a test database").ok());
+    database_ = soiq::testing::unique_postgres_database_name("t");
+    ASSERT_EQ(soiq::testing::ensure_postgres_database(*server_, database_), "");
   }
   Result<PgConnection> connect() const { return PgConnection::open(conninfo()); }
   std::string conninfo() const { return server_->conninfo(database_); }
 
-  inline static soiq::testing::PostgresProcess* server_ = nullptr;
-  inline static std::string why_;
+  soiq::testing::PostgresProcess* server_ = nullptr;
   std::string database_;
 };
 

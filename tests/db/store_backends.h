@@ -34,8 +34,7 @@ inline std::string fresh_postgres_database() {
     ADD_FAILURE() << "PostgreSQL: " << why;
     return "";
   }
-  static std::atomic<int> next{0};
-  const std::string name = "store" + std::to_string(next++);
+  const std::string name = soiq::testing::unique_postgres_database_name("store");
   why = soiq::testing::ensure_postgres_database(server, name);
   if (!why.empty()) {
     ADD_FAILURE() << "PostgreSQL: " << why;

@@ -4,11 +4,12 @@
 # soiq(1) and soiqd(8) man pages under share/; a separate project finds the
 # package with find_package(soiq), links soiq::client, and asks a real soiqd (the installed one,
 # on a free loopback port) for its version, which must be this build's.
-#   install_test.sh SOURCE_DIR BUILD_DIR [CONSUMER_LINK_FLAGS]
+#   install_test.sh SOURCE_DIR BUILD_DIR [CONSUMER_LINK_FLAGS [CXX_COMPILER]]
 set -euo pipefail
 source_dir=$1
 build=$2
 link_flags=${3:-}
+compiler=${4:-c++}
 tmp=$(mktemp -d)
 soiqd_pid=
 trap '[ -n "$soiqd_pid" ] && kill "$soiqd_pid" 2>/dev/null; rm -rf "$tmp"' EXIT
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
 }
 CPP
 cmake -S "$tmp/consumer" -B "$tmp/consumer/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
-  -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >"$tmp/configure.log" 2>&1 ||
+  -DCMAKE_EXE_LINKER_FLAGS="$link_flags" -DCMAKE_CXX_COMPILER="$compiler" >"$tmp/configure.log" 2>&1 ||
   fail "find_package(soiq): $(tail -20 "$tmp/configure.log")"
 cmake --build "$tmp/consumer/build" >"$tmp/build.log" 2>&1 || fail "linking soiq::client: $(tail -20 "$tmp/build.log")"
 

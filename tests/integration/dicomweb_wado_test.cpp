@@ -9,6 +9,7 @@
 
 #include "dicom/dicom_json_metadata.h"
 #include "tests/integration/dicomweb_fixture.h"
+#include "tests/support/address_sanitizer.h"
 
 namespace soiq::testing {
 namespace {
@@ -166,7 +167,7 @@ TEST_F(DicomwebTest, ConcurrentSegRetrievalsAndExportsStayWithinTheBudget) {
   EXPECT_LE(info->memory_peak_bytes(), budget);
   EXPECT_EQ(info->memory_in_use_bytes(), 0);
   const long long rss_after = server_->peak_rss_bytes();
-#ifdef __SANITIZE_ADDRESS__
+#if SOIQ_TEST_UNDER_ASAN
   // ASan keeps freed blocks in quarantine: its VmHWM says nothing of soiqd's own.
   (void)rss_before;
   (void)rss_after;

@@ -64,9 +64,10 @@ class ReplicasTest : public ServiceTest {
     std::string why;
     PostgresProcess& server = shared_postgres(why);
     ASSERT_EQ(why, "");
-    ASSERT_EQ(ensure_postgres_database(server, "replicas"), "");
-    uri_ = "postgresql://" + std::string(PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(server.port()) +
-           "/replicas?connect_timeout=5";
+    const std::string database = unique_postgres_database_name("replicas");
+    ASSERT_EQ(ensure_postgres_database(server, database), "");
+    uri_ = "postgresql://" + std::string(PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(server.port()) + "/" +
+           database + "?connect_timeout=5";
   }
   // `timeout_ms`: short where a test waits for a death, longer where a busy machine must not make a
   // live replica look dead.

@@ -6,6 +6,8 @@
 
 #include <cstdlib>
 
+#include "tests/support/address_sanitizer.h"
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -14,7 +16,7 @@ namespace soiq::server {
 namespace {
 
 TEST(MallocTuning, GlibcTakesBothSettingsAndServesAFewMiBFromTheHeap) {
-#if defined(__SANITIZE_ADDRESS__)
+#if SOIQ_TEST_UNDER_ASAN
   GTEST_SKIP() << "AddressSanitizer replaces the allocator (and ignores mallopt)";
 #elif !defined(__GLIBC__)
   GTEST_SKIP() << "not glibc";

@@ -43,9 +43,10 @@ std::string soiqd_store(const std::string& db_path, std::string& why) {
   if (!soiqd_on_postgres()) return db_path;
   PostgresProcess& server = shared_postgres(why);
   if (!why.empty()) return "";
-  // A name from the path: the same path, the same database.
-  char name[32];
-  std::snprintf(name, sizeof name, "soiq_%016zx", std::hash<std::string>{}(db_path));
+  // A name from the path and the process: the same path, the same database (a restarted soiqd
+  // finds its store), and no other test process's.
+  char name[48];
+  std::snprintf(name, sizeof name, "soiq_%d_%016zx", static_cast<int>(getpid()), std::hash<std::string>{}(db_path));
   why = ensure_postgres_database(server, name);
   if (!why.empty()) return "";
   return "postgresql://" + std::string(PostgresProcess::kUser) + "@127.0.0.1:" + std::to_string(server.port()) + "/" +
