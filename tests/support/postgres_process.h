@@ -180,20 +180,21 @@ inline void drop_databases(const PostgresProcess& server) {
 }
 }  // namespace detail
 
-// The test process's PostgreSQL server. Under ctest it is the one server every test shares, started
-// once by the fixture test postgres.start (tests/support/shared_postgres.sh) in the folder
-// SOIQ_TEST_POSTGRES_DIR names: an initdb and a start per test process cost more than the tests of
-// the PostgreSQL store themselves. Run alone (a test binary started by hand), the process starts a
-// server of its own when first asked and stops it at exit. Either way each test uses databases of
-// its own (unique_postgres_database_name). `why` is "" when it runs, else why it does not. An own
-// server is deleted at exit, which removes its data folder too (ctest runs each test in a process
-// of its own: kept, the folders of one `make test` filled ~9 GB); on the shared server, the
-// databases this process made are dropped at exit instead.
+// The test process's PostgreSQL server. Under ctest it is the one server every test shares,
+// started once by the fixture test postgres.start (tests/support/shared_postgres.sh) in the folder
+// SOIQ_TEST_POSTGRES names in the temporary directory: an initdb and a start per test process cost
+// more than the tests of the PostgreSQL store themselves. Run alone (a test binary started by
+// hand), the process starts a server of its own when first asked and stops it at exit. Either way
+// each test uses databases of its own (unique_postgres_database_name). `why` is "" when it runs,
+// else why it does not. An own server is deleted at exit, which removes its data folder too (kept,
+// the folders of one `make test` filled ~9 GB); on the shared server, the databases this process
+// made are dropped at exit instead.
 inline PostgresProcess& shared_postgres(std::string& why) {
   static PostgresProcess* server = new PostgresProcess;
   static const std::string started = [] {
-    const char* shared = std::getenv("SOIQ_TEST_POSTGRES_DIR");
-    return shared != nullptr && *shared != '\0' ? server->attach(shared) : server->start();
+    const char* shared = std::getenv("SOIQ_TEST_POSTGRES");
+    return shared != nullptr && *shared != '\0' ? server->attach(std::filesystem::temp_directory_path() / shared)
+                                                : server->start();
   }();
   static const int stop_at_exit = std::atexit([] {
     if (server->attached()) detail::drop_databases(*server);

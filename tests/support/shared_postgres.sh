@@ -3,14 +3,18 @@
 # every test of the PostgreSQL store then makes databases of its own on it instead of running
 # initdb and a server per test process (tests/support/postgres_process.h, shared_postgres).
 #
-#   shared_postgres.sh start DIR   initdb in DIR/data, a server on a free 127.0.0.1 port (in DIR/port)
-#   shared_postgres.sh stop DIR    a fast shutdown, then DIR is removed
+#   shared_postgres.sh start NAME  initdb in DIR/data, a server on a free 127.0.0.1 port (in DIR/port)
+#   shared_postgres.sh stop NAME   a fast shutdown, then DIR is removed
+#
+# DIR is NAME in the temporary directory ($TMPDIR, else /tmp), as the tests resolve it
+# (std::filesystem::temp_directory_path).
 #
 # As for PostgresProcess: trust authentication for the user soiq, no fsync, listening on loopback
 # only with its socket in DIR; as root, the server runs as the `postgres` user Debian creates.
 set -euo pipefail
-action=${1:?usage: shared_postgres.sh start|stop DIR}
-dir=${2:?usage: shared_postgres.sh start|stop DIR}
+action=${1:?usage: shared_postgres.sh start|stop NAME}
+name=${2:?usage: shared_postgres.sh start|stop NAME}
+dir=${TMPDIR:-/tmp}/$name
 
 bin=$(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -V | tail -1)
 if [ -z "$bin" ] || [ ! -x "$bin/postgres" ]; then
@@ -52,7 +56,7 @@ case $action in
     exit 1
     ;;
   *)
-    echo "usage: shared_postgres.sh start|stop DIR" >&2
+    echo "usage: shared_postgres.sh start|stop NAME" >&2
     exit 2
     ;;
 esac
