@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 
+#include "bench/clock.h"
 #include "core/features/intensity_features.h"
 #include "core/features/structure_features.h"
 #include "core/features/surface_shape.h"
@@ -18,8 +19,6 @@
 
 namespace soiq::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 constexpr int64_t kBeforeSampling = 10;
 

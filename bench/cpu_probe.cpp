@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "bench/clock.h"
+
 namespace soiq::bench {
 
 namespace {
@@ -19,10 +21,6 @@ __attribute__((noinline)) double kernel(long steps, double seed) {
   return s;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 }  // namespace
 
 int run_cpu_probe(const CliArgs& args) {
@@ -34,10 +32,10 @@ int run_cpu_probe(const CliArgs& args) {
   constexpr long kSteps = 40'000'000;
   double one = 1e300, two = 1e300, sink = 0;
   for (int r = 0; r < *runs; ++r) {
-    auto t0 = std::chrono::steady_clock::now();
+    auto t0 = Clock::now();
     sink += kernel(kSteps, r);
     one = std::min(one, ms_since(t0));
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     double other = 0;
     std::thread helper([&other, r] { other = kernel(kSteps / 2, r + 0.5); });
     sink += kernel(kSteps / 2, r);

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/clock.h"
 #include "bench/orthanc_process.h"
 #include "dicom/dcmtk_file.h"
 #include "tests/support/soiqd_process.h"
@@ -22,11 +23,7 @@
 namespace soiq::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 void note(const std::string& s) { std::fprintf(stderr, "soiq-bench dicomweb: %s\n", s.c_str()); }
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
 // "2.25.<n>" UIDs of the synthetic data: kind 1 study, 2 series, 3 instance, 4 frame of reference.
 std::string uid(int kind, int n) { return "2.25." + std::to_string(kind) + std::to_string(1000000000 + n); }
 

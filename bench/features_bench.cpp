@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/clock.h"
 #include "bench/smoothed_structure.h"
 #include "core/features/structure_features.h"
 #include "core/io/read_image.h"
@@ -47,14 +48,10 @@ std::string part_kind(const std::string& part) {
   return part;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 Status measure(Row& row, const StructureInput& input, const FeatureRequest& request, int runs) {
   row.voxels = voxel_count(input.volume);
   for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     SOIQ_ASSIGN_OR_RETURN(FeatureReport report, structure_features(input, request));
     row.features_ms = std::min(row.features_ms, ms_since(t0));
     row.feature_count = report.features.size();
@@ -115,7 +112,7 @@ Status print_region_table(const std::string& dir, int runs) {
       for (const RegionMethod method : {RegionMethod::kRuns, RegionMethod::kTransform}) {
         RegionOptions options;
         options.method = method;
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = Clock::now();
         SOIQ_ASSIGN_OR_RETURN(RunLengthVolume out, region(v.volume, spec, options));
         double& b = best[method == RegionMethod::kRuns ? 0 : 1];
         b = std::min(b, ms_since(t0));
@@ -147,7 +144,7 @@ Status surface_row(const std::string& name, TriangleMesh mesh, const ImageGeomet
   StructureInput input;
   input.surface = std::move(mesh);
   for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, grid, options));
     best = std::min(best, ms_since(t0));
     input.volume = std::move(out.volume);
@@ -162,7 +159,7 @@ Status surface_row(const std::string& name, TriangleMesh mesh, const ImageGeomet
   }
   double best_no_hull = 1e300;
   for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     SOIQ_RETURN_IF_ERROR(structure_features(input, no_hull).status());
     best_no_hull = std::min(best_no_hull, ms_since(t0));
   }
@@ -171,11 +168,11 @@ Status surface_row(const std::string& name, TriangleMesh mesh, const ImageGeomet
   options.threads = request.threads = 2;
   double best_conversion = 1e300, best_features = 1e300;
   for (int r = 0; r < runs; ++r) {
-    auto t0 = std::chrono::steady_clock::now();
+    auto t0 = Clock::now();
     SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, grid, options));
     best_conversion = std::min(best_conversion, ms_since(t0));
     input.volume = std::move(out.volume);
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     SOIQ_RETURN_IF_ERROR(structure_features(input, request).status());
     best_features = std::min(best_features, ms_since(t0));
   }

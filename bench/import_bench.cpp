@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/clock.h"
 #include "client/soiq_client.h"
 #include "core/base/run_length_volume.h"
 #include "core/voxelize/fill_contours.h"
@@ -24,9 +25,6 @@ namespace soiq::bench {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct CaseFiles {
   std::vector<std::string> paths;

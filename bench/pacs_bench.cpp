@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/clock.h"
 #include "bench/orthanc_process.h"
 #include "client/soiq_client.h"
 #include "tests/support/dcmqrscp_process.h"
@@ -18,11 +19,8 @@ namespace soiq::bench {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-struct Options {
+struct PacsOptions {
   std::string dir, patient, soiqd = SOIQD_BINARY;
   int runs = 3;
 };
@@ -65,8 +63,8 @@ class ScopedEnv {
 };
 
 // A fresh soiqd (its own new database) on `peer`, with Nagle's algorithm on or off.
-Result<std::unique_ptr<testing::SoiqdProcess>> fresh_soiqd(const Options& o, const dicom::PacsPeer& peer, bool nagle,
-                                                           const std::string& db) {
+Result<std::unique_ptr<testing::SoiqdProcess>> fresh_soiqd(const PacsOptions& o, const dicom::PacsPeer& peer,
+                                                           bool nagle, const std::string& db) {
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db + suffix);
   // soiqd turns Nagle's algorithm off unless TCP_NODELAY is set: "0" keeps it on.
   const ScopedEnv env("TCP_NODELAY", nagle ? "0" : nullptr);
@@ -89,7 +87,7 @@ Result<v1::ImportDicomResponse> pull(const client::Client& c, const std::string&
 }
 
 // N pulls of the patient, each into a fresh soiqd.
-Status time_pulls(const Options& o, const dicom::PacsPeer& peer, bool nagle, const std::string& work, Timing& t) {
+Status time_pulls(const PacsOptions& o, const dicom::PacsPeer& peer, bool nagle, const std::string& work, Timing& t) {
   for (int r = 0; r < o.runs; ++r) {
     SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<testing::SoiqdProcess> server,
                           fresh_soiqd(o, peer, nagle, work + "/pull.db"));
@@ -105,7 +103,7 @@ Status time_pulls(const Options& o, const dicom::PacsPeer& peer, bool nagle, con
 
 // N pushes of one pulled structure as a SEG. After every pull: each push adds a SEG to the PACS,
 // which a later pull would fetch too.
-Status time_pushes(const Options& o, const dicom::PacsPeer& peer, bool nagle, const std::string& work, Timing& t) {
+Status time_pushes(const PacsOptions& o, const dicom::PacsPeer& peer, bool nagle, const std::string& work, Timing& t) {
   SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<testing::SoiqdProcess> server,
                         fresh_soiqd(o, peer, nagle, work + "/push.db"));
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, client_of(*server));
@@ -129,7 +127,7 @@ void print_row(const std::string& pacs, const char* nagle, const Timing& t, doub
 }
 
 // Loads the files into `peer` with storescu (the time it took), then the pulls both ways.
-Status bench_pacs(const Options& o, const std::string& name, const dicom::PacsPeer& peer, const std::string& work) {
+Status bench_pacs(const PacsOptions& o, const std::string& name, const dicom::PacsPeer& peer, const std::string& work) {
   std::vector<std::string> argv = {dicom::testing::find_on_path("storescu"),
                                    "-aet",
                                    "SOIQLOAD",
@@ -157,7 +155,7 @@ Status bench_pacs(const Options& o, const std::string& name, const dicom::PacsPe
   return ok_status();
 }
 
-Status run(const Options& o) {
+Status run(const PacsOptions& o) {
   const testing::TempDir work;
   std::printf(
       "| PACS | Nagle on soiq's association | files pulled | storescu load | pull best | pull median | "
@@ -181,7 +179,7 @@ Status run(const Options& o) {
 }  // namespace
 
 int run_pacs_bench(const CliArgs& args) {
-  Options o;
+  PacsOptions o;
   const std::vector<std::string>& operands = args.positional;
   Result<int> runs = args.get_int("--runs", o.runs);
   o.patient = args.get("--patient", "");

@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "bench/clock.h"
 #include "bench/cold_breakdown.h"
 #include "bench/query_cohort.h"
 #include "bench/query_load.h"
@@ -27,14 +28,11 @@
 namespace soiq::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 void note(const char* fmt, const std::string& s = "") { std::fprintf(stderr, fmt, s.c_str()); }
 
-struct Options {
+struct QueryBenchOptions {
   QueryCohortSize size;
   std::string dir, soiqd = SOIQD_BINARY;
   int workers = 2, runs = 3;
@@ -42,8 +40,8 @@ struct Options {
   bool small = false;
 };
 
-Result<Options> parse(const CliArgs& args) {
-  Options o;
+Result<QueryBenchOptions> parse(const CliArgs& args) {
+  QueryBenchOptions o;
   o.small = args.has("--small");
   if (o.small) {
     o.size.patients = 10000;
@@ -103,7 +101,7 @@ Status check_meshes(const CohortPatient& p, const QueryCohortSize& size, int64_t
 }
 
 // The cohort's patients, every matched structure's mesh checked closed, and their triangle range.
-Result<std::vector<CohortPatient>> checked_cohort(const Options& o, QueryBenchFigures& f) {
+Result<std::vector<CohortPatient>> checked_cohort(const QueryBenchOptions& o, QueryBenchFigures& f) {
   note("soiq-bench query: cohort of %s patients\n", std::to_string(o.size.patients));
   std::vector<CohortPatient> cohort = query_cohort_patients(o.size, 20250409);
   f.min_triangles = INT64_MAX;
@@ -113,7 +111,7 @@ Result<std::vector<CohortPatient>> checked_cohort(const Options& o, QueryBenchFi
 }
 
 // Background rows through SqliteStore, then the matched patients uploaded through a real soiqd.
-Status load(const Options& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
+Status load(const QueryBenchOptions& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
             const std::string& pristine, QueryBenchFigures& f) {
   // Background rows on tmpfs (fsync is free there), then moved next to the rest.
   note("soiq-bench query: bulk load through SqliteStore\n");
@@ -135,7 +133,7 @@ Status load(const Options& o, const std::vector<CohortPatient>& cohort, const Wo
 }
 
 // SqliteStore::stage1 in-process, 20 warm runs; each must keep exactly the matched patients.
-Status stage1_in_process(const Options& o, const std::string& pristine, QueryBenchFigures& f) {
+Status stage1_in_process(const QueryBenchOptions& o, const std::string& pristine, QueryBenchFigures& f) {
   note("soiq-bench query: stage 1 in-process\n");
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqliteStore> store, db::SqliteStore::open(pristine, {}));
   for (int i = 0; i < 21; ++i) {
@@ -154,7 +152,7 @@ Status stage1_in_process(const Options& o, const std::string& pristine, QueryBen
 }
 
 // --runs fresh servers (cold, then warm), then concurrent clients on the warm database of the last.
-Status server_runs(const Options& o, const WorkDir& work, const std::string& pristine, QueryBenchFigures& f) {
+Status server_runs(const QueryBenchOptions& o, const WorkDir& work, const std::string& pristine, QueryBenchFigures& f) {
   for (int i = 0; i < o.runs; ++i) {
     note("soiq-bench query: cold and warm, run %s\n", std::to_string(i + 1));
     SOIQ_ASSIGN_OR_RETURN(ServerRun r, server_run(o.soiqd, o.workers, pristine, work.path() + "/run.db", 5));
@@ -182,7 +180,7 @@ Status breakdown(const WorkDir& work, const std::string& pristine, QueryBenchFig
   fs::copy_file(pristine, work.path() + "/breakdown.db", fs::copy_options::overwrite_existing);
   SOIQ_ASSIGN_OR_RETURN(f.breakdown, cold_breakdown(work.path() + "/breakdown.db", query_stage1_filter()));
   for (const ServerRun& r : f.runs) {
-    for (const Timed* t : {&r.cold, &r.warm.back()}) {
+    for (const TimedQuery* t : {&r.cold, &r.warm.back()}) {
       if (t->kept.size() != size_t(std::min<int64_t>(20, int64_t(f.candidates))))
         return internal_error("the query returned " + std::to_string(t->kept.size()) + " rows");
       for (const v1::QueryRow& row : t->kept) {
@@ -214,7 +212,7 @@ Result<double> largest_background_volume(const QueryCohortSize& size) {
 
 // With precompute on, on a copy of the loaded database (every structure queued); then the matched
 // patients' uploads again, to a fresh soiqd with precompute on.
-Status precompute(const Options& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
+Status precompute(const QueryBenchOptions& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
                   const std::string& pristine, QueryBenchFigures& f) {
   note("soiq-bench query: precompute, then queries on stored values\n");
   SOIQ_ASSIGN_OR_RETURN(const double threshold, largest_background_volume(o.size));
@@ -226,7 +224,7 @@ Status precompute(const Options& o, const std::vector<CohortPatient>& cohort, co
   return ok_status();
 }
 
-Status run(const Options& o) {
+Status run(const QueryBenchOptions& o) {
   const WorkDir work(o.dir);
   if (work.path().empty()) return internal_error("cannot create a work folder (set SOIQ_BENCH_TMP or --dir)");
   const std::string pristine = work.path() + "/cohort.db";
@@ -249,7 +247,7 @@ Status run(const Options& o) {
 int run_query_bench(const CliArgs& args) {
   // The in-process parts (stage 1, where the cold time goes) allocate as soiqd does.
   server::keep_freed_blocks_for_reuse();
-  Result<Options> o = parse(args);
+  Result<QueryBenchOptions> o = parse(args);
   if (!o.ok()) {
     std::fprintf(stderr, "soiq-bench query: %s\n", o.status().message().c_str());
     return 2;

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "bench/clock.h"
 #include "client/soiq_client.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
@@ -16,10 +17,6 @@
 
 namespace soiq::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct PreparedPatient {
   const CohortPatient* patient = nullptr;

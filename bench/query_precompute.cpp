@@ -4,15 +4,13 @@
 #include <filesystem>
 #include <thread>
 
+#include "bench/clock.h"
 #include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 }  // namespace
 
@@ -52,7 +50,7 @@ Result<PrecomputeFigures> precompute_run(const std::string& soiqd, int workers, 
   f.drain_s = seconds_since(start);
   SOIQ_ASSIGN_OR_RETURN(f.benchmark_after, timed_query(c, benchmark_request()));
   for (int i = 0; i < runs; ++i) {
-    SOIQ_ASSIGN_OR_RETURN(Timed t, timed_query(c, precomputed_set_request()));
+    SOIQ_ASSIGN_OR_RETURN(TimedQuery t, timed_query(c, precomputed_set_request()));
     if (t.summary.computed() != 0)
       return internal_error("the precomputed set computed " + std::to_string(t.summary.computed()) + " structures");
     f.precomputed_set.push_back(std::move(t));
@@ -64,7 +62,7 @@ Result<PrecomputeFigures> precompute_run(const std::string& soiqd, int workers, 
   p->set_op(v1::GT);
   p->set_value(background_volume_mm3);
   for (int i = 0; i < runs; ++i) {
-    SOIQ_ASSIGN_OR_RETURN(Timed t, timed_query(c, filter));
+    SOIQ_ASSIGN_OR_RETURN(TimedQuery t, timed_query(c, filter));
     if (t.summary.computed() != 0 || t.summary.stage1_candidates() != t.summary.matched())
       return internal_error("the content filter kept " + std::to_string(t.summary.stage1_candidates()) +
                             " in stage 1 and matched " + std::to_string(t.summary.matched()) + ", computing " +

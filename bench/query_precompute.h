@@ -16,13 +16,13 @@
 namespace soiq::bench {
 
 struct PrecomputeFigures {
-  int64_t queued = 0;                  // structures in the queue at start
-  double drain_s = 0;                  // until the queue was empty
-  int64_t structures = 0;              // in the database
-  Timed benchmark_after;               // the benchmark query, the first after precompute
-  std::vector<Timed> precomputed_set;  // volume, sphericity, mean inside: every value stored
-  double threshold_mm3 = 0;            // of the content filter
-  std::vector<Timed> content_filter;   // voxel_volume_mm3 > threshold, no stage-1 filter
+  int64_t queued = 0;                       // structures in the queue at start
+  double drain_s = 0;                       // until the queue was empty
+  int64_t structures = 0;                   // in the database
+  TimedQuery benchmark_after;               // the benchmark query, the first after precompute
+  std::vector<TimedQuery> precomputed_set;  // volume, sphericity, mean inside: every value stored
+  double threshold_mm3 = 0;                 // of the content filter
+  std::vector<TimedQuery> content_filter;   // voxel_volume_mm3 > threshold, no stage-1 filter
 };
 
 // Ingest with precompute on: the matched patients uploaded (2 clients) to a fresh soiqd on an empty

@@ -53,7 +53,7 @@ double print_timings(const QueryBenchFigures& f) {
     s1_client.push_back(r.stage1.client_ms);
     cold_client.push_back(r.cold.client_ms);
     cold_stage2.push_back(r.cold.summary.stage2_ms());
-    for (const Timed& w : r.warm) {
+    for (const TimedQuery& w : r.warm) {
       warm_client.push_back(w.client_ms);
       warm_total.push_back(w.summary.total_ms());
     }
@@ -114,11 +114,11 @@ void print_breakdown(const QueryBenchFigures& f, double cold_stage2_best_ms) {
 void print_precompute(const QueryBenchFigures& f) {
   const PrecomputeFigures& p = f.precompute;
   std::vector<double> set_client, set_total, filter_client, filter_stage1;
-  for (const Timed& t : p.precomputed_set) {
+  for (const TimedQuery& t : p.precomputed_set) {
     set_client.push_back(t.client_ms);
     set_total.push_back(t.summary.total_ms());
   }
-  for (const Timed& t : p.content_filter) {
+  for (const TimedQuery& t : p.content_filter) {
     filter_client.push_back(t.client_ms);
     filter_stage1.push_back(t.summary.stage1_ms());
   }

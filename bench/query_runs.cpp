@@ -5,16 +5,14 @@
 #include <filesystem>
 #include <thread>
 
+#include "bench/clock.h"
 #include "bench/query_cohort.h"
 #include "tests/support/soiqd_process.h"
 
 namespace soiq::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 v1::Stage1Filter to_proto(const db::Stage1Filter& f) {
   v1::Stage1Filter out;
@@ -49,8 +47,8 @@ v1::QueryRequest benchmark_request() {
   return r;
 }
 
-Result<Timed> timed_query(const client::Client& c, const v1::QueryRequest& r) {
-  Timed t;
+Result<TimedQuery> timed_query(const client::Client& c, const v1::QueryRequest& r) {
+  TimedQuery t;
   client::QueryHandlers h;
   h.on_row = [&](const v1::QueryRow& row) {
     ++t.rows;
@@ -90,7 +88,7 @@ Result<ServerRun> server_run(const std::string& soiqd, int workers, const std::s
   SOIQ_ASSIGN_OR_RETURN(run.stage1_again, timed_query(c, stage1_only_request()));
   SOIQ_ASSIGN_OR_RETURN(run.cold, timed_query(c, benchmark_request()));
   for (int i = 0; i < warm_runs; ++i) {
-    SOIQ_ASSIGN_OR_RETURN(Timed w, timed_query(c, benchmark_request()));
+    SOIQ_ASSIGN_OR_RETURN(TimedQuery w, timed_query(c, benchmark_request()));
     run.warm.push_back(w);
   }
   return run;
@@ -111,7 +109,7 @@ Result<Throughput> throughput(const std::vector<std::string>& addresses, int cli
       }
       const v1::QueryRequest r = benchmark_request();
       while (Clock::now() < until) {
-        Result<Timed> t = timed_query(*c, r);
+        Result<TimedQuery> t = timed_query(*c, r);
         if (!t.ok()) {
           errors[size_t(i)] = t.status();
           return;

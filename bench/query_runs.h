@@ -23,19 +23,19 @@ struct Stats {
 };
 Stats stats(std::vector<double> v);
 
-struct Timed {
+struct TimedQuery {
   v1::QuerySummary summary;
   double client_ms = 0;
   int64_t rows = 0;
   std::vector<v1::QueryRow> kept;  // the rows of a query with features (top 20)
 };
-Result<Timed> timed_query(const client::Client& c, const v1::QueryRequest& r);
+Result<TimedQuery> timed_query(const client::Client& c, const v1::QueryRequest& r);
 
 Result<client::Client> connect(const std::string& address);
 
 struct ServerRun {
-  Timed stage1, stage1_again, cold;  // stage 1 first on the fresh server, then once more
-  std::vector<Timed> warm;
+  TimedQuery stage1, stage1_again, cold;  // stage 1 first on the fresh server, then once more
+  std::vector<TimedQuery> warm;
 };
 // A fresh soiqd (`soiqd`, --workers `workers`) on a fresh copy `db` of the loaded database
 // `pristine`: stage 1 alone, cold, then `warm_runs` warm queries.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/clock.h"
 #include "bench/query_cohort.h"
 #include "bench/query_load.h"
 #include "bench/query_runs.h"
@@ -18,13 +19,11 @@
 namespace soiq::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 void note(const std::string& s) { std::fprintf(stderr, "soiq-bench replicas: %s\n", s.c_str()); }
 
-struct Options {
+struct ReplicasOptions {
   QueryCohortSize size;
   std::string soiqd = SOIQD_BINARY;
   int workers = 2;
@@ -65,8 +64,8 @@ std::string uri(const testing::PostgresProcess& pg, const std::string& db) {
          "/" + db;
 }
 
-std::unique_ptr<testing::SoiqdProcess> replica(const Options& o, const testing::TempDir& dir, const std::string& db,
-                                               const std::string& id) {
+std::unique_ptr<testing::SoiqdProcess> replica(const ReplicasOptions& o, const testing::TempDir& dir,
+                                               const std::string& db, const std::string& id) {
   return std::make_unique<testing::SoiqdProcess>(
       dir.file(id + ".log.db"),
       std::vector<std::string>{"--db", db, "--workers", std::to_string(o.workers), "--replica-id", id}, o.soiqd);
@@ -81,14 +80,14 @@ Result<Stats> stage1_through(const std::string& address, int64_t& candidates) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(address));
   std::vector<double> ms;
   for (int i = 0; i < 21; ++i) {
-    SOIQ_ASSIGN_OR_RETURN(const Timed t, timed_query(c, stage1_only_request()));
+    SOIQ_ASSIGN_OR_RETURN(const TimedQuery t, timed_query(c, stage1_only_request()));
     if (i > 0) ms.push_back(t.client_ms);  // the first warms the caches
     candidates = t.summary.stage1_candidates();
   }
   return stats(ms);
 }
 
-Status run(const Options& o, Figures& f) {
+Status run(const ReplicasOptions& o, Figures& f) {
   testing::TempDir dir;
   const std::vector<CohortPatient> cohort = query_cohort_patients(o.size, 20250409);
   note("background patients through SqliteStore");
@@ -139,7 +138,7 @@ Status run(const Options& o, Figures& f) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // every replica has heard the others
     SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(replicas[0]->address()));
-    SOIQ_ASSIGN_OR_RETURN(const Timed cold, timed_query(c, benchmark_request()));
+    SOIQ_ASSIGN_OR_RETURN(const TimedQuery cold, timed_query(c, benchmark_request()));
     ColdRun run{n, cold.client_ms, cold.summary.computed(), {}};
     if (n == 3) {
       note("8 clients against the three replicas");
@@ -156,7 +155,7 @@ Status run(const Options& o, Figures& f) {
   return ok_status();
 }
 
-void print(const Options& o, const Figures& f) {
+void print(const ReplicasOptions& o, const Figures& f) {
   std::printf("### Replicas on PostgreSQL\n\n");
   std::printf("Cohort: %lld patients (%lld matched); soiqd `--workers %d`; PostgreSQL 15 on the same machine,\n",
               (long long)o.size.patients, (long long)o.size.matched, o.workers);
@@ -188,7 +187,7 @@ void print(const Options& o, const Figures& f) {
 }  // namespace
 
 int run_replicas_bench(const CliArgs& args) {
-  Options o;
+  ReplicasOptions o;
   if (args.has("--small")) {
     o.size.patients = 10000;
     o.size.matched = 10;

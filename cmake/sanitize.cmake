@@ -14,6 +14,11 @@ set(SOIQ_FUZZ ON CACHE BOOL "")
 # clang warns about things GCC does not (and the reverse); the GCC build (`make test`) is the one
 # that gates warnings, this one gates memory errors, undefined behaviour and crashes.
 set(SOIQ_WERROR OFF CACHE BOOL "")
+# No test runs the benchmarks; the release tree builds them.
+set(SOIQ_BENCH OFF CACHE BOOL "")
+# LLVM's linker: the sanitized test binaries are large, and GNU ld links them several times slower.
+set(CMAKE_EXE_LINKER_FLAGS "-fuse-ld=lld" CACHE STRING "")
+set(CMAKE_SHARED_LINKER_FLAGS "-fuse-ld=lld" CACHE STRING "")
 set(CMAKE_BUILD_TYPE RelWithDebInfo CACHE STRING "")
 # No -DNDEBUG: an assert is an invariant no input can break, exactly what a fuzzer and a sanitized
 # test should check. Line tables are enough for symbolized stacks and keep the objects small.

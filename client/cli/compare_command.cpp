@@ -36,7 +36,7 @@ struct CompareArgs {
   int labels[2] = {-1, -1};
 };
 
-Result<CompareArgs> parse(int argc, char** argv) {
+Result<CompareArgs> parse_compare_args(int argc, char** argv) {
   CompareArgs a;
   int n_files = 0;
   for (int i = 1; i < argc; ++i) {
@@ -56,7 +56,7 @@ Result<CompareArgs> parse(int argc, char** argv) {
 }  // namespace
 
 int run_compare_command(int argc, char** argv) {
-  return run_command("compare", parse(argc, argv), [](const CompareArgs& a) {
+  return run_command("compare", parse_compare_args(argc, argv), [](const CompareArgs& a) {
     return compare_files(a.files[0], a.files[1], a.labels[0], a.labels[1]);
   });
 }

@@ -19,7 +19,7 @@ struct ConvertArgs {
   MeshGridOptions grid;
 };
 
-Result<ConvertArgs> parse(int argc, char** argv) {
+Result<ConvertArgs> parse_convert_args(int argc, char** argv) {
   ConvertArgs a;
   for (int i = 1; i < argc; ++i) {
     SOIQ_ASSIGN_OR_RETURN(const bool shared, parse_mesh_grid_option(argc, argv, i, a.grid));
@@ -64,6 +64,6 @@ Status convert(const ConvertArgs& a) {
 
 }  // namespace
 
-int run_convert_command(int argc, char** argv) { return run_command("convert", parse(argc, argv), convert); }
+int run_convert_command(int argc, char** argv) { return run_command("convert", parse_convert_args(argc, argv), convert); }
 
 }  // namespace soiq::cli

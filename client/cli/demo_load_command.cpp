@@ -26,7 +26,7 @@ struct DemoArgs {
   int seed = 1;
 };
 
-Result<DemoArgs> parse(int argc, char** argv) {
+Result<DemoArgs> parse_demo_load_args(int argc, char** argv) {
   DemoArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -162,7 +162,7 @@ Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_demo_load_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("demo-load", parse(argc, argv), [&](const DemoArgs& a) { return demo_load(a, remote); });
+  return run_command("demo-load", parse_demo_load_args(argc, argv), [&](const DemoArgs& a) { return demo_load(a, remote); });
 }
 
 }  // namespace soiq::cli

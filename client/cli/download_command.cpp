@@ -16,7 +16,7 @@ struct DownloadArgs {
   std::string out;
 };
 
-Result<DownloadArgs> parse(int argc, char** argv) {
+Result<DownloadArgs> parse_download_args(int argc, char** argv) {
   DownloadArgs a;
   std::string id;
   for (int i = 1; i < argc; ++i) {
@@ -57,7 +57,7 @@ Status download(const DownloadArgs& a, const client::ClientOptions& remote) {
 
 int run_download_command(int argc, char** argv, const client::ClientOptions& remote) {
   return run_long_command(
-      "download", parse(argc, argv), remote,
+      "download", parse_download_args(argc, argv), remote,
       [](const DownloadArgs& a, const client::ClientOptions& options) { return download(a, options); });
 }
 

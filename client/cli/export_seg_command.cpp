@@ -17,7 +17,7 @@ struct ExportSegArgs {
   std::string out;
 };
 
-Result<ExportSegArgs> parse(int argc, char** argv) {
+Result<ExportSegArgs> parse_export_seg_args(int argc, char** argv) {
   ExportSegArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -54,7 +54,7 @@ Status export_seg(const ExportSegArgs& a, const client::ClientOptions& remote) {
 
 int run_export_seg_command(int argc, char** argv, const client::ClientOptions& remote) {
   return run_long_command(
-      "export-seg", parse(argc, argv), remote,
+      "export-seg", parse_export_seg_args(argc, argv), remote,
       [](const ExportSegArgs& a, const client::ClientOptions& options) { return export_seg(a, options); });
 }
 

@@ -40,7 +40,7 @@ std::pair<std::string, std::string> named_image(const std::string& text) {
   return {name, text};
 }
 
-Result<FeaturesArgs> parse(int argc, char** argv) {
+Result<FeaturesArgs> parse_features_args(int argc, char** argv) {
   FeaturesArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -140,6 +140,6 @@ Status features(const FeaturesArgs& a) {
 
 }  // namespace
 
-int run_features_command(int argc, char** argv) { return run_command("features", parse(argc, argv), features); }
+int run_features_command(int argc, char** argv) { return run_command("features", parse_features_args(argc, argv), features); }
 
 }  // namespace soiq::cli

@@ -11,7 +11,7 @@ namespace {
 
 struct HealthArgs {};
 
-Result<HealthArgs> parse(int argc, char** argv) {
+Result<HealthArgs> parse_health_args(int argc, char** argv) {
   if (argc > 1) return invalid_argument(std::string("unexpected argument '") + argv[1] + "'");
   return HealthArgs{};
 }
@@ -27,7 +27,7 @@ Status health(const client::ClientOptions& remote) {
 }  // namespace
 
 int run_health_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("health", parse(argc, argv), [&](const HealthArgs&) { return health(remote); });
+  return run_command("health", parse_health_args(argc, argv), [&](const HealthArgs&) { return health(remote); });
 }
 
 }  // namespace soiq::cli

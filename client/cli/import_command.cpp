@@ -25,7 +25,7 @@ struct ImportArgs {
   bool replace = false;
 };
 
-Result<ImportArgs> parse(int argc, char** argv) {
+Result<ImportArgs> parse_import_args(int argc, char** argv) {
   ImportArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -73,7 +73,7 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_import_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_long_command("import", parse(argc, argv), remote,
+  return run_long_command("import", parse_import_args(argc, argv), remote,
                           [](const ImportArgs& a, const client::ClientOptions& options) { return import(a, options); });
 }
 

@@ -18,7 +18,7 @@ struct InfoArgs {
   bool features = false;  // --features: the server's feature catalogue instead
 };
 
-Result<InfoArgs> parse(int argc, char** argv) {
+Result<InfoArgs> parse_info_args(int argc, char** argv) {
   InfoArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -50,7 +50,7 @@ Status info(const InfoArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_info_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("info", parse(argc, argv), [&](const InfoArgs& a) { return info(a, remote); });
+  return run_command("info", parse_info_args(argc, argv), [&](const InfoArgs& a) { return info(a, remote); });
 }
 
 }  // namespace soiq::cli

@@ -21,7 +21,7 @@ struct LsArgs {
   int page_size = 100;
 };
 
-Result<LsArgs> parse(int argc, char** argv) {
+Result<LsArgs> parse_ls_args(int argc, char** argv) {
   LsArgs a;
   bool what_given = false;
   for (int i = 1; i < argc; ++i) {
@@ -133,7 +133,7 @@ Status ls(const LsArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_ls_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("ls", parse(argc, argv), [&](const LsArgs& a) { return ls(a, remote); });
+  return run_command("ls", parse_ls_args(argc, argv), [&](const LsArgs& a) { return ls(a, remote); });
 }
 
 }  // namespace soiq::cli

@@ -49,7 +49,7 @@ Status parse_find_option(int argc, char** argv, int& i, v1::PacsFindRequest& f) 
   return ok_status();
 }
 
-Result<PacsArgs> parse(int argc, char** argv) {
+Result<PacsArgs> parse_pacs_args(int argc, char** argv) {
   PacsArgs a;
   if (argc < 2) return invalid_argument("missing what to do: echo, find, pull or push");
   a.verb = argv[1];
@@ -150,7 +150,7 @@ Status pacs(const PacsArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_pacs_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_long_command("pacs", parse(argc, argv), remote,
+  return run_long_command("pacs", parse_pacs_args(argc, argv), remote,
                           [](const PacsArgs& a, const client::ClientOptions& options) { return pacs(a, options); });
 }
 

@@ -23,7 +23,7 @@ struct RemoteConvertArgs {
   std::string out;
 };
 
-Result<RemoteConvertArgs> parse(int argc, char** argv) {
+Result<RemoteConvertArgs> parse_remote_convert_args(int argc, char** argv) {
   RemoteConvertArgs a;
   GridArgs grid;
   std::string id;
@@ -104,7 +104,7 @@ Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) 
 
 int run_remote_convert_command(int argc, char** argv, const client::ClientOptions& remote) {
   return run_long_command(
-      "convert", parse(argc, argv), remote,
+      "convert", parse_remote_convert_args(argc, argv), remote,
       [](const RemoteConvertArgs& a, const client::ClientOptions& options) { return convert(a, options); });
 }
 

@@ -21,7 +21,7 @@ struct RemoteFeaturesArgs {
   std::string format = "table";
 };
 
-Result<RemoteFeaturesArgs> parse(int argc, char** argv) {
+Result<RemoteFeaturesArgs> parse_remote_features_args(int argc, char** argv) {
   RemoteFeaturesArgs a;
   GridArgs grid;
   std::string id;
@@ -93,7 +93,7 @@ Status features(const RemoteFeaturesArgs& a, const client::ClientOptions& remote
 
 int run_remote_features_command(int argc, char** argv, const client::ClientOptions& remote) {
   return run_long_command(
-      "features", parse(argc, argv), remote,
+      "features", parse_remote_features_args(argc, argv), remote,
       [](const RemoteFeaturesArgs& a, const client::ClientOptions& options) { return features(a, options); });
 }
 

@@ -14,7 +14,7 @@ struct RmArgs {
   std::string kind, key;
 };
 
-Result<RmArgs> parse(int argc, char** argv) {
+Result<RmArgs> parse_rm_args(int argc, char** argv) {
   RmArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -53,7 +53,7 @@ Status rm(const RmArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_rm_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("rm", parse(argc, argv), [&](const RmArgs& a) { return rm(a, remote); });
+  return run_command("rm", parse_rm_args(argc, argv), [&](const RmArgs& a) { return rm(a, remote); });
 }
 
 }  // namespace soiq::cli

@@ -17,7 +17,7 @@ struct ShowArgs {
   bool json = false;
 };
 
-Result<ShowArgs> parse(int argc, char** argv) {
+Result<ShowArgs> parse_show_args(int argc, char** argv) {
   ShowArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -64,7 +64,7 @@ Status show(const ShowArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_show_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("show", parse(argc, argv), [&](const ShowArgs& a) { return show(a, remote); });
+  return run_command("show", parse_show_args(argc, argv), [&](const ShowArgs& a) { return show(a, remote); });
 }
 
 }  // namespace soiq::cli

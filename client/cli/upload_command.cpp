@@ -20,7 +20,7 @@ struct UploadArgs {
   bool wait = false;
 };
 
-Result<UploadArgs> parse(int argc, char** argv) {
+Result<UploadArgs> parse_upload_args(int argc, char** argv) {
   UploadArgs a;
   for (int i = 1; i < argc; ++i) {
     SOIQ_ASSIGN_OR_RETURN(const bool record,
@@ -81,7 +81,7 @@ Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_upload_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_long_command("upload", parse(argc, argv), remote,
+  return run_long_command("upload", parse_upload_args(argc, argv), remote,
                           [](const UploadArgs& a, const client::ClientOptions& options) { return upload(a, options); });
 }
 

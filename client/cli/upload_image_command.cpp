@@ -18,7 +18,7 @@ struct UploadImageArgs {
   soiq::v1::UploadImageHeader header;
 };
 
-Result<UploadImageArgs> parse(int argc, char** argv) {
+Result<UploadImageArgs> parse_upload_image_args(int argc, char** argv) {
   UploadImageArgs a;
   soiq::v1::Study& study = *a.header.mutable_study();
   for (int i = 1; i < argc; ++i) {
@@ -64,7 +64,7 @@ Status upload_image(const UploadImageArgs& a, const client::ClientOptions& remot
 
 int run_upload_image_command(int argc, char** argv, const client::ClientOptions& remote) {
   return run_long_command(
-      "upload-image", parse(argc, argv), remote,
+      "upload-image", parse_upload_image_args(argc, argv), remote,
       [](const UploadImageArgs& a, const client::ClientOptions& options) { return upload_image(a, options); });
 }
 

@@ -8,7 +8,7 @@
 namespace soiq {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+bool is_word_separator(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
 
 // from_chars takes no leading '+'; writers that print one ("+1.5e+01") are valid, so accept a
 // single '+' before a digit or a point, and nothing else from_chars would not take.
@@ -53,9 +53,9 @@ void words_of(std::string_view line, std::vector<std::string_view>& words) {
   words.clear();
   size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && is_space(line[i])) ++i;
+    while (i < line.size() && is_word_separator(line[i])) ++i;
     const size_t start = i;
-    while (i < line.size() && !is_space(line[i])) ++i;
+    while (i < line.size() && !is_word_separator(line[i])) ++i;
     if (i > start) words.push_back(line.substr(start, i - start));
   }
 }

@@ -29,7 +29,7 @@ struct MetaHeader {
   size_t data_offset = 0;                     // first byte after the ElementDataFile line
 };
 
-Result<MetaHeader> parse_header(const std::string& bytes, const std::string& path) {
+Result<MetaHeader> parse_meta_header(const std::string& bytes, const std::string& path) {
   MetaHeader header;
   size_t start = 0;
   while (start < bytes.size()) {
@@ -61,7 +61,7 @@ const std::string* find_first(const MetaHeader& h, std::initializer_list<const c
   return nullptr;
 }
 
-Status bad_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
+Status bad_meta_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
   return invalid_argument("MetaImage header of '" + path + "' has an invalid '" + key + " = " + value.substr(0, 80) +
                           "' (" + why + ")");
 }
@@ -71,34 +71,34 @@ bool is_true(const std::string* value) { return value && to_lower(*value) == "tr
 Result<ImageGeometry> parse_geometry(const MetaHeader& h, const std::string& path) {
   const std::string* ndims = find_first(h, {"NDims"});
   if (!ndims) return invalid_argument("MetaImage header of '" + path + "' has no NDims field");
-  if (parse_integer(*ndims) != 3) return bad_field(path, "NDims", *ndims, "soiq reads 3D images only");
+  if (parse_integer(*ndims) != 3) return bad_meta_field(path, "NDims", *ndims, "soiq reads 3D images only");
   const std::string* dim_size = find_first(h, {"DimSize"});
   if (!dim_size) return invalid_argument("MetaImage header of '" + path + "' has no DimSize field");
   const auto sizes = split_words(*dim_size);
   std::array<int64_t, 3> dims{};
   for (int a = 0; a < 3; ++a) {
     const auto n = a < int(sizes.size()) ? parse_integer(sizes[a]) : std::nullopt;
-    if (sizes.size() != 3 || !n || *n < 1) return bad_field(path, "DimSize", *dim_size, "expected 3 positive integers");
+    if (sizes.size() != 3 || !n || *n < 1) return bad_meta_field(path, "DimSize", *dim_size, "expected 3 positive integers");
     dims[a] = *n;
   }
   Vec3 spacing{1, 1, 1};
   if (const std::string* s = find_first(h, {"ElementSpacing", "ElementSize"})) {
     const auto v = parse_doubles(*s, 3);
-    if (!v) return bad_field(path, "ElementSpacing", *s, "expected 3 numbers");
+    if (!v) return bad_meta_field(path, "ElementSpacing", *s, "expected 3 numbers");
     spacing = {(*v)[0], (*v)[1], (*v)[2]};
     if (!(spacing[0] > 0 && spacing[1] > 0 && spacing[2] > 0))
-      return bad_field(path, "ElementSpacing", *s, "must be > 0");
+      return bad_meta_field(path, "ElementSpacing", *s, "must be > 0");
   }
   Vec3 origin{0, 0, 0};
   if (const std::string* s = find_first(h, {"Offset", "Position", "Origin"})) {
     const auto v = parse_doubles(*s, 3);
-    if (!v) return bad_field(path, "Offset", *s, "expected 3 numbers");
+    if (!v) return bad_meta_field(path, "Offset", *s, "expected 3 numbers");
     origin = {(*v)[0], (*v)[1], (*v)[2]};
   }
   Mat3 direction = identity3();
   if (const std::string* s = find_first(h, {"TransformMatrix", "Rotation", "Orientation"})) {
     const auto v = parse_doubles(*s, 9);
-    if (!v) return bad_field(path, "TransformMatrix", *s, "expected 9 numbers");
+    if (!v) return bad_meta_field(path, "TransformMatrix", *s, "expected 9 numbers");
     // Consecutive triples are the axis directions, i.e. the columns of D.
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) direction[r][c] = (*v)[c * 3 + r];
@@ -121,18 +121,18 @@ Result<Image> read_metaimage(const std::string& path) {
 Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
                               const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
-  SOIQ_ASSIGN_OR_RETURN(const MetaHeader header, parse_header(bytes, path));
+  SOIQ_ASSIGN_OR_RETURN(const MetaHeader header, parse_meta_header(bytes, path));
   if (const std::string* object = find_first(header, {"ObjectType"}); object && *object != "Image") {
-    return bad_field(path, "ObjectType", *object, "expected Image");
+    return bad_meta_field(path, "ObjectType", *object, "expected Image");
   }
   if (const std::string* channels = find_first(header, {"ElementNumberOfChannels"});
       channels && parse_integer(*channels) != 1) {
-    return bad_field(path, "ElementNumberOfChannels", *channels, "soiq reads single-channel images only");
+    return bad_meta_field(path, "ElementNumberOfChannels", *channels, "soiq reads single-channel images only");
   }
   const std::string* type_name = find_first(header, {"ElementType"});
   if (!type_name) return invalid_argument("MetaImage header of '" + path + "' has no ElementType field");
   const auto type = met_voxel_type(*type_name);
-  if (!type) return bad_field(path, "ElementType", *type_name, "soiq reads MET_UCHAR..MET_INT, MET_FLOAT, MET_DOUBLE");
+  if (!type) return bad_meta_field(path, "ElementType", *type_name, "soiq reads MET_UCHAR..MET_INT, MET_FLOAT, MET_DOUBLE");
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, parse_geometry(header, path));
   SOIQ_RETURN_IF_ERROR(check_before_decoding(geometry, voxel_type_size(*type), limits));
   const size_t count = size_t(geometry.voxel_count());
@@ -151,7 +151,7 @@ Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
     }
     if (data_file.starts_with("LIST") || data_file.find('%') != std::string::npos ||
         split_words(data_file).size() != 1) {
-      return bad_field(path, "ElementDataFile", data_file, "multi-file data is not supported");
+      return bad_meta_field(path, "ElementDataFile", data_file, "multi-file data is not supported");
     }
     const std::string data_path = data_file.starts_with("/") ? data_file : *detached_dir + data_file;
     SOIQ_ASSIGN_OR_RETURN(encoded, read_file_bytes(data_path, "MetaImage data"));
@@ -165,7 +165,7 @@ Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
     raw = std::move(encoded);
     if (const std::string* hs = find_first(header, {"HeaderSize"}); hs && data_file != "LOCAL") {
       const auto n = parse_integer(*hs);
-      if (!n || *n < -1) return bad_field(path, "HeaderSize", *hs, "expected an integer >= -1");
+      if (!n || *n < -1) return bad_meta_field(path, "HeaderSize", *hs, "expected an integer >= -1");
       const size_t skip = *n == -1 ? (raw.size() >= needed ? raw.size() - needed : 0) : size_t(*n);
       raw.erase(0, std::min(skip, raw.size()));
     }

@@ -53,7 +53,7 @@ struct NrrdHeader {
   size_t data_offset = 0;                     // first byte after the blank line; npos if none
 };
 
-Result<NrrdHeader> parse_header(const std::string& bytes, const std::string& path) {
+Result<NrrdHeader> parse_nrrd_header(const std::string& bytes, const std::string& path) {
   if (!bytes.starts_with("NRRD000")) {
     return invalid_argument("'" + path + "' is not a NRRD file (it does not start with the NRRD000x magic)");
   }
@@ -89,40 +89,40 @@ Result<std::string> field(const NrrdHeader& h, const std::string& key, const std
   return it->second;
 }
 
-Status bad_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
+Status bad_nrrd_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
   return invalid_argument("NRRD header of '" + path + "' has an invalid '" + key + ": " + value.substr(0, 80) + "' (" +
                           why + ")");
 }
 
 Result<ImageGeometry> parse_geometry(const NrrdHeader& h, const std::string& path) {
   SOIQ_ASSIGN_OR_RETURN(const std::string dimension, field(h, "dimension", path));
-  if (parse_integer(dimension) != 3) return bad_field(path, "dimension", dimension, "soiq reads 3D images only");
+  if (parse_integer(dimension) != 3) return bad_nrrd_field(path, "dimension", dimension, "soiq reads 3D images only");
   SOIQ_ASSIGN_OR_RETURN(const std::string sizes_text, field(h, "sizes", path));
   const auto sizes = split_words(sizes_text);
   std::array<int64_t, 3> dims{};
   for (int a = 0; a < 3; ++a) {
     const auto n = a < int(sizes.size()) ? parse_integer(sizes[a]) : std::nullopt;
-    if (sizes.size() != 3 || !n || *n < 1) return bad_field(path, "sizes", sizes_text, "expected 3 positive integers");
+    if (sizes.size() != 3 || !n || *n < 1) return bad_nrrd_field(path, "sizes", sizes_text, "expected 3 positive integers");
     dims[a] = *n;
   }
   Mat3 axes{};
   Vec3 origin{0, 0, 0};
   if (const auto it = h.fields.find("space directions"); it != h.fields.end()) {
     const auto values = parse_doubles(it->second, 9);
-    if (!values) return bad_field(path, "space directions", it->second, "expected 3 vectors (x,y,z)");
+    if (!values) return bad_nrrd_field(path, "space directions", it->second, "expected 3 vectors (x,y,z)");
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) axes[r][c] = (*values)[c * 3 + r];
     }
   } else if (const auto sp = h.fields.find("spacings"); sp != h.fields.end()) {
     const auto values = parse_doubles(sp->second, 3);
-    if (!values) return bad_field(path, "spacings", sp->second, "expected 3 numbers");
+    if (!values) return bad_nrrd_field(path, "spacings", sp->second, "expected 3 numbers");
     for (int a = 0; a < 3; ++a) axes[a][a] = std::isnan((*values)[a]) ? 1.0 : (*values)[a];
   } else {
     axes = identity3();
   }
   if (const auto it = h.fields.find("space origin"); it != h.fields.end()) {
     const auto values = parse_doubles(it->second, 3);
-    if (!values) return bad_field(path, "space origin", it->second, "expected (x,y,z)");
+    if (!values) return bad_nrrd_field(path, "space origin", it->second, "expected (x,y,z)");
     origin = {(*values)[0], (*values)[1], (*values)[2]};
   }
   // Flip the axes the file's space names opposite to LPS.
@@ -134,7 +134,7 @@ Result<ImageGeometry> parse_geometry(const NrrdHeader& h, const std::string& pat
     } else if (space == "left-anterior-superior" || space == "las") {
       flip = {false, true, false};
     } else if (space != "left-posterior-superior" && space != "lps") {
-      return bad_field(path, "space", it->second, "soiq reads LPS, RAS and LAS spaces");
+      return bad_nrrd_field(path, "space", it->second, "soiq reads LPS, RAS and LAS spaces");
     }
   }
   for (int r = 0; r < 3; ++r) {
@@ -163,7 +163,7 @@ Result<std::string> data_bytes(const std::string& bytes, const NrrdHeader& h, co
                             "'); soiq reads uploaded images only with their data attached: save it as one .nrrd");
   }
   if (name.starts_with("LIST") || name.find('%') != std::string::npos || split_words(name).size() != 1) {
-    return bad_field(path, "data file", name, "multi-file data is not supported");
+    return bad_nrrd_field(path, "data file", name, "multi-file data is not supported");
   }
   const std::string data_path = name.starts_with("/") ? name : *detached_dir + name;
   return read_file_bytes(data_path, "NRRD data");
@@ -179,10 +179,10 @@ Result<Image> read_nrrd(const std::string& path) {
 Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
                          const std::optional<std::string>& detached_dir, const ImageDecodeLimits& limits) {
   if (bytes.empty()) return invalid_argument("image file '" + path + "' is empty");
-  SOIQ_ASSIGN_OR_RETURN(const NrrdHeader header, parse_header(bytes, path));
+  SOIQ_ASSIGN_OR_RETURN(const NrrdHeader header, parse_nrrd_header(bytes, path));
   SOIQ_ASSIGN_OR_RETURN(const std::string type_name, field(header, "type", path));
   const auto type = nrrd_voxel_type(to_lower(type_name));
-  if (!type) return bad_field(path, "type", type_name, "soiq reads 8-32 bit integers, float and double");
+  if (!type) return bad_nrrd_field(path, "type", type_name, "soiq reads 8-32 bit integers, float and double");
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, parse_geometry(header, path));
   Image image{geometry, {}};
   SOIQ_RETURN_IF_ERROR(check_before_decoding(image.geometry, voxel_type_size(*type), limits));
@@ -194,14 +194,14 @@ Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
   bool swap = false;
   if (voxel_type_size(*type) > 1 && encoding != "ascii" && encoding != "text" && encoding != "txt") {
     SOIQ_ASSIGN_OR_RETURN(const std::string endian, field(header, "endian", path));
-    if (endian != "little" && endian != "big") return bad_field(path, "endian", endian, "expected little or big");
+    if (endian != "little" && endian != "big") return bad_nrrd_field(path, "endian", endian, "expected little or big");
     swap = (endian == "big") != (std::endian::native == std::endian::big);
   }
   long long byte_skip = 0;
   if (const auto it = header.fields.find("byte skip"); it != header.fields.end()) {
     const auto n = parse_integer(it->second);
     if (!n || *n < -1 || (*n != 0 && encoding != "raw")) {
-      return bad_field(path, "byte skip", it->second, "soiq supports byte skip >= 0 or -1 with raw encoding");
+      return bad_nrrd_field(path, "byte skip", it->second, "soiq supports byte skip >= 0 or -1 with raw encoding");
     }
     byte_skip = *n;
   }
@@ -228,7 +228,7 @@ Result<Image> parse_nrrd(const std::string& bytes, const std::string& path,
   } else if (encoding == "gzip" || encoding == "gz") {
     SOIQ_ASSIGN_OR_RETURN(raw, inflate_bytes(encoded, needed, path));
   } else {
-    return bad_field(path, "encoding", encoding_text, "soiq reads raw, gzip and ascii");
+    return bad_nrrd_field(path, "encoding", encoding_text, "soiq reads raw, gzip and ascii");
   }
   const size_t skip = byte_skip == -1 ? (raw.size() >= needed ? raw.size() - needed : 0) : size_t(byte_skip);
   if (raw.size() < skip || raw.size() - skip < needed) {

@@ -14,7 +14,7 @@
 namespace soiq::server {
 namespace {
 
-constexpr size_t kChunkBytes = 1 << 20;  // mask chunks: well under gRPC's 4 MiB message limit
+constexpr size_t kMaskChunkBytes = 1 << 20;  // mask chunks: well under gRPC's 4 MiB message limit
 constexpr int kRunsPerMessage = 65536;
 
 FillRule fill_rule_of(v1::FillRule f) { return f == v1::EVEN_ODD ? FillRule::kEvenOdd : FillRule::kNonZero; }
@@ -98,9 +98,9 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
     first.mutable_summary()->set_nifti_bytes(int64_t(bytes.size()));
     if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
     if (runs) return write_runs(volume, c.grid.geometry.dims[1], *writer);
-    for (size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+    for (size_t at = 0; at < bytes.size(); at += kMaskChunkBytes) {
       v1::ConvertResponse chunk;
-      chunk.set_nifti_chunk(bytes.substr(at, kChunkBytes));
+      chunk.set_nifti_chunk(bytes.substr(at, kMaskChunkBytes));
       if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the conversion");
     }
     return ok_status();

@@ -8,7 +8,7 @@
 namespace soiq::server {
 namespace {
 
-constexpr size_t kChunkBytes = 1 << 20;  // download chunks: well under gRPC's 4 MiB message limit
+constexpr size_t kDownloadChunkBytes = 1 << 20;  // download chunks: well under gRPC's 4 MiB message limit
 
 db::PageRequest page_of(int32_t size, const std::string& token) {
   db::PageRequest p;
@@ -89,9 +89,9 @@ grpc::Status SoiqService::DownloadSurface(grpc::ServerContext* ctx, const v1::Do
     SOIQ_ASSIGN_OR_RETURN(
         const std::string bytes,
         stored_surface_bytes(store_, features_, request->id(), request->format(), request->coordinates() == v1::RAS));
-    for (size_t at = 0; at < bytes.size() || at == 0; at += kChunkBytes) {
+    for (size_t at = 0; at < bytes.size() || at == 0; at += kDownloadChunkBytes) {
       v1::DataChunk chunk;
-      chunk.set_data(bytes.substr(at, kChunkBytes));
+      chunk.set_data(bytes.substr(at, kDownloadChunkBytes));
       if (at == 0) chunk.set_total_bytes(int64_t(bytes.size()));
       if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the download");
       if (bytes.empty()) break;

@@ -15,9 +15,9 @@ constexpr char kSegSopClass[] = "1.2.840.10008.5.1.4.1.1.66.4";
 
 // Builds one result object, adding an attribute only when the query's level returns it by default
 // or the query asked for it.
-class Result {
+class QidoResultObject {
  public:
-  Result(const QidoQuery& q, QidoLevel level) : q_(q), level_(level) {}
+  QidoResultObject(const QidoQuery& q, QidoLevel level) : q_(q), level_(level) {}
 
   bool wanted(uint32_t tag) const {
     if (q_.include_all || q_.include.count(tag) > 0) return true;
@@ -78,7 +78,7 @@ std::string age_string(const std::optional<double>& years) {
   return out;
 }
 
-void study_attributes(Result& r, const db::StudyRecord& st, const db::PatientRecord& p) {
+void study_attributes(QidoResultObject& r, const db::StudyRecord& st, const db::PatientRecord& p) {
   r.text(tags::kSpecificCharacterSet, "CS", "ISO_IR 192");
   r.text(tags::kStudyDate, "DA", st.study_date);
   r.text(tags::kStudyTime, "TM", st.study_time);
@@ -111,7 +111,7 @@ std::string instance_uid_of(const InstanceRef& i) {
 }
 
 json study_json(const db::StudyHit& h, const std::string& base_url, const QidoQuery& q) {
-  Result r(q, QidoLevel::kStudy);
+  QidoResultObject r(q, QidoLevel::kStudy);
   study_attributes(r, h.study, h.patient);
   r.always(tags::kStudyInstanceUid, "UI", h.study.study_uid);
   r.always(tags::kPatientId, "LO", h.patient.patient_id);
@@ -126,7 +126,7 @@ json study_json(const db::StudyHit& h, const std::string& base_url, const QidoQu
 }
 
 json series_json(const db::SeriesHit& h, const std::string& base_url, const QidoQuery& q) {
-  Result r(q, QidoLevel::kSeries);
+  QidoResultObject r(q, QidoLevel::kSeries);
   study_attributes(r, h.study, h.patient);
   const std::string uid = series_uid_of(h);
   r.always(tags::kStudyInstanceUid, "UI", h.study.study_uid);
@@ -149,7 +149,7 @@ json series_json(const db::SeriesHit& h, const std::string& base_url, const Qido
 
 json instance_json(const InstanceRef& i, const std::string& base_url, const QidoQuery& q) {
   const db::SeriesHit& h = *i.series;
-  Result r(q, QidoLevel::kInstance);
+  QidoResultObject r(q, QidoLevel::kInstance);
   study_attributes(r, h.study, h.patient);
   const std::string series_uid = series_uid_of(h);
   const std::string uid = instance_uid_of(i);

@@ -17,7 +17,7 @@ namespace soiq::server::http {
 namespace {
 
 // Ordered: a row's keys in its columns' order.
-using json = nlohmann::ordered_json;
+using ordered_json = nlohmann::ordered_json;  // columns keep their query order
 
 std::string number_text(double v) {
   if (!std::isfinite(v)) return "null";
@@ -26,7 +26,7 @@ std::string number_text(double v) {
   return buf;
 }
 
-json number_json(double v) { return std::isfinite(v) ? json(v) : json(); }
+ordered_json number_json(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(); }
 
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
@@ -51,8 +51,8 @@ std::vector<std::pair<std::string, size_t>> feature_columns(const v1::QueryReque
   return out;
 }
 
-json summary_json(const QuerySummary& s) {
-  json skipped = json::array();
+ordered_json summary_json(const QuerySummary& s) {
+  ordered_json skipped = ordered_json::array();
   for (const QuerySkip& k : s.skipped)
     skipped.push_back({{"reason", k.reason}, {"count", k.count}, {"structure_ids", k.structure_ids}});
   return {{"stage1_candidates", s.stage1_candidates},
@@ -118,9 +118,9 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     reply.body = std::move(body);
     return reply;
   }
-  json out_rows = json::array();
+  ordered_json out_rows = ordered_json::array();
   for (const QueryRow& r : rows) {
-    json row = {{"id", r.structure.id},
+    ordered_json row = {{"id", r.structure.id},
                 {"patient_id", r.structure.patient_id},
                 {"study_uid", r.structure.study_uid},
                 {"name", r.structure.name},
@@ -131,7 +131,7 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
       } else if (r.values[at].values.size() == 1) {
         row[name] = number_json(r.values[at].values[0]);
       } else {
-        json a = json::array();
+        ordered_json a = ordered_json::array();
         for (const double v : r.values[at].values) a.push_back(number_json(v));
         row[name] = a;
       }
@@ -139,8 +139,8 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     out_rows.push_back(std::move(row));
   }
   reply.content_type = "application/json";
-  reply.body = json({{"columns", header}, {"rows", out_rows}, {"summary", summary_json(summary)}})
-                   .dump(-1, ' ', false, json::error_handler_t::replace);
+  reply.body = ordered_json({{"columns", header}, {"rows", out_rows}, {"summary", summary_json(summary)}})
+                   .dump(-1, ' ', false, ordered_json::error_handler_t::replace);
   return reply;
 }
 

@@ -11,7 +11,6 @@
 namespace soiq {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 TEST(SurfaceShape, BoxHasHandComputedFeatures) {
   const auto s = surface_shape(box({1, 2, 3}, {3, 5, 7}));  // 2 x 3 x 4 mm
@@ -20,11 +19,11 @@ TEST(SurfaceShape, BoxHasHandComputedFeatures) {
   EXPECT_NEAR(s->mesh_volume_mm3, v, 1e-12);
   EXPECT_NEAR(s->surface_area_mm2, a, 1e-12);
   EXPECT_NEAR(s->surface_volume_ratio, a / v, 1e-14);
-  EXPECT_NEAR(s->sphericity, std::cbrt(36 * kPi * v * v) / a, 1e-14);
-  EXPECT_NEAR(s->spherical_disproportion, a / std::cbrt(36 * kPi * v * v), 1e-14);
-  EXPECT_NEAR(s->asphericity, std::cbrt(a * a * a / (36 * kPi * v * v)) - 1, 1e-14);
-  EXPECT_NEAR(s->compactness_1, v / std::sqrt(kPi * a * a * a), 1e-14);
-  EXPECT_NEAR(s->compactness_2, 36 * kPi * v * v / (a * a * a), 1e-14);
+  EXPECT_NEAR(s->sphericity, std::cbrt(36 * std::numbers::pi * v * v) / a, 1e-14);
+  EXPECT_NEAR(s->spherical_disproportion, a / std::cbrt(36 * std::numbers::pi * v * v), 1e-14);
+  EXPECT_NEAR(s->asphericity, std::cbrt(a * a * a / (36 * std::numbers::pi * v * v)) - 1, 1e-14);
+  EXPECT_NEAR(s->compactness_1, v / std::sqrt(std::numbers::pi * a * a * a), 1e-14);
+  EXPECT_NEAR(s->compactness_2, 36 * std::numbers::pi * v * v / (a * a * a), 1e-14);
   EXPECT_NEAR(s->maximum_3d_diameter_mm, std::sqrt(29.0), 1e-14);
   // A box is its own bounding box and its own hull.
   EXPECT_NEAR(s->volume_density_aabb, 1, 1e-14);
@@ -41,7 +40,7 @@ TEST(SurfaceShape, SphericityRelationsHold) {
   EXPECT_NEAR(s->compactness_2, std::pow(s->sphericity, 3), 1e-14);
   EXPECT_NEAR(s->spherical_disproportion, 1 / s->sphericity, 1e-14);
   EXPECT_NEAR(s->asphericity, 1 / s->sphericity - 1, 1e-14);
-  EXPECT_NEAR(s->compactness_1, std::sqrt(s->compactness_2) / (6 * kPi), 1e-14);
+  EXPECT_NEAR(s->compactness_1, std::sqrt(s->compactness_2) / (6 * std::numbers::pi), 1e-14);
   EXPECT_LT(s->volume_density_convex_hull, 1);  // the hole is in the hull, not in the torus
 }
 

@@ -28,7 +28,7 @@ struct Held {
   RunLengthVolume gtv;
 };
 
-Held sts_ct() {
+Held held_sts_ct() {
   Held h;
   auto imported = import_dicom({data_dir("sts/STS_002/dicom/CT")});
   EXPECT_TRUE(imported.ok()) << imported.status().to_string();
@@ -53,7 +53,7 @@ FindKnownSeries holding(const KnownSeries& k) {
 const std::string kRtAlone = "sts/STS_002/dicom/CT/mask";
 
 TEST(KnownSeries, RtStructureSetAloneIsConvertedOnTheHeldSeriesWithTheSameVoxels) {
-  const Held h = sts_ct();
+  const Held h = held_sts_ct();
   auto alone = import_dicom({data_dir(kRtAlone)}, kDefaultMaxVoxels, holding(h.ct));
   ASSERT_TRUE(alone.ok()) << alone.status().to_string();
   for (const auto& p : alone->problems) ADD_FAILURE() << p.status.to_string();
@@ -76,7 +76,7 @@ TEST(KnownSeries, WithoutTheHeldSeriesTheStructureSetIsNotFound) {
 }
 
 TEST(KnownSeries, HeldSeriesOfAnotherPatientOrFrameIsRefusedNamingBoth) {
-  Held h = sts_ct();
+  Held h = held_sts_ct();
   KnownSeries other_patient = h.ct;
   other_patient.patient_id = "SOMEONE_ELSE";
   auto a = import_dicom({data_dir(kRtAlone)}, kDefaultMaxVoxels, holding(other_patient));
@@ -97,7 +97,7 @@ TEST(KnownSeries, HeldSeriesOfAnotherPatientOrFrameIsRefusedNamingBoth) {
 }
 
 TEST(KnownSeries, SegAloneIsReadOnTheHeldSeriesWithTheSameVoxels) {
-  const Held h = sts_ct();
+  const Held h = held_sts_ct();
   auto source = testing::seg_source_of(h.full, h.ct.series_uid);
   ASSERT_TRUE(source.ok()) << source.status().to_string();
   SegSegment segment;

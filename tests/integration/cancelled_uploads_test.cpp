@@ -15,14 +15,10 @@
 
 #include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 class CancelledUploads : public ServiceTest {
  protected:

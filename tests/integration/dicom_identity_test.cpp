@@ -11,18 +11,12 @@
 #include <string>
 
 #include "tests/integration/service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
@@ -30,7 +24,7 @@ class DicomIdentityTest : public ServiceTest {
  protected:
   void SetUp() override {
     ServiceTest::SetUp();
-    Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom/CT")});
+    Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data("sts/STS_002/dicom/CT")});
     ASSERT_TRUE(r.ok()) << r.status().to_string();
     ASSERT_EQ(r->series_size(), 1);
     ASSERT_EQ(r->structures_size(), 1);
@@ -46,7 +40,7 @@ class DicomIdentityTest : public ServiceTest {
   std::string copy_of_slices(const std::string& name) {
     const std::string folder = dir_.file(name);
     fs::create_directories(folder);
-    for (const auto& e : fs::directory_iterator(data("sts/STS_002/dicom/CT/image")))
+    for (const auto& e : fs::directory_iterator(test_data("sts/STS_002/dicom/CT/image")))
       fs::copy_file(e.path(), folder + "/" + e.path().filename().string());
     return folder;
   }
@@ -71,7 +65,7 @@ class DicomIdentityTest : public ServiceTest {
 };
 
 TEST_F(DicomIdentityTest, TheSameContentAgainIsANoOp) {
-  Result<v1::ImportDicomResponse> again = client_->import_dicom({data("sts/STS_002/dicom/CT")});
+  Result<v1::ImportDicomResponse> again = client_->import_dicom({test_data("sts/STS_002/dicom/CT")});
   ASSERT_TRUE(again.ok()) << again.status().to_string();
   ASSERT_EQ(again->structures_size(), 1);
   EXPECT_EQ(again->structures(0).structure().id(), structure_id_);
@@ -81,7 +75,7 @@ TEST_F(DicomIdentityTest, TheSameContentAgainIsANoOp) {
 TEST_F(DicomIdentityTest, ASeriesWithOtherPixelsIsRefusedUnlessReplaced) {
   const std::string folder = copy_of_slices("other_pixels");
   const std::string slice = folder + "/000010.dcm";
-  std::string bytes = read_bytes(slice);
+  std::string bytes = file_bytes(slice);
   bytes.back() = char(bytes.back() ^ 0x01);  // the last pixel's high byte: Pixel Data ends the file
   write_bytes(slice, bytes);
   expect_refused_and_nothing_changed(client_->import_dicom({folder}),
@@ -91,7 +85,7 @@ TEST_F(DicomIdentityTest, ASeriesWithOtherPixelsIsRefusedUnlessReplaced) {
   ASSERT_TRUE(replaced.ok()) << replaced.status().to_string();
   EXPECT_NE(server_->log().find("event=dicom_replaced series=" + series_uid_), std::string::npos) << server_->log();
   // The original is now the other content.
-  expect_refused_and_nothing_changed(client_->import_dicom({data("sts/STS_002/dicom/CT/image")}), "voxels differ");
+  expect_refused_and_nothing_changed(client_->import_dicom({test_data("sts/STS_002/dicom/CT/image")}), "voxels differ");
 }
 
 TEST_F(DicomIdentityTest, ASeriesWithASliceMissingIsRefused) {
@@ -102,7 +96,7 @@ TEST_F(DicomIdentityTest, ASeriesWithASliceMissingIsRefused) {
 }
 
 TEST_F(DicomIdentityTest, AStructureSetWithAnotherRoiNameIsRefusedUnlessReplaced) {
-  std::string rs = read_bytes(data("sts/STS_002/dicom/CT/mask/RS.dcm"));
+  std::string rs = file_bytes(test_data("sts/STS_002/dicom/CT/mask/RS.dcm"));
   size_t at = 0;
   int renamed = 0;
   while ((at = rs.find("GTV_Mass", at)) != std::string::npos) {

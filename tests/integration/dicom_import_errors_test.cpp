@@ -10,14 +10,13 @@
 #include <string>
 
 #include "tests/integration/service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
 
-std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
-
 TEST_F(ServiceTest, ImportOfMixedFilesReportsProblemsWithoutFailing) {
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("dicom")});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data("dicom")});
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   EXPECT_GT(r->series_size(), 0);
   EXPECT_GT(r->problems_size(), 0);  // the CR series, README files, the DICOMDIR variants' failures...
@@ -52,7 +51,7 @@ TEST_F(ServiceTest, ImportOfACtWhoseRowsDisagreeWithItsPixelsIsInvalidNamingFile
   // VR US, length 2, value 128 little-endian) so the file is otherwise the real one.
   std::string bytes;
   {
-    std::ifstream in(data("dicom/CT_small.dcm"), std::ios::binary);
+    std::ifstream in(test_data("dicom/CT_small.dcm"), std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
   const std::string rows("\x28\x00\x10\x00US\x02\x00\x80\x00", 10);
@@ -61,7 +60,7 @@ TEST_F(ServiceTest, ImportOfACtWhoseRowsDisagreeWithItsPixelsIsInvalidNamingFile
   bytes[at + 8] = 64;
   const std::string path = dir_.file("hostile_ct.dcm");
   std::ofstream(path, std::ios::binary) << bytes;
-  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT/image")}).ok());
+  ASSERT_TRUE(client_->import_dicom({test_data("sts/STS_002/dicom/CT/image")}).ok());
   Result<v1::ServerInfo> before = client_->server_info();
   ASSERT_TRUE(before.ok());
 
@@ -85,7 +84,7 @@ TEST_F(ServiceTest, ImportOfACtWhoseRowsDisagreeWithItsPixelsIsInvalidNamingFile
 TEST_F(ServiceTest, ImportOverTheUploadLimitIsResourceExhausted) {
   start({"--max-upload-bytes", "100000"});
   client_ = std::make_unique<client::Client>(connect());
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
   Result<v1::ServerInfo> info = client_->server_info();

@@ -10,11 +10,10 @@
 #include "core/io/read_image.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/sts_query.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
-
-std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
 
 const v1::Series* series_of_modality(const v1::ImportDicomResponse& r, const std::string& modality) {
   for (const v1::Series& s : r.series())
@@ -23,7 +22,7 @@ const v1::Series* series_of_modality(const v1::ImportDicomResponse& r, const std
 }
 
 TEST_F(ServiceTest, ImportsSts002WithItsSeriesAndStructures) {
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   for (const v1::ImportProblem& p : r->problems()) ADD_FAILURE() << p.path() << ": " << p.message();
   ASSERT_EQ(r->patients_size(), 1);
@@ -46,7 +45,7 @@ TEST_F(ServiceTest, ImportsSts002WithItsSeriesAndStructures) {
 }
 
 TEST_F(ServiceTest, ImportKeepsDicomReferencesAndAReimportUpdatesInPlace) {
-  Result<v1::ImportDicomResponse> first = client_->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> first = client_->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_TRUE(first.ok()) << first.status().to_string();
   const v1::Series* ct = series_of_modality(*first, "CT");
   ASSERT_NE(ct, nullptr);
@@ -63,7 +62,7 @@ TEST_F(ServiceTest, ImportKeepsDicomReferencesAndAReimportUpdatesInPlace) {
   }
   ASSERT_EQ(ids.size(), 2u);
 
-  Result<v1::ImportDicomResponse> again = client_->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> again = client_->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_TRUE(again.ok()) << again.status().to_string();
   ASSERT_EQ(again->structures_size(), 2);
   for (const v1::ImportedStructure& s : again->structures()) {
@@ -77,7 +76,7 @@ TEST_F(ServiceTest, ImportKeepsDicomReferencesAndAReimportUpdatesInPlace) {
 }
 
 TEST_F(ServiceTest, ImportedCtStructureHasTheMaskVolumeOnCtAndPetUptake) {
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   const v1::Series* ct = series_of_modality(*r, "CT");
   ASSERT_NE(ct, nullptr);
@@ -86,7 +85,7 @@ TEST_F(ServiceTest, ImportedCtStructureHasTheMaskVolumeOnCtAndPetUptake) {
     if (s.referenced_series_uid() == ct->series_uid()) on_ct = &s;
   ASSERT_NE(on_ct, nullptr);
 
-  Result<Image> mask = read_image(data("sts/STS_002/CT_mask.nii.gz"));
+  Result<Image> mask = read_image(test_data("sts/STS_002/CT_mask.nii.gz"));
   ASSERT_TRUE(mask.ok()) << mask.status().to_string();
   int64_t inside = 0;
   for (float v : mask->voxels) inside += v != 0;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tests/integration/service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 
@@ -19,8 +20,6 @@ using nlohmann::json;
 inline constexpr char kStudyUid[] = "0020000D";
 inline constexpr char kSeriesUid[] = "0020000E";
 inline constexpr char kSopUid[] = "00080018";
-
-inline std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
 
 // The first value of a DICOM JSON attribute as text ("" when absent or without a value).
 inline std::string value(const json& item, const char* tag) {
@@ -43,7 +42,7 @@ class DicomwebTest : public ServiceTest {
   }
 
   void import(const std::string& folder) {
-    Result<v1::ImportDicomResponse> r = client_->import_dicom({data(folder)});
+    Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data(folder)});
     ASSERT_TRUE(r.ok()) << r.status().to_string();
   }
 

@@ -9,6 +9,7 @@
 
 #include "dicom/scan_dicom.h"
 #include "tests/integration/dicomweb_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
@@ -43,7 +44,7 @@ TEST_F(DicomwebTest, StudiesSeriesAndInstancesOfImportedPatients) {
   // The CT's instances are the SOP instances of the files imported, in slice order.
   const std::string ct = value(series[0], kSeriesUid);
   const json instances = get("/dicom-web/studies/" + study + "/series/" + ct + "/instances");
-  Result<dicom::DicomScan> scan = dicom::scan_dicom({data("sts/STS_002/dicom/CT/image")});
+  Result<dicom::DicomScan> scan = dicom::scan_dicom({test_data("sts/STS_002/dicom/CT/image")});
   ASSERT_TRUE(scan.ok());
   std::set<std::string> files;
   for (const dicom::DicomSeries& s : scan->series)

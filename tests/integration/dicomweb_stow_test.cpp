@@ -10,25 +10,19 @@
 
 #include "tests/integration/dicomweb_fixture.h"
 #include "tests/integration/sts_query.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // The DICOM files under `folder` (sorted), as the parts of a request.
 std::vector<std::string> dicom_files(const std::string& folder) {
   std::vector<std::string> paths;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(data(folder)))
+  for (const auto& e : std::filesystem::recursive_directory_iterator(test_data(folder)))
     if (e.path().extension() == ".dcm") paths.push_back(e.path().string());
   std::sort(paths.begin(), paths.end());
   std::vector<std::string> out;
-  for (const std::string& p : paths) out.push_back(read_bytes(p));
+  for (const std::string& p : paths) out.push_back(file_bytes(p));
   return out;
 }
 
@@ -73,7 +67,7 @@ TEST_F(DicomwebStowTest, AStudySentIsStoredAsAnImportStoresItAndQueriesFindIt) {
   options.retry.attempts = 1;
   Result<client::Client> c = client::Client::connect(options);
   ASSERT_TRUE(c.ok());
-  ASSERT_TRUE(c->import_dicom({data("sts/STS_002/dicom")}).ok());
+  ASSERT_TRUE(c->import_dicom({test_data("sts/STS_002/dicom")}).ok());
   Result<QueryResult> via_import = run_query(*c, gtv_mean_pet_query());
   ASSERT_TRUE(via_import.ok());
   // By structure name: the ids follow the order files arrive in.
@@ -88,7 +82,7 @@ TEST_F(DicomwebStowTest, AStudySentIsStoredAsAnImportStoresItAndQueriesFindIt) {
 
 TEST_F(DicomwebStowTest, EachInstanceHasItsOutcomeAndAReason) {
   std::vector<std::string> parts = dicom_files("sts/STS_002/dicom/CT/image");
-  parts.push_back(read_bytes(data("dicom/rtstruct.dcm")));  // its image series is not sent
+  parts.push_back(file_bytes(test_data("dicom/rtstruct.dcm")));  // its image series is not sent
   parts.push_back("not DICOM at all");
   httplib::Result r = post("/dicom-web/studies", parts);
   ASSERT_TRUE(r);
@@ -115,7 +109,7 @@ TEST_F(DicomwebStowTest, AnInstanceOfAnotherStudyThanTheUrlsIsRefused) {
 }
 
 TEST_F(DicomwebStowTest, BadRequestsGetTheirStatus) {
-  const std::string ct = read_bytes(data("dicom/CT_small.dcm"));
+  const std::string ct = file_bytes(test_data("dicom/CT_small.dcm"));
   httplib::Result plain = http_->Post("/dicom-web/studies", ct, "application/dicom");
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->status, 415);

@@ -10,6 +10,7 @@
 #include "dicom/dicom_json_metadata.h"
 #include "tests/integration/dicomweb_fixture.h"
 #include "tests/support/address_sanitizer.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
@@ -36,7 +37,7 @@ int64_t set_bits(const std::string& bytes) {
 }
 
 TEST_F(DicomwebTest, ASegRetrievedIsTheStructuresVoxelsAndTheExportsPixels) {
-  Result<v1::ImportDicomResponse> imported = client_->import_dicom({data("sts/STS_002/dicom/CT")});
+  Result<v1::ImportDicomResponse> imported = client_->import_dicom({test_data("sts/STS_002/dicom/CT")});
   ASSERT_TRUE(imported.ok()) << imported.status().to_string();
   ASSERT_EQ(imported->structures_size(), 1);
   const v1::ImportedStructure& gtv = imported->structures(0);
@@ -89,7 +90,7 @@ TEST_F(DicomwebTest, ASegRetrievedIsTheStructuresVoxelsAndTheExportsPixels) {
 }
 
 TEST_F(DicomwebTest, WhatSoiqCannotSendIsRefusedSayingWhy) {
-  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT")}).ok());
+  ASSERT_TRUE(client_->import_dicom({test_data("sts/STS_002/dicom/CT")}).ok());
   const json series = get("/dicom-web/series");
   ASSERT_EQ(series.size(), 2u);  // the CT, then the GTV's SEG
   const std::string study = value(series[0], kStudyUid);

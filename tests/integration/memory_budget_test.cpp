@@ -13,6 +13,7 @@
 
 #include "core/geometry/primitives.h"
 #include "tests/integration/service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
@@ -94,8 +95,6 @@ TEST_F(MemoryBudgetTest, AnImageThatCanNeverFitIsRefusedOnItsHeader) {
   EXPECT_EQ(client_->server_info()->series(), 0);
 }
 
-std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
-
 // The STS_002 CT: 48 slices of 161 columns x 143 rows, 4.42 MB as floats. Its import is estimated
 // at 12 bytes per voxel (slices, volume, blob) plus one slice at 4 bytes per pixel: 13,353,340 bytes.
 constexpr const char* kStsCt = "sts/STS_002/dicom/CT/image";
@@ -104,7 +103,7 @@ constexpr int64_t kStsCtEstimate = int64_t(161) * 143 * 48 * 12 + 161 * 143 * 4;
 
 TEST_F(MemoryBudgetTest, ADicomSeriesThatCanNeverFitIsRefusedBeforeAnythingIsStored) {
   start_with({"--memory-budget", "4M"});  // under the CT's 4.42 MB of floats alone
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data(kStsCt)});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data(kStsCt)});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kResourceExhausted) << r.status().to_string();
   const std::string& message = r.status().message();
@@ -126,7 +125,7 @@ TEST_F(MemoryBudgetTest, ADicomSeriesThatCanNeverFitIsRefusedBeforeAnythingIsSto
 
 TEST_F(MemoryBudgetTest, ADicomImportReservesItsEstimateBeforeDecoding) {
   start_with({"--memory-budget", "1G"});
-  Result<v1::ImportDicomResponse> r = client_->import_dicom({data(kStsCt)});
+  Result<v1::ImportDicomResponse> r = client_->import_dicom({test_data(kStsCt)});
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   ASSERT_EQ(r->series_size(), 1);
   Result<v1::ServerInfo> info = client_->server_info();

@@ -13,6 +13,7 @@
 #include "dicom/pacs_pull.h"
 #include "dicom/read_seg.h"
 #include "tests/integration/pacs_service_fixture.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
@@ -24,7 +25,7 @@ TEST_F(PacsServiceTest, ExportedSegHoldsExactlyTheShippedMaskAndPushedItIsFoundA
   ASSERT_NE(ct, nullptr);
 
   // Export: the SEG read back by DCMTK is the NIfTI mask shipped with the data, voxel for voxel.
-  Result<Image> mask_image = read_image(data("sts/STS_002/CT_mask.nii.gz"));
+  Result<Image> mask_image = read_image(test_data("sts/STS_002/CT_mask.nii.gz"));
   ASSERT_TRUE(mask_image.ok()) << mask_image.status().to_string();
   Mask mask{mask_image->geometry, {}};
   for (float v : mask_image->voxels) mask.voxels.push_back(v != 0);

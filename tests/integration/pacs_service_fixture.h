@@ -12,6 +12,7 @@
 
 #include "tests/integration/service_fixture.h"
 #include "tests/support/dcmqrscp_process.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 
@@ -19,8 +20,6 @@ using dicom::testing::DcmqrscpProcess;
 
 inline constexpr const char* kStsStudyUid = "1.3.6.1.4.1.14519.5.2.1.5168.1900.190311276211389538203367070477";
 inline constexpr int kStsFiles = 98;  // 48 CT + 48 PET slices + 2 RT Structure Sets
-
-inline std::string data(const std::string& relative) { return std::string(SOIQ_TEST_DATA_DIR) + "/" + relative; }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -30,7 +29,7 @@ class PacsServiceTest : public ServiceTest {
     const std::string error = pacs_.start();
     if (error.rfind("not installed", 0) == 0) GTEST_SKIP() << error;
     ASSERT_EQ(error, "");
-    ASSERT_EQ(pacs_.load({data("sts/STS_002/dicom"), data("dicom/CT_small.dcm")}), "");
+    ASSERT_EQ(pacs_.load({test_data("sts/STS_002/dicom"), test_data("dicom/CT_small.dcm")}), "");
     start_with_pacs(pacs_address());
   }
 

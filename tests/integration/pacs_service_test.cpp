@@ -13,6 +13,7 @@
 
 #include "tests/integration/pacs_service_fixture.h"
 #include "tests/integration/sts_query.h"
+#include "tests/support/test_data.h"
 
 namespace soiq::testing {
 namespace {
@@ -96,7 +97,7 @@ TEST_F(PacsServiceTest, PulledStudyIsStoredAsItsFilesImportAndIsQueried) {
   o.address = direct_server.address();
   Result<client::Client> direct_client = client::Client::connect(o);
   ASSERT_TRUE(direct_client.ok());
-  Result<v1::ImportDicomResponse> direct = direct_client->import_dicom({data("sts/STS_002/dicom")});
+  Result<v1::ImportDicomResponse> direct = direct_client->import_dicom({test_data("sts/STS_002/dicom")});
   ASSERT_TRUE(direct.ok()) << direct.status().to_string();
   for (const char* modality : {"CT", "PT"}) {
     const v1::ImportedStructure* a = on_modality(*pulled, modality);
@@ -233,12 +234,12 @@ namespace {
 // renamed since): refused as ALREADY_EXISTS naming the object, nothing stored; with replace, the
 // PACS's content replaces it.
 TEST_F(PacsServiceTest, APullOfObjectsStoredWithOtherContentIsRefusedUnlessReplaced) {
-  std::ifstream in(data("sts/STS_002/dicom/CT/mask/RS.dcm"), std::ios::binary);
+  std::ifstream in(test_data("sts/STS_002/dicom/CT/mask/RS.dcm"), std::ios::binary);
   std::string rs((std::istreambuf_iterator<char>(in)), {});
   for (size_t at = rs.find("GTV_Mass"); at != std::string::npos; at = rs.find("GTV_Mass", at)) rs[at + 4] = 'Z';
   const std::string renamed = dir_.file("RS_renamed.dcm");
   std::ofstream(renamed, std::ios::binary) << rs;
-  ASSERT_TRUE(client_->import_dicom({data("sts/STS_002/dicom/CT/image"), renamed}).ok());
+  ASSERT_TRUE(client_->import_dicom({test_data("sts/STS_002/dicom/CT/image"), renamed}).ok());
   const int64_t before = stored_structures();
 
   Result<v1::ImportDicomResponse> refused = pull_sts();

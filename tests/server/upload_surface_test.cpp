@@ -15,7 +15,7 @@ namespace {
 using db::testing::contains;
 using db::testing::TempDir;
 
-SurfaceUpload upload_of(const std::string& patient, const std::string& study, const std::string& name) {
+SurfaceUpload surface_upload_of(const std::string& patient, const std::string& study, const std::string& name) {
   SurfaceUpload u;
   u.patient.patient_id = patient;
   u.study.study_uid = study;
@@ -46,7 +46,7 @@ class UploadSurfaceTest : public ::testing::Test {
 };
 
 TEST_F(UploadSurfaceTest, ABoxIsStoredAsAStructureOfItsPatientAndStudy) {
-  Result<UploadedSurface> up = upload_surface(*store_, upload_of("P1", "S1", "hippo"), box_);
+  Result<UploadedSurface> up = upload_surface(*store_, surface_upload_of("P1", "S1", "hippo"), box_);
   ASSERT_TRUE(up.ok()) << up.status().to_string();
   EXPECT_TRUE(up->defects.closed());
   EXPECT_FALSE(up->added.surface_already_stored);
@@ -61,8 +61,8 @@ TEST_F(UploadSurfaceTest, ABoxIsStoredAsAStructureOfItsPatientAndStudy) {
 }
 
 TEST_F(UploadSurfaceTest, TheSameSurfaceTwiceIsStoredOnce) {
-  ASSERT_TRUE(upload_surface(*store_, upload_of("P1", "S1", "a"), box_).ok());
-  Result<UploadedSurface> again = upload_surface(*store_, upload_of("P1", "S1", "b"), box_);
+  ASSERT_TRUE(upload_surface(*store_, surface_upload_of("P1", "S1", "a"), box_).ok());
+  Result<UploadedSurface> again = upload_surface(*store_, surface_upload_of("P1", "S1", "b"), box_);
   ASSERT_TRUE(again.ok()) << again.status().to_string();
   EXPECT_TRUE(again->added.surface_already_stored);
   EXPECT_EQ(stored_structures(), 2);
@@ -70,7 +70,7 @@ TEST_F(UploadSurfaceTest, TheSameSurfaceTwiceIsStoredOnce) {
 }
 
 TEST_F(UploadSurfaceTest, MalformedBytesAreInvalidAndStoreNothing) {
-  Result<UploadedSurface> up = upload_surface(*store_, upload_of("P1", "S1", "junk"), "solid x\nfacet normal oops");
+  Result<UploadedSurface> up = upload_surface(*store_, surface_upload_of("P1", "S1", "junk"), "solid x\nfacet normal oops");
   EXPECT_EQ(up.status().code(), StatusCode::kInvalidArgument);
   EXPECT_TRUE(contains(up.status().message(), "junk")) << up.status().message();
   EXPECT_EQ(stored_structures(), 0);
@@ -78,7 +78,7 @@ TEST_F(UploadSurfaceTest, MalformedBytesAreInvalidAndStoreNothing) {
 }
 
 TEST_F(UploadSurfaceTest, AnUnknownFormatIsInvalidAndStoresNothing) {
-  SurfaceUpload u = upload_of("P1", "S1", "box");
+  SurfaceUpload u = surface_upload_of("P1", "S1", "box");
   u.format = "xyz";
   Result<UploadedSurface> up = upload_surface(*store_, u, box_);
   EXPECT_EQ(up.status().code(), StatusCode::kInvalidArgument);
@@ -90,7 +90,7 @@ TEST_F(UploadSurfaceTest, AnOpenSurfaceNeedsRobustModeAndIsStoredWithIt) {
   TriangleMesh open = box({0, 0, 0}, {10, 10, 10});
   open.triangles.pop_back();
   const std::string bytes = stl_of(open);
-  SurfaceUpload u = upload_of("P1", "S1", "open");
+  SurfaceUpload u = surface_upload_of("P1", "S1", "open");
   Result<UploadedSurface> refused = upload_surface(*store_, u, bytes);
   EXPECT_EQ(refused.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_TRUE(contains(refused.status().message(), "robust")) << refused.status().message();
@@ -103,8 +103,8 @@ TEST_F(UploadSurfaceTest, AnOpenSurfaceNeedsRobustModeAndIsStoredWithIt) {
 }
 
 TEST_F(UploadSurfaceTest, AStudyOfAnotherPatientIsRefusedAndNothingMoves) {
-  ASSERT_TRUE(upload_surface(*store_, upload_of("P1", "S1", "a"), box_).ok());
-  Result<UploadedSurface> up = upload_surface(*store_, upload_of("P2", "S1", "b"), stl_of(box({0, 0, 0}, {1, 2, 3})));
+  ASSERT_TRUE(upload_surface(*store_, surface_upload_of("P1", "S1", "a"), box_).ok());
+  Result<UploadedSurface> up = upload_surface(*store_, surface_upload_of("P2", "S1", "b"), stl_of(box({0, 0, 0}, {1, 2, 3})));
   EXPECT_EQ(up.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_TRUE(contains(up.status().message(), "another patient")) << up.status().message();
   EXPECT_EQ(stored_structures(), 1);

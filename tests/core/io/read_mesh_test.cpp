@@ -19,7 +19,7 @@ namespace {
 using testing_io::write_bytes;
 
 // A binary STL of `triangles` facets (normal zero), vertices as given.
-std::string binary_stl(const std::vector<std::array<std::array<float, 3>, 3>>& triangles) {
+std::string binary_stl_of(const std::vector<std::array<std::array<float, 3>, 3>>& triangles) {
   std::string bytes(80, ' ');
   const uint32_t n = uint32_t(triangles.size());
   bytes.append(reinterpret_cast<const char*>(&n), 4);
@@ -86,7 +86,7 @@ TEST(ReadMesh, NanVertexInBinaryStlIsInvalidArgumentNamingTheFacet) {
   // parser refuses them at once, naming the facet.
   const float nan = std::nanf("");
   const std::string path =
-      write_bytes("nan.stl", binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {nan, 0, 0}, {0, 0, 1}}}}));
+      write_bytes("nan.stl", binary_stl_of({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {nan, 0, 0}, {0, 0, 1}}}}));
   const auto mesh = read_mesh(path);
   EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(mesh.status().message().find("facet 2 corner 2 has a non-finite coordinate"), std::string::npos)
@@ -111,7 +111,7 @@ TEST(ReadMesh, EmptyFileIsInvalidArgument) {
 }
 
 TEST(ReadMesh, TruncatedBinaryStlIsInvalidArgument) {
-  std::string bytes = binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}}});
+  std::string bytes = binary_stl_of({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}}});
   bytes.resize(bytes.size() - 20);
   const std::string path = write_bytes("cut.stl", bytes);
   const auto mesh = read_mesh(path);
