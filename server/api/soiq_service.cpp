@@ -15,8 +15,8 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
     : store_(store),
       config_(config),
       token_(std::move(token)),
-      budget_(config.memory_budget_bytes),
-      features_(store, config.max_grid_voxels, budget_),
+      budget_(config.memory_budget_bytes, decoded_cache_share(config.memory_budget_bytes)),
+      features_(store, config.max_grid_voxels, budget_, budget_.cache_bytes()),
       pool_(config.workers),
       sharing_(config.share_stage2
                    ? std::make_unique<SharedStage2>(

@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/base/fill_rule.h"
@@ -74,13 +75,21 @@ using FeatureValues = std::map<std::string, std::vector<double>>;  // entry -> v
 class FeatureEngine {
  public:
   // The right to convert one structure on one grid: its estimated peak bytes held in the memory
-  // budget. Only admit() makes one, and convert() takes one, so a conversion outside the budget
-  // does not compile; convert() refuses an admission made for another structure or grid.
+  // budget. Only admit() makes one (there is no other constructor, and no copy), and convert()
+  // takes one, so a conversion outside the budget does not compile; convert() refuses an admission
+  // made for another structure or grid, and one whose bytes moved to another admission.
   class Admission {
    public:
-    Admission() = default;
-    Admission(Admission&&) noexcept = default;
-    Admission& operator=(Admission&&) noexcept = default;
+    Admission(Admission&& other) noexcept
+        : held_(std::move(other.held_)),
+          structure_id_(std::exchange(other.structure_id_, -1)),
+          geometry_(other.geometry_) {}
+    Admission& operator=(Admission&& other) noexcept {
+      held_ = std::move(other.held_);
+      structure_id_ = std::exchange(other.structure_id_, -1);
+      geometry_ = other.geometry_;
+      return *this;
+    }
     int64_t bytes() const { return held_.bytes(); }
     // Once converted, only the result stays: gives back all but `bytes`.
     void shrink_to(int64_t bytes) { held_.shrink_to(bytes); }

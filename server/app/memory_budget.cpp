@@ -7,6 +7,11 @@
 
 namespace soiq::server {
 
+int64_t decoded_cache_share(int64_t budget_bytes) { return std::clamp<int64_t>(budget_bytes / 4, 0, int64_t(2) << 30); }
+
+MemoryBudget::MemoryBudget(int64_t limit_bytes, int64_t cache_bytes)
+    : limit_(limit_bytes), cache_bytes_(std::clamp<int64_t>(cache_bytes, 0, std::max<int64_t>(limit_bytes, 0))) {}
+
 MemoryBudget::Reservation& MemoryBudget::Reservation::operator=(Reservation&& other) noexcept {
   if (this != &other) {
     release();
@@ -33,14 +38,18 @@ Result<MemoryBudget::Reservation> MemoryBudget::reserve(int64_t bytes, const std
                                                         const std::function<Status()>& stop,
                                                         const std::string& advice) {
   bytes = std::max<int64_t>(bytes, 0);
-  if (bytes > limit_) {
-    return resource_exhausted(what + " needs an estimated " + human_bytes(bytes) +
-                              ", more than soiqd's memory budget of " + human_bytes(limit_) +
+  if (bytes > work_limit()) {
+    const std::string budget = cache_bytes_ == 0
+                                   ? "soiqd's memory budget of " + human_bytes(limit_)
+                                   : "the " + human_bytes(work_limit()) + " that soiqd's memory budget of " +
+                                         human_bytes(limit_) + " leaves beside " + human_bytes(cache_bytes_) +
+                                         " of decoded-object caches";
+    return resource_exhausted(what + " needs an estimated " + human_bytes(bytes) + ", more than " + budget +
                               " (soiqd --memory-budget): " + advice);
   }
   std::unique_lock<std::mutex> lock(mutex_);
   const uint64_t ticket = next_ticket_++;
-  while (!(serving_ == ticket && in_use_ + bytes <= limit_)) {
+  while (!(serving_ == ticket && in_use_ + bytes <= work_limit())) {
     if (stop) {
       lock.unlock();
       Status s = stop();

@@ -12,6 +12,10 @@
 //         message gives `what`, the estimate and the limit ("soiqd --memory-budget"), then `advice`
 //         (what the client can change; by default a conversion's: spacing, margin, region).
 // Thread-safety: all members may be called from any thread.
+//
+// The decoded-object caches (FeatureEngine's surfaces and images) are inside the budget too: a
+// budget built with `cache_bytes` sets that much aside for them and admits work against the rest,
+// so what soiqd holds, working or caching, stays under --memory-budget.
 
 #include <condition_variable>
 #include <cstdint>
@@ -30,6 +34,11 @@ namespace soiq::server {
 // and when `holding` is false, it is `stop`.
 std::function<Status()> stop_when_held_too_long(std::function<Status()> stop, bool holding, int patience_ms,
                                                 std::string why);
+
+// The share of a budget of `budget_bytes` that soiqd sets aside for its decoded-object caches: a
+// quarter, at most 2 GiB (decoding a stored blob costs milliseconds; past a few GiB the hit rate of a
+// query's working set no longer grows).
+int64_t decoded_cache_share(int64_t budget_bytes);
 
 class MemoryBudget {
  public:
@@ -56,7 +65,8 @@ class MemoryBudget {
     int64_t bytes_ = 0;
   };
 
-  explicit MemoryBudget(int64_t limit_bytes) : limit_(limit_bytes) {}
+  // `cache_bytes` (at most `limit_bytes`) of the limit are set aside for the decoded-object caches.
+  explicit MemoryBudget(int64_t limit_bytes, int64_t cache_bytes = 0);
   MemoryBudget(const MemoryBudget&) = delete;
   MemoryBudget& operator=(const MemoryBudget&) = delete;
 
@@ -66,6 +76,9 @@ class MemoryBudget {
                                   "raise the budget");
 
   int64_t limit() const { return limit_; }
+  // What the caches may hold, and what is left for work.
+  int64_t cache_bytes() const { return cache_bytes_; }
+  int64_t work_limit() const { return limit_ - cache_bytes_; }
   int64_t in_use() const;
   // The largest number of bytes held at once since start (for tests and `soiq info`).
   int64_t peak() const;
@@ -77,6 +90,7 @@ class MemoryBudget {
   void skip_abandoned();  // with mutex_ held
 
   const int64_t limit_;
+  const int64_t cache_bytes_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   int64_t in_use_ = 0;

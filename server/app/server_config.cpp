@@ -47,7 +47,7 @@ constexpr OptionText kOptionTexts[] = {
     {"--max-grid-voxels", "N", "500000000", "the largest grid of a conversion or an image"},
     {"--memory-budget", "BYTES", "half the RAM, the cgroup's limit or what ulimit -v/-d leave",
      "the peak bytes all conversions, features, imports, uploads and SEGs being written or sent may hold at "
-     "once (8G, 512M or bytes)"},
+     "once, with a quarter (at most 2G) of it for decoded surfaces and images (8G, 512M or bytes)"},
     {"--workers", "N", "the hardware threads", "conversions and feature computations at once"},
     {"--query-result-cap", "N", "10000", "the most rows one query returns"},
     {"--stage1-cap", "N", "100000", "the most candidate structures stage 1 of a query may select"},

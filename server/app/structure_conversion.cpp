@@ -1,5 +1,8 @@
 #include "server/app/structure_conversion.h"
 
+#include <optional>
+#include <utility>
+
 #include "core/base/run_length_volume.h"
 #include "core/io/write_image.h"
 #include "server/util/temp_file.h"
@@ -9,21 +12,22 @@ namespace soiq::server {
 Result<StructureConversion> convert_structure(db::Store& store, FeatureEngine& features, WorkerPool& pool,
                                               int64_t structure_id, const GridChoice& choice, FillRule fill_rule,
                                               bool mask_export, const std::function<Status()>& stop) {
-  StructureConversion out;
-  SOIQ_ASSIGN_OR_RETURN(out.structure, store.get_structure(structure_id));
-  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store.list_series(out.structure.study_uid));
-  SOIQ_ASSIGN_OR_RETURN(out.grid, resolve_grid(choice, out.structure, series, 0, features.max_grid_voxels()));
+  SOIQ_ASSIGN_OR_RETURN(db::StructureRecord structure, store.get_structure(structure_id));
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store.list_series(structure.study_uid));
+  SOIQ_ASSIGN_OR_RETURN(ResolvedGrid grid, resolve_grid(choice, structure, series, 0, features.max_grid_voxels()));
   // Admitted on the worker, never before: a reservation held while waiting for a worker could
   // block workers that wait for the budget.
   FeatureEngine::WorkExtras extras;
   extras.mask_export = mask_export;
+  std::optional<StructureConversion> out;
   auto work = [&]() -> Status {
-    SOIQ_ASSIGN_OR_RETURN(out.held, features.admit(out.structure, out.grid.geometry, extras, stop));
-    SOIQ_ASSIGN_OR_RETURN(out.voxelization, features.convert(out.held, out.structure, out.grid.geometry, fill_rule));
+    SOIQ_ASSIGN_OR_RETURN(FeatureEngine::Admission held, features.admit(structure, grid.geometry, extras, stop));
+    SOIQ_ASSIGN_OR_RETURN(Voxelization voxelization, features.convert(held, structure, grid.geometry, fill_rule));
+    out.emplace(StructureConversion{std::move(structure), std::move(grid), std::move(voxelization), std::move(held)});
     return ok_status();
   };
   SOIQ_RETURN_IF_ERROR(pool.call(work));
-  return out;
+  return std::move(*out);
 }
 
 Result<std::string> mask_nifti_bytes(const RunLengthVolume& volume, int64_t max_voxels) {

@@ -120,6 +120,14 @@ grep -q "imported 2 series and 2 structures from 98 files" "$tmp/imp.err" || fai
 [ "$(wc -l <"$tmp/pet.csv")" -eq 3 ] || fail "PET uptake rows: $(cat "$tmp/pet.csv")"
 printf 'not dicom' >"$tmp/plain.txt"
 expect 2 "plain.txt" -- "$soiq" import "$tmp/plain.txt"
+# One UID, one content: the CT structure set with its ROI renamed (same length, still valid DICOM)
+# is refused (exit 4, ALREADY_EXISTS) naming what differs, until --replace asks for it.
+perl -0777 -pe 's/GTV_Mass/GTV_Zass/g' "$data/sts/STS_002/dicom/CT/mask/RS.dcm" >"$tmp/RS_renamed.dcm"
+expect 4 "with another name ('GTV_Mass_CT' stored, 'GTV_Zass_CT' sent)" -- "$soiq" import "$tmp/RS_renamed.dcm"
+"$soiq" import "$tmp/RS_renamed.dcm" --replace --format csv >"$tmp/replaced.csv" 2>"$tmp/replaced.err" ||
+  fail "import --replace: $(cat "$tmp/replaced.err")"
+grep -q "^structure,.*GTV_Zass_CT" "$tmp/replaced.csv" || fail "import --replace: $(cat "$tmp/replaced.csv")"
+"$soiq" import "$data/sts/STS_002/dicom/CT/mask/RS.dcm" --replace >/dev/null 2>&1 || fail "import --replace back"
 
 # No silent empty answers. "PET" is DICOM's PT: the same rows as [inside,PT].
 "$soiq" query --patient STS_002 --name 'GTV*' --select 'mean[inside,PET]' --series-modality CT --format csv \

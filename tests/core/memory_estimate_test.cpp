@@ -1,7 +1,6 @@
 #include "core/voxelize/memory_estimate.h"
 
 #include <gtest/gtest.h>
-
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -95,21 +94,24 @@ TEST(MemoryEstimate, ByteSizesAreReadAndWrittenAsPeopleDo) {
   EXPECT_GT(default_memory_budget_bytes(), 0);
 }
 
-// Under ulimit -v the default budget is what the address space has left, halved: work admitted
-// past it would fail to allocate instead of queueing. Measured in a child, whose limit goes with it.
-TEST(MemoryEstimate, TheDefaultBudgetRespectsTheProcessAddressSpaceLimit) {
+// Under ulimit -v (RLIMIT_AS) or ulimit -d (RLIMIT_DATA) the default budget is what that limit has
+// left, halved: work admitted past it would fail to allocate instead of queueing. Measured in a
+// child, whose limit goes with it. `statm_field` is the limit's counter in /proc/self/statm (0 the
+// whole address space, 5 data + stack).
+void expect_budget_within_limit(int resource, int statm_field) {
   const int64_t unlimited = default_memory_budget_bytes();
   int fds[2];
   ASSERT_EQ(pipe(fds), 0);
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    int64_t vm_pages = 0;
-    std::ifstream("/proc/self/statm") >> vm_pages;
-    const int64_t in_use = vm_pages * sysconf(_SC_PAGE_SIZE);
+    int64_t fields[6] = {0, 0, 0, 0, 0, 0};
+    std::ifstream statm("/proc/self/statm");
+    for (int64_t& f : fields) statm >> f;
+    const int64_t in_use = fields[statm_field] * sysconf(_SC_PAGE_SIZE);
     const rlimit limit{rlim_t(in_use + (int64_t(3) << 30)), rlim_t(in_use + (int64_t(3) << 30))};
     int64_t budget = -1;
-    if (setrlimit(RLIMIT_AS, &limit) == 0) budget = default_memory_budget_bytes();
+    if (setrlimit(resource, &limit) == 0) budget = default_memory_budget_bytes();
     const int64_t out[2] = {budget, in_use};
     (void)!write(fds[1], out, sizeof out);
     _exit(0);
@@ -125,6 +127,10 @@ TEST(MemoryEstimate, TheDefaultBudgetRespectsTheProcessAddressSpaceLimit) {
   EXPECT_GE(got[0], int64_t(900) << 20);
   EXPECT_LE(got[0], unlimited);
 }
+
+TEST(MemoryEstimate, TheDefaultBudgetRespectsTheProcessAddressSpaceLimit) { expect_budget_within_limit(RLIMIT_AS, 0); }
+
+TEST(MemoryEstimate, TheDefaultBudgetRespectsTheProcessDataLimit) { expect_budget_within_limit(RLIMIT_DATA, 5); }
 
 }  // namespace
 }  // namespace soiq

@@ -110,7 +110,10 @@ TEST_F(MemoryBudgetTest, ADicomSeriesThatCanNeverFitIsRefusedBeforeAnythingIsSto
   EXPECT_NE(message.find("importing series " + std::string(kStsCtUid) + " (161x143x48) needs an estimated 13.4 MB"),
             std::string::npos)
       << message;
-  EXPECT_NE(message.find("memory budget of 4.19 MB (soiqd --memory-budget): raise the budget"), std::string::npos)
+  // A quarter of soiqd's budget is its decoded-object caches'; the message says what is left for work.
+  EXPECT_NE(message.find("more than the 3.15 MB that soiqd's memory budget of 4.19 MB leaves beside 1.05 MB of "
+                         "decoded-object caches (soiqd --memory-budget): raise the budget"),
+            std::string::npos)
       << message;
   std::printf("refused: %s\n", message.c_str());
 
@@ -138,9 +141,11 @@ TEST_F(MemoryBudgetTest, ADicomImportReservesItsEstimateBeforeDecoding) {
 }
 
 // Four NIfTI conversions of a 3e8-voxel grid (each ~0.65 GB at its peak, ~1 GB estimated) sent at
-// once to four workers: the 1.2 GB budget runs them one at a time, so soiqd's peak stays under it.
+// once to four workers: the 1.6 GB budget (1.2 GB for work beside a quarter for the decoded-object
+// caches) runs them one at a time, so soiqd's peak stays under it.
 TEST_F(MemoryBudgetTest, ParallelConversionsQueueWithinTheBudget) {
-  const int64_t budget = int64_t(1200) << 20;
+  const int64_t budget = int64_t(1600) << 20;
+  const int64_t for_work = budget - budget / 4;
   start_with({"--memory-budget", std::to_string(budget), "--workers", "4"});
   Result<v1::UploadSurfaceResponse> up = upload(uv_sphere({0, 0, 0}, 100, 64, 128), "P", "S", "ball");
   ASSERT_TRUE(up.ok()) << up.status().to_string();
@@ -169,7 +174,7 @@ TEST_F(MemoryBudgetTest, ParallelConversionsQueueWithinTheBudget) {
   EXPECT_LT(peak, budget) << "soiqd's VmHWM " << peak << " bytes exceeds its budget of " << budget;
   Result<v1::ServerInfo> info = client_->server_info();
   ASSERT_TRUE(info.ok());
-  EXPECT_LE(info->memory_peak_bytes(), budget);
+  EXPECT_LE(info->memory_peak_bytes(), for_work);
   EXPECT_EQ(info->memory_in_use_bytes(), 0);
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <type_traits>
 
 #include "core/features/feature_catalogue.h"
 #include "db/image_blob.h"
@@ -275,9 +276,19 @@ TEST_F(FeatureEngineTest, AConversionRunsOnlyUnderItsOwnAdmission) {
   EXPECT_GT(voxel_count(v->volume), 0);
   admitted->shrink_to(run_length_bytes(v->volume));
   EXPECT_EQ(budget_.in_use(), run_length_bytes(v->volume));
-  admitted = Result<FeatureEngine::Admission>(FeatureEngine::Admission());
+  // Moved on, the bytes go with the new admission; the old one converts nothing.
+  FeatureEngine::Admission moved = std::move(*admitted);
+  EXPECT_EQ(features_.convert(*admitted, *s, grid, FillRule::kNonZero).status().code(), StatusCode::kInternal);
+  EXPECT_EQ(budget_.in_use(), run_length_bytes(v->volume));
+  { FeatureEngine::Admission gone = std::move(moved); }
   EXPECT_EQ(budget_.in_use(), 0);
 }
+
+// Nothing but FeatureEngine::admit makes an admission: none from nothing, none copied.
+static_assert(!std::is_default_constructible_v<FeatureEngine::Admission>);
+static_assert(!std::is_copy_constructible_v<FeatureEngine::Admission>);
+static_assert(!std::is_copy_assignable_v<FeatureEngine::Admission>);
+static_assert(!std::is_constructible_v<FeatureEngine::Admission, MemoryBudget::Reservation, int64_t, ImageGeometry>);
 
 TEST_F(FeatureEngineTest, AStoredSurfaceIsDecodedOnceAndShared) {
   Result<db::StructureRecord> s = store_->get_structure(id_);
