@@ -1,5 +1,5 @@
 #pragma once
-// The Store: everything soiqd keeps, behind one narrow interface (DESIGN.md "Storage"), so the
+// The Store: everything soiqd keeps, behind one narrow interface (docs/DESIGN.md "Storage"), so the
 // SQLite file of one machine can be swapped for a shared PostgreSQL database later. Records are
 // plain structs; blobs are already encoded (db/surface_blob.h, db/image_blob.h).
 //
@@ -101,7 +101,7 @@ struct StructureFilter {
   std::string laterality;
 };
 
-// Precompute (DESIGN.md "Queries"): soiqd computes the default features of every structure when it
+// Precompute (docs/DESIGN.md "Queries"): soiqd computes the default features of every structure when it
 // arrives, off the request path, and the store keeps the shape values among them beside the
 // structure's stage-1 row, each with an index, so that stage 1 can filter the whole database on
 // them. The names are the catalogue's (core/features/feature_catalogue.h) and columns of the
@@ -120,7 +120,7 @@ struct StoredFeatureCondition {
   double value = 0;
 };
 
-// Stage 1 of a query (DESIGN.md "Queries"): all on indexed columns. Empty strings and unset
+// Stage 1 of a query (docs/DESIGN.md "Queries"): all on indexed columns. Empty strings and unset
 // optionals do not filter. Dates are inclusive YYYYMMDD strings.
 struct Stage1Filter {
   std::string patient_id_glob;
@@ -256,7 +256,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The store: 27 domain methods, each one transaction (DESIGN.md "Storage"), every backend the same
+// The store: 27 domain methods, each one transaction (docs/DESIGN.md "Storage"), every backend the same
 // (tests/db/store_conformance_test.cpp). Below them, conveniences written on them for the common
 // single-record cases; backends implement only the virtual methods.
 class Store {

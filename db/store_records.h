@@ -1,5 +1,5 @@
 #pragma once
-// The records the store keeps, as plain structs (DESIGN.md "Storage"): a patient, a study, an image
+// The records the store keeps, as plain structs (docs/DESIGN.md "Storage"): a patient, a study, an image
 // series, a structure with its surface's facts. The Store (store.h) reads and writes them; every
 // layer above speaks them.
 

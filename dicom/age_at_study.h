@@ -1,5 +1,5 @@
 #pragma once
-// A patient's age at a study, in years, from what the DICOM files carry (DESIGN.md "DICOM and
+// A patient's age at a study, in years, from what the DICOM files carry (docs/DESIGN.md "DICOM and
 // PACS": stage 1 filters on age at study, which files give as Patient's Age or through dates).
 //
 // Inputs   patient_age: Patient's Age (0010,1010), VR AS "nnnD", "nnnW", "nnnM" or "nnnY";

@@ -1,5 +1,5 @@
 #pragma once
-// RT Structure Set ROIs -> volume and surface models on the referenced series' grid (DESIGN.md
+// RT Structure Set ROIs -> volume and surface models on the referenced series' grid (docs/DESIGN.md
 // "The 1D method, precisely", step 7: planar contours go straight to the line filler).
 //
 // Inputs   rs: from read_rt_struct; grid: the geometry of the referenced image series

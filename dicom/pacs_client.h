@@ -1,5 +1,5 @@
 #pragma once
-// soiq's PACS client (DESIGN.md "DICOM and PACS"): soiq as a DICOM SCU.
+// soiq's PACS client (docs/DESIGN.md "DICOM and PACS"): soiq as a DICOM SCU.
 // One header per operation, each with its contract; this one gathers them for callers that use
 // several. DCMTK's dcmnet stays inside dicom/ (pacs_association.cpp is the adapter).
 //

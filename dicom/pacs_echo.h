@@ -1,5 +1,5 @@
 #pragma once
-// C-ECHO: is the PACS there and does it talk to us (DESIGN.md "DICOM and PACS").
+// C-ECHO: is the PACS there and does it talk to us (docs/DESIGN.md "DICOM and PACS").
 // Opens an association proposing only the Verification SOP class.
 //
 // Inputs   peer: validated by validate_pacs_peer (pacs_peer.h).

@@ -1,5 +1,5 @@
 #pragma once
-// C-FIND: which patients or studies a PACS holds (DESIGN.md "DICOM and PACS"),
+// C-FIND: which patients or studies a PACS holds (docs/DESIGN.md "DICOM and PACS"),
 // for the demographics soiq shows before a pull.
 //
 // Inputs   peer: see pacs_peer.h.

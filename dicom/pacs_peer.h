@@ -1,5 +1,5 @@
 #pragma once
-// The PACS soiq talks to as a DICOM SCU (DESIGN.md "DICOM and PACS"): who
+// The PACS soiq talks to as a DICOM SCU (docs/DESIGN.md "DICOM and PACS"): who
 // it is (called AE title), where it listens, who we are (calling AE title), and how long to wait.
 // Every pacs_* call (pacs_echo.h, pacs_find.h, pacs_pull.h, pacs_store.h) validates its peer first.
 //

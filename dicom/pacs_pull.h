@@ -1,5 +1,5 @@
 #pragma once
-// C-GET of one study into a folder (DESIGN.md "DICOM and PACS"): the PACS
+// C-GET of one study into a folder (docs/DESIGN.md "DICOM and PACS"): the PACS
 // sends each instance back as a C-STORE on our own association, so no C-MOVE destination has to
 // be configured on the PACS. The server imports the folder only when the pull is complete.
 //

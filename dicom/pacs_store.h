@@ -1,5 +1,5 @@
 #pragma once
-// C-STORE of DICOM files to a PACS (DESIGN.md "DICOM and PACS"), e.g. a
+// C-STORE of DICOM files to a PACS (docs/DESIGN.md "DICOM and PACS"), e.g. a
 // converted volume pushed back as a DICOM SEG.
 //
 // Inputs   peer: see pacs_peer.h. files: DICOM files (Part 10 or bare datasets), each with a SOP

@@ -1,5 +1,5 @@
 #pragma once
-// The ROIs and contours of a DICOM RT Structure Set (DESIGN.md "DICOM and PACS": 3006,0020
+// The ROIs and contours of a DICOM RT Structure Set (docs/DESIGN.md "DICOM and PACS": 3006,0020
 // Structure Set ROI Sequence / 3006,0039 ROI Contour Sequence / 3006,0050 Contour Data), and what
 // it says about the image series it was drawn on.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// What a scan of DICOM files finds (DESIGN.md "DICOM and PACS"): patients, studies, series and
-// their instances, as plain structs with the tags DESIGN.md lists. No DCMTK type appears here, so
+// What a scan of DICOM files finds (docs/DESIGN.md "DICOM and PACS"): patients, studies, series and
+// their instances, as plain structs with the tags docs/DESIGN.md lists. No DCMTK type appears here, so
 // db/ and server/ use these without DCMTK headers. Strings are the DICOM values with padding
 // removed; "" means absent or empty. No record holds a patient's name.
 

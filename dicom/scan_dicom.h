@@ -1,5 +1,5 @@
 #pragma once
-// Finds the DICOM data under some paths and indexes it by patient, study and series (DESIGN.md
+// Finds the DICOM data under some paths and indexes it by patient, study and series (docs/DESIGN.md
 // "DICOM and PACS"). Reads headers only (stops before Pixel Data).
 //
 // Inputs   paths: files, folders (walked recursively, symlinks followed, in sorted order) and

@@ -1,5 +1,5 @@
 #pragma once
-// Structures as a binary DICOM Segmentation (DESIGN.md "DICOM and PACS": the object soiq C-STOREs
+// Structures as a binary DICOM Segmentation (docs/DESIGN.md "DICOM and PACS": the object soiq C-STOREs
 // back to a PACS), on the grid of the image series they were converted on.
 //
 // Inputs   source: the referenced image series as soiq stored it at import (no file is read).

@@ -1,5 +1,5 @@
 #pragma once
-// The grid of a stack of 2D DICOM images (DESIGN.md "Coordinates and grids"): exact geometry from
+// The grid of a stack of 2D DICOM images (docs/DESIGN.md "Coordinates and grids"): exact geometry from
 // Image Position (Patient), Image Orientation (Patient) and Pixel Spacing, the slice spacing from
 // the positions, never from Slice Thickness or Spacing Between Slices.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// How crossings along a line decide inside (DESIGN.md step 4).
+// How crossings along a line decide inside (docs/DESIGN.md step 4).
 
 namespace soiq {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The sampling grid of an image, exactly as a DICOM series or an ITK image defines it
-// (DESIGN.md, "Coordinates and grids"): voxel (i,j,k) has its centre at
+// (docs/DESIGN.md, "Coordinates and grids"): voxel (i,j,k) has its centre at
 //   p(i,j,k) = origin + D * diag(spacing) * (i,j,k)      (LPS, mm)
 // where the columns of the direction matrix D are the unit axis directions in LPS.
 // Voxel data is stored with i fastest: index = i + nx * (j + ny * k).

@@ -1,5 +1,5 @@
 #pragma once
-// A volume model as the 1D method produces it (DESIGN.md, "The 1D method, precisely"): for every
+// A volume model as the 1D method produces it (docs/DESIGN.md, "The 1D method, precisely"): for every
 // row line (j,k) of a grid, the sorted, disjoint, non-adjacent half-open runs [begin, end) of
 // voxel indices i that are inside. Canonical: two RunLengthVolumes hold the same voxels iff their
 // runs are equal, so comparison is exact and cheap.

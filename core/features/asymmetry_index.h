@@ -1,5 +1,5 @@
 #pragma once
-// The asymmetry index of a feature between a structure and its contralateral twin (DESIGN.md
+// The asymmetry index of a feature between a structure and its contralateral twin (docs/DESIGN.md
 // "Features"): (L - R) / ((L + R) / 2), i.e. the difference relative to the pair's mean.
 //
 // Inputs   left, right: the same feature of the left and right structure (any unit, the same one);

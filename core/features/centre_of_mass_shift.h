@@ -1,6 +1,6 @@
 #pragma once
 // Distance between the centroid of a region's voxel centres and its intensity-weighted centroid
-// (IBSI KLMA "centre of mass shift"; DESIGN.md "Features").
+// (IBSI KLMA "centre of mass shift"; docs/DESIGN.md "Features").
 //
 // Inputs   region  the structure's voxels (the IBSI morphological and intensity masks are the same
 //                  region here: no re-segmentation).

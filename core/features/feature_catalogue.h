@@ -1,5 +1,5 @@
 #pragma once
-// Every feature soiq computes, in one table (DESIGN.md "Features"): its name, which is part of
+// Every feature soiq computes, in one table (docs/DESIGN.md "Features"): its name, which is part of
 // the API, its family, unit, what it needs, the version of its definition, a one-line summary and
 // where its value is read from. structure_features computes from it, the query parser and the
 // service validate names against it, the CLI and `soiq info` list it: a name is known in one place.

@@ -1,5 +1,5 @@
 #pragma once
-// First-order intensity statistics of a list of values (DESIGN.md "Features": intensity; IBSI-1
+// First-order intensity statistics of a list of values (docs/DESIGN.md "Features": intensity; IBSI-1
 // chapter 3.3 "Intensity-based statistical features", no discretisation). The definitions are
 // IBSI's, with population moments (divide by N), and reproduce the IBSI-1 digital phantom values of
 // REFERENCE_VALUES.md:

@@ -1,6 +1,6 @@
 #pragma once
 // The surface shape features (surface_shape.h) of a mask's marching-cubes surface, computed from
-// its runs without building that surface (DESIGN.md "Features": for a label map, the mesh features
+// its runs without building that surface (docs/DESIGN.md "Features": for a label map, the mesh features
 // of the mask's marching-cubes surface at iso 0.5, as IBSI and PyRadiomics do).
 //
 // Inputs   sweep  mask_surface_sweep(volume) of the structure, not empty.

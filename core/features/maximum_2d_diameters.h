@@ -1,6 +1,6 @@
 #pragma once
 // The largest vertex-to-vertex distance of a surface within each plane of constant k, j and i of
-// its grid (DESIGN.md "Features": maximum_2d_diameter_slice_mm / _column_mm / _row_mm;
+// its grid (docs/DESIGN.md "Features": maximum_2d_diameter_slice_mm / _column_mm / _row_mm;
 // PyRadiomics Maximum2DDiameterSlice / Column / Row).
 //
 // Inputs   mesh  vertices in LPS mm; in practice marching_cubes(mask) of a mask on `grid`, whose

@@ -1,5 +1,5 @@
 #pragma once
-// The one entry point for the features of a structure (DESIGN.md "Features"): computes a
+// The one entry point for the features of a structure (docs/DESIGN.md "Features"): computes a
 // requested set, says what it computed, and how long each part took, so the service can cache
 // parts and explain a slow query.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Shape features of a closed surface (DESIGN.md "Features"; IBSI "Morphological features" with
+// Shape features of a closed surface (docs/DESIGN.md "Features"; IBSI "Morphological features" with
 // their ids below; PyRadiomics MeshVolume, SurfaceArea, SurfaceVolumeRatio, Sphericity,
 // Maximum3DDiameter). For a mask, the surface is marching_cubes(mask), as IBSI and PyRadiomics do.
 //

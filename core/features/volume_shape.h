@@ -1,5 +1,5 @@
 #pragma once
-// Shape features of a volume model computed from its voxel centres (DESIGN.md "Features"; IBSI
+// Shape features of a volume model computed from its voxel centres (docs/DESIGN.md "Features"; IBSI
 // "Morphological features": YEKZ approximate volume, TDIC/P9VJ/7J51 major/minor/least axis
 // length, Q3CK elongation, N17B flatness; PyRadiomics VoxelVolume, Major/Minor/LeastAxisLength,
 // Elongation, Flatness).

@@ -1,6 +1,6 @@
 #pragma once
 // The convex hull of a 3D point set, for the maximum 3D diameter and the convex-hull densities of
-// a structure (DESIGN.md "Features"; IBSI L0JK, R3ER, 7T7F). Quickhull (Barber, Dobkin &
+// a structure (docs/DESIGN.md "Features"; IBSI L0JK, R3ER, 7T7F). Quickhull (Barber, Dobkin &
 // Huhdanpaa, "The Quickhull algorithm for convex hulls", ACM TOMS 22(4), 1996) decided by exact
 // orientation signs (exact_predicates.h), so lattice inputs with many coplanar points, the usual
 // case for marching-cubes and contour surfaces, need no merging and no tolerance.

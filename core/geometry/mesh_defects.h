@@ -1,5 +1,5 @@
 #pragma once
-// Defects of a surface model that decide whether the 1D method can trust it (DESIGN.md step 6).
+// Defects of a surface model that decide whether the 1D method can trust it (docs/DESIGN.md step 6).
 
 #include <cstdint>
 #include <string>

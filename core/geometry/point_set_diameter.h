@@ -1,6 +1,6 @@
 #pragma once
 // The largest distance between two points of a set: the maximum 3D diameter of a structure when
-// applied to its convex hull's vertices (DESIGN.md "Features"; IBSI L0JK; PyRadiomics
+// applied to its convex hull's vertices (docs/DESIGN.md "Features"; IBSI L0JK; PyRadiomics
 // Maximum3DDiameter).
 //
 // Inputs   points in mm, any frame, finite.

@@ -1,6 +1,6 @@
 #pragma once
 // The area and the enclosed volume of a closed triangle mesh, in one pass over its triangles: the
-// measures behind every surface feature (DESIGN.md "Features"; IBSI C0JK mesh volume, C0JK/surface
+// measures behind every surface feature (docs/DESIGN.md "Features"; IBSI C0JK mesh volume, C0JK/surface
 // area), shared by surface_shape and by the service's hull-free path so that both give the same
 // doubles, bit for bit.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Eigenvalues of a real symmetric 3x3 matrix, for the principal axes of a structure (IBSI
-// "major/minor/least axis length", DESIGN.md "Features").
+// "major/minor/least axis length", docs/DESIGN.md "Features").
 //
 // Inputs   m: symmetric (only the upper triangle m[r][c], r <= c, is read), finite entries.
 // Output   the three eigenvalues, sorted descending: l[0] >= l[1] >= l[2].

@@ -1,5 +1,5 @@
 #pragma once
-// Reads an image with its full geometry in LPS (DESIGN.md "Coordinates and grids"), by extension:
+// Reads an image with its full geometry in LPS (docs/DESIGN.md "Coordinates and grids"), by extension:
 //   .nii, .nii.gz  NIfTI-1/2 through libnifti (qform when qform_code > 0, else sform, else pixdim),
 //                  RAS converted to LPS;
 //   .nrrd, .nhdr   NRRD (raw or gzip encoding, `space` LPS/RAS, `space directions`, `space origin`);

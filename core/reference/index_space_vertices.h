@@ -1,7 +1,7 @@
 #pragma once
 // The common front of the reference methods (core/reference/): checks a mesh and a grid and maps
 // every vertex into the grid's continuous index space, u = (D S)^-1 (p - origin), where voxel
-// centres sit at integer points (DESIGN.md "The 1D method, precisely", step 1). Deliberately
+// centres sit at integer points (docs/DESIGN.md "The 1D method, precisely", step 1). Deliberately
 // independent of voxelize_1d so the references stay an oracle for it.
 //
 // Inputs   mesh in LPS mm; geometry a grid (any direction matrix).

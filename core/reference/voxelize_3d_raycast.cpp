@@ -181,7 +181,7 @@ Result<RunLengthVolume> voxelize_3d_raycast(const TriangleMesh& mesh, const Imag
         // centre is sum(crossings at x <= i, +1 entering (n_x < 0), -1 leaving); a closed surface's
         // crossings sum to zero, so it equals the sum of sign(n_x) over crossings strictly ahead,
         // x > i. Hence a centre on an entering crossing is inside, one on a leaving crossing is not
-        // (DESIGN.md step 4). Parity is the same either way, as the total count is even.
+        // (docs/DESIGN.md step 4). Parity is the same either way, as the total count is even.
         int64_t winding = 0, count = 0;
         const Vec3 centre{double(i), double(j), double(k)};
         for (int64_t c = first; c < last; ++c) {

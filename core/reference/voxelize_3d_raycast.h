@@ -13,13 +13,13 @@
 //   Voxel (i,j,k) is inside iff, over the triangles the ray {(x, j, k) : x > i} crosses,
 //   sum(sign(n_x)) != 0 (kNonZero) or the number of crossings is odd (kEvenOdd). With outward
 //   normals sign(n_x) = +1 is a leaving crossing, so the sum ahead equals the winding number
-//   "crossings at x <= i, +1 entering, -1 leaving" of DESIGN.md step 4: a centre exactly on an
+//   "crossings at x <= i, +1 entering, -1 leaving" of docs/DESIGN.md step 4: a centre exactly on an
 //   entering crossing is inside, one on a leaving crossing is not.
 //   A triangle is crossed iff the point (j, k) perturbed symbolically to (j + e, k + e^2), e -> 0+,
 //   lies strictly inside its (y, z) projection; its crossing x is its plane at the unperturbed
 //   (j, k), and counts iff x > i strictly. Both are exact with respect to the index-space doubles
 //   (signs of 2x2 and 3x3 determinants: a floating-point filter with a proven error bound, GMP
-//   rationals where it cannot decide), so by DESIGN.md step 4 these are the voxels of voxelize_1d,
+//   rationals where it cannot decide), so by docs/DESIGN.md step 4 these are the voxels of voxelize_1d,
 //   ties included, with no tolerance.
 // Errors
 //   INVALID_ARGUMENT invalid geometry, no triangles, non-finite vertices, indices out of range.

@@ -1,5 +1,5 @@
 #pragma once
-// The exact squared Euclidean distance transform of a dense box of voxels, in mm² (DESIGN.md
+// The exact squared Euclidean distance transform of a dense box of voxels, in mm² (docs/DESIGN.md
 // "Features", regions): for every voxel centre, the squared distance to the nearest source voxel
 // centre. Separable, one pass per
 // axis, each pass the lower envelope of parabolas of Felzenszwalb & Huttenlocher, "Distance Transforms of Sampled

@@ -1,5 +1,5 @@
 #pragma once
-// The regions in which intensity features are measured (DESIGN.md "Features": region inside,
+// The regions in which intensity features are measured (docs/DESIGN.md "Features": region inside,
 // shell(r mm); and core(r mm), its inward twin), all computed from a structure's voxels on its own grid:
 //   inside     the structure itself;
 //   shell(r)   the voxels not inside whose centre lies within r mm (Euclidean, in mm, each axis with

@@ -1,6 +1,6 @@
 #pragma once
 // The values of an image at the voxel centres of a region given on another grid in the same frame
-// of reference (DESIGN.md "Features": intensity over an image series in the same frame of reference;
+// of reference (docs/DESIGN.md "Features": intensity over an image series in the same frame of reference;
 // each value taken at a voxel centre, by nearest neighbour or linear interpolation, as asked).
 //
 // Inputs

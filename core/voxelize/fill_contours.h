@@ -1,5 +1,5 @@
 #pragma once
-// Planar contours -> volume model, through the same line filler as the 1D method (DESIGN.md step 7).
+// Planar contours -> volume model, through the same line filler as the 1D method (docs/DESIGN.md step 7).
 // DICOM RT Structure Set CLOSED_PLANAR contours are already the paper's 2D contours: each lies in
 // one slice plane of the referenced image, so only step 4 (fill between crossings) is left.
 //

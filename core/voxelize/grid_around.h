@@ -1,6 +1,6 @@
 #pragma once
 // An axis-aligned grid (identity direction) around a surface model at a requested spacing, for
-// conversions that have no reference image (DESIGN.md, "Coordinates and grids").
+// conversions that have no reference image (docs/DESIGN.md, "Coordinates and grids").
 //
 // Inputs   mesh (LPS mm, finite vertices), spacing per axis (mm, > 0), margin in voxels (>= 0).
 // Output   origin snapped to a multiple of the spacing (so the same mesh always lands on the same

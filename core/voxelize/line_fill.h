@@ -1,5 +1,5 @@
 #pragma once
-// The line filler shared by the 1D method and the planar-contour fill (DESIGN.md step 4): the
+// The line filler shared by the 1D method and the planar-contour fill (docs/DESIGN.md step 4): the
 // crossings of one row line -> its runs of inside voxel centres.
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The robust mode's vote (DESIGN.md step 6, the paper's multi-ray score): three line fills of one
+// The robust mode's vote (docs/DESIGN.md step 6, the paper's multi-ray score): three line fills of one
 // grid, along i, j and k, combined so a voxel is inside when at least two of them say so.
 
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// The 1D scanline method: a closed surface model -> its volume model (DESIGN.md, "The 1D method,
+// The 1D scanline method: a closed surface model -> its volume model (docs/DESIGN.md, "The 1D method,
 // precisely"; the paper's 1D method, made exact and watertight).
 //
 // Inputs

@@ -1,6 +1,6 @@
 #pragma once
 // The Store (store.h) on a PostgreSQL database that several soiqd replicas may share:
-// DESIGN.md "Storage", docs/SCALE_OUT.md. The records' SQL is SqlStore's (db/sql/sql_store.h),
+// docs/DESIGN.md "Storage", docs/SCALE_OUT.md. The records' SQL is SqlStore's (db/sql/sql_store.h),
 // the same as SQLite's; this class owns the connection pool and the transactions, and writes and
 // reads the feature cache in one statement each (pg_feature_cache.h). The conformance suite
 // (tests/db/store_conformance_test.cpp) holds both backends to the same behaviour.

@@ -1,4 +1,4 @@
-// SqlStore::stage1: the structured half of a query (DESIGN.md "Queries"): the ids from one query
+// SqlStore::stage1: the structured half of a query (docs/DESIGN.md "Queries"): the ids from one query
 // over stage1_rows (stage1_sql.h), then their records read in bulk, a few statements for a
 // thousand candidates (on PostgreSQL every statement is a round trip).
 #include <algorithm>

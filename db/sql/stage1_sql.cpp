@@ -1,4 +1,4 @@
-// The SQL of stage 1 (DESIGN.md "Queries"), the same in both backends but for the dialect of its
+// The SQL of stage 1 (docs/DESIGN.md "Queries"), the same in both backends but for the dialect of its
 // conditions: see stage1_sql.h.
 #include "db/sql/stage1_sql.h"
 

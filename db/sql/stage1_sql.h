@@ -1,5 +1,5 @@
 #pragma once
-// Stage 1 of a query (DESIGN.md "Queries") in SQL, shared by both backends: every condition of the
+// Stage 1 of a query (docs/DESIGN.md "Queries") in SQL, shared by both backends: every condition of the
 // filter is on stage1_rows (alias r), the narrow table each backend keeps in step with its records,
 // so the query reads one table and the records are joined only for the rows it returns.
 

@@ -22,7 +22,7 @@ struct Migration {
 //   - patients and studies have integer surrogate keys for fast joins; the DICOM identifiers are
 //     UNIQUE (which indexes them).
 //   - Large blobs are the last column, so reading the other columns never touches overflow pages.
-//   - Every stage-1 filter has an index (DESIGN.md "Queries"); every foreign key has an index on
+//   - Every stage-1 filter has an index (docs/DESIGN.md "Queries"); every foreign key has an index on
 //     its child column, so cascades and orphan checks are index lookups.
 //   - structures.id is AUTOINCREMENT: an id is never reused after a delete, so a client's old id
 //     can never name a different structure.

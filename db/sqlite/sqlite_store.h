@@ -1,5 +1,5 @@
 #pragma once
-// The Store (store.h) on one SQLite file: DESIGN.md "Storage". The records' SQL is SqlStore's
+// The Store (store.h) on one SQLite file: docs/DESIGN.md "Storage". The records' SQL is SqlStore's
 // (db/sql/sql_store.h, shared with PostgreSQL); this class owns the file's connections and
 // transactions, and the schema and its migrations (schema_migrations.cpp).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Features of stored structures, computed on demand and cached (DESIGN.md "Queries": cached under
+// Features of stored structures, computed on demand and cached (docs/DESIGN.md "Queries": cached under
 // surface hash, geometry and feature-definition version). Used by ComputeFeatures for one structure
 // and by the query engine for many.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Where a stored surface is converted (DESIGN.md "Coordinates and grids"): on a stored image
+// Where a stored surface is converted (docs/DESIGN.md "Coordinates and grids"): on a stored image
 // series' grid (named by uid, or by modality within the structure's study), or on an axis-aligned
 // grid around the surface at a spacing with a margin. Resolving needs no decoding: the axis-aligned
 // grid comes from the stored bounds (grid_around_box), so the feature cache can be consulted first.

@@ -1,5 +1,5 @@
 #pragma once
-// Precompute (DESIGN.md "Queries"; db/store.h): one background thread takes structures from the
+// Precompute (docs/DESIGN.md "Queries"; db/store.h): one background thread takes structures from the
 // store's durable queue, computes their default features through the FeatureEngine, so that they
 // land in the feature cache under the very keys a query's stage 2 reads, and stores the shape values
 // among them where stage 1 filters on them (db::stored_feature_names()).

@@ -1,5 +1,5 @@
 #pragma once
-// A two-stage query in the application's own terms (DESIGN.md "Queries"): what the api layer makes
+// A two-stage query in the application's own terms (docs/DESIGN.md "Queries"): what the api layer makes
 // of a QueryRequest, what the query engine (query_engine.h) runs, and what it hands back. No gRPC
 // here: the api turns these into QueryEvent messages.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The two-stage query (DESIGN.md "Queries"), as named steps:
+// The two-stage query (docs/DESIGN.md "Queries"), as named steps:
 //   stage 1   one SQL query on indexed columns (Store::stage1), with each candidate's
 //             contralateral twin from the same query when an asymmetry is asked;
 //   subjects  the structures whose features are needed: candidates and their twins, each once;

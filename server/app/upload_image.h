@@ -1,5 +1,5 @@
 #pragma once
-// An uploaded image stored as a series (the UploadImage RPC, DESIGN.md "Untrusted input"): the
+// An uploaded image stored as a series (the UploadImage RPC, docs/DESIGN.md "Untrusted input"): the
 // bytes parsed in memory by parse_image (uploaded_files.h), encoded and stored with its patient
 // and study in one transaction. The decoded image and its encoded blob are admitted against the
 // memory budget as soon as the file's header tells their size, before a voxel is decoded, and

@@ -1,5 +1,5 @@
 #pragma once
-// An uploaded surface model stored as a new structure (the UploadSurface RPC, DESIGN.md
+// An uploaded surface model stored as a new structure (the UploadSurface RPC, docs/DESIGN.md
 // "Untrusted input"): the bytes parsed in memory by parse_surface (uploaded_files.h), encoded and
 // stored with its patient and study in one transaction.
 //

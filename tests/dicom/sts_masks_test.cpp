@@ -1,5 +1,5 @@
 // RT Structure Sets of the STS patients converted by dicom/ equal, voxel for voxel, the NIfTI masks
-// shipped beside them (DESIGN.md step 7: a voxel-centre even-odd fill reproduces them exactly).
+// shipped beside them (docs/DESIGN.md step 7: a voxel-centre even-odd fill reproduces them exactly).
 // All 4 patients x CT, MR T1, PET are in tests/data (see series_dir); SOIQ_STS_DICOM_DIR=
 // ../shared/data/sts/dicom runs the same cases on the uncompressed originals.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's simulated models SM1-SM11 (DESIGN.md, its Table 3): a thick spherical shell of inner
+// The paper's simulated models SM1-SM11 (docs/DESIGN.md, its Table 3): a thick spherical shell of inner
 // radius R1 and outer radius R2 centred at the origin, plus w flat ring "stripes" 4 mm thick whose
 // outer radius is R3, spread evenly over z in (-R2/2, R2/2): stripe s has its mid-plane at
 // z_s = -R2/2 + (s + 1/2) R2 / w.
