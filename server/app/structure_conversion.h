@@ -1,6 +1,6 @@
 #pragma once
 // A stored structure converted to a volume model on a chosen grid (docs/DESIGN.md "Coordinates and
-// grids", "The 1D method"), for the Convert RPC: the grid resolved from the structure's study, the
+// grids", "The 1D method, precisely"), for the Convert RPC: the grid resolved from the structure's study, the
 // work admitted against the memory budget and run on the worker pool, and the volume handed back
 // with its reservation, since the runs (and a mask made from them) live until the caller has sent
 // them.
