@@ -10,6 +10,8 @@
 //                      failure is the PACS's, and blaming soiqd would send people the wrong way.
 //   DEADLINE_EXCEEDED  "soiqd at ADDRESS did not answer within the deadline (Ns); ..." when the
 //                      message is gRPC's own "Deadline Exceeded"
+// An error soiqd sent about a field of the request (soiq.v1.ErrorDetails in the status details)
+// comes back with Status::field() set, so a command can name its option instead.
 // Cost: O(message length); thread-safe.
 
 #include <chrono>

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/base/field_rules.h"
 #include "db/record_merge.h"
 
 namespace soiq::db {
@@ -35,14 +36,9 @@ sys_days anniversary(const year_month_day& birth, int n) {
 
 }  // namespace
 
-Status validate_date(const std::string& yyyymmdd, const std::string& field) {
-  if (yyyymmdd.empty() || parse_date(yyyymmdd)) return ok_status();
-  return invalid_argument(field + " '" + yyyymmdd + "' is not a date YYYYMMDD");
-}
-
 Result<std::optional<double>> age_years(const std::string& birth_date, const std::string& study_date) {
-  SOIQ_RETURN_IF_ERROR(validate_date(birth_date, "birth date"));
-  SOIQ_RETURN_IF_ERROR(validate_date(study_date, "study date"));
+  SOIQ_RETURN_IF_ERROR(check_date(birth_date).in_field("birth date"));
+  SOIQ_RETURN_IF_ERROR(check_date(study_date).in_field("study date"));
   if (birth_date.empty() || study_date.empty()) return std::optional<double>();
   const year_month_day birth = *parse_date(birth_date);
   const sys_days study{*parse_date(study_date)};

@@ -8,10 +8,6 @@
 
 namespace soiq::db {
 
-// OK for "" (unknown) or a valid calendar date YYYYMMDD (years 0001..9999). INVALID_ARGUMENT
-// naming `field` and the value otherwise.
-Status validate_date(const std::string& yyyymmdd, const std::string& field);
-
 // Age in years at `study_date` of a patient born on `birth_date`, both YYYYMMDD:
 //   completed years Y (anniversaries of the birth on or before the study date)
 //   + (days since the last anniversary) / (days from the last to the next anniversary).

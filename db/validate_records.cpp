@@ -3,45 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/base/utf8.h"
+#include "core/base/field_rules.h"
 #include "db/age_years.h"
 
 namespace soiq::db {
 
-namespace {
-
-// The value as a message may quote it: 40 bytes at most, control bytes as '?'.
-std::string quoted(const std::string& value) {
-  std::string q = value.substr(0, 40);
-  for (char& c : q) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  return "'" + q + (value.size() > 40 ? "...'" : "'");
-}
-
-}  // namespace
-
 Status validate_text(const std::string& value, const std::string& what, size_t max_bytes) {
-  if (value.size() > max_bytes) {
-    return invalid_argument(what + " " + quoted(value) + " is " + std::to_string(value.size()) +
-                            " bytes long; the limit is " + std::to_string(max_bytes));
-  }
-  for (const char c : value) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      return invalid_argument(what + " " + quoted(value) + " contains a control character (newline, tab, ...)");
-    }
-  }
-  return ok_status();
+  return check_text(value, max_bytes).in_field(what);
 }
 
-Status validate_sex(const std::string& sex) {
-  if (sex.empty() || sex == "M" || sex == "F" || sex == "O") return ok_status();
-  return invalid_argument("sex '" + sex + "' is not one of M, F, O or empty");
-}
+Status validate_sex(const std::string& sex) { return check_sex(sex).in_field("sex"); }
 
 Status validate_laterality(const std::string& laterality) {
-  if (laterality.empty() || laterality == "L" || laterality == "R") return ok_status();
-  return invalid_argument("laterality '" + laterality + "' is not one of L, R or empty");
+  return check_laterality(laterality).in_field("laterality");
 }
 
 Status validate_sha256(const std::string& sha256, const std::string& what) {
@@ -51,27 +25,19 @@ Status validate_sha256(const std::string& sha256, const std::string& what) {
   return invalid_argument(what + " sha256 '" + sha256 + "' is not 64 lower-case hex digits");
 }
 
-Status validate_uid(const std::string& uid, const std::string& what) {
-  bool ok = uid.size() <= 64;
-  for (char c : uid) ok = ok && ((c >= '0' && c <= '9') || c == '.');
-  if (ok) return ok_status();
-  return invalid_argument(what + " '" + uid + "' is not a DICOM UID (at most 64 digits and dots)");
-}
+Status validate_uid(const std::string& uid, const std::string& what) { return check_uid(uid).in_field(what); }
 
 Status validate_patient(const PatientRecord& p) {
-  if (p.patient_id.empty()) return invalid_argument("patient_id is empty");
-  SOIQ_RETURN_IF_ERROR(validate_text(p.patient_id, "patient_id", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(check_id(p.patient_id).in_field("patient_id"));
   SOIQ_RETURN_IF_ERROR(validate_sex(p.sex));
   // The name itself is never quoted: messages reach logs.
-  if (!validate_text(p.patient_name, "", kMaxNameBytes).ok() || !is_utf8(p.patient_name))
-    return invalid_argument("the name of patient '" + p.patient_id + "' is longer than " +
-                            std::to_string(kMaxNameBytes) + " bytes, has a control character or is not UTF-8");
-  return validate_date(p.birth_date, "birth date of patient '" + p.patient_id + "'");
+  SOIQ_RETURN_IF_ERROR(
+      check_text(p.patient_name, kMaxNameBytes, false).in_field("name of patient '" + p.patient_id + "'"));
+  return check_date(p.birth_date).in_field("birth date of patient '" + p.patient_id + "'");
 }
 
 Status validate_study(const StudyRecord& s, const std::string& patient_id) {
-  if (s.study_uid.empty()) return invalid_argument("study_uid is empty");
-  SOIQ_RETURN_IF_ERROR(validate_text(s.study_uid, "study_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(check_id(s.study_uid).in_field("study_uid"));
   SOIQ_RETURN_IF_ERROR(validate_text(s.description, "study description", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.modality, "study modality", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.study_time, "study time", kMaxIdBytes));
@@ -81,11 +47,8 @@ Status validate_study(const StudyRecord& s, const std::string& patient_id) {
     return invalid_argument("study '" + s.study_uid + "' names patient '" + s.patient_id +
                             "' but is sent with patient '" + patient_id + "'");
   }
-  if (s.age_years && !(std::isfinite(*s.age_years) && *s.age_years >= 0)) {
-    return invalid_argument("age of study '" + s.study_uid + "' must be finite and >= 0, got " +
-                            std::to_string(*s.age_years));
-  }
-  return validate_date(s.study_date, "study date of study '" + s.study_uid + "'");
+  if (s.age_years) SOIQ_RETURN_IF_ERROR(check_age_years(*s.age_years).in_field("age of study '" + s.study_uid + "'"));
+  return check_date(s.study_date).in_field("study date of study '" + s.study_uid + "'");
 }
 
 Status validate_stage1_filter(const Stage1Filter& f) {
@@ -95,20 +58,18 @@ Status validate_stage1_filter(const Stage1Filter& f) {
   SOIQ_RETURN_IF_ERROR(validate_text(f.structure_name_glob, "structure name glob", kMaxNameBytes));
   SOIQ_RETURN_IF_ERROR(validate_sex(f.sex));
   SOIQ_RETURN_IF_ERROR(validate_laterality(f.laterality));
-  SOIQ_RETURN_IF_ERROR(validate_date(f.birth_date_from, "birth_date_from"));
-  SOIQ_RETURN_IF_ERROR(validate_date(f.birth_date_to, "birth_date_to"));
-  SOIQ_RETURN_IF_ERROR(validate_date(f.study_date_from, "study_date_from"));
-  SOIQ_RETURN_IF_ERROR(validate_date(f.study_date_to, "study_date_to"));
-  for (const auto& age : {f.min_age_years, f.max_age_years}) {
-    if (age && !std::isfinite(*age)) return invalid_argument("age bounds must be finite");
-  }
+  SOIQ_RETURN_IF_ERROR(check_date(f.birth_date_from).in_field("birth_date_from"));
+  SOIQ_RETURN_IF_ERROR(check_date(f.birth_date_to).in_field("birth_date_to"));
+  SOIQ_RETURN_IF_ERROR(check_date(f.study_date_from).in_field("study_date_from"));
+  SOIQ_RETURN_IF_ERROR(check_date(f.study_date_to).in_field("study_date_to"));
+  if (f.min_age_years) SOIQ_RETURN_IF_ERROR(check_age_years(*f.min_age_years).in_field("min_age_years"));
+  if (f.max_age_years) SOIQ_RETURN_IF_ERROR(check_age_years(*f.max_age_years).in_field("max_age_years"));
   for (const StoredFeatureCondition& c : f.stored_features) {
     const auto& names = stored_feature_names();
     if (std::find(names.begin(), names.end(), c.name) == names.end())
       return invalid_argument("'" + c.name + "' is not a stored feature");
-    static const std::vector<std::string> kOps = {"<", "<=", ">", ">=", "=", "!="};
-    if (std::find(kOps.begin(), kOps.end(), c.op) == kOps.end())
-      return invalid_argument("'" + c.op + "' is not a comparison (< <= > >= = !=)");
+    if (!comparison_of_symbol(comparison_symbol(c.op)))
+      return invalid_argument("a stored-feature condition on '" + c.name + "' has no comparison");
     if (std::isnan(c.value))
       return invalid_argument("a stored-feature condition on '" + c.name + "' compares with NaN");
   }
@@ -142,8 +103,7 @@ Status validate_cache_entries(const std::string& surface_sha256, const std::vect
 Status validate_new_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
-  if (s.series.series_uid.empty()) return invalid_argument("series_uid is empty");
-  SOIQ_RETURN_IF_ERROR(validate_text(s.series.series_uid, "series_uid", kMaxIdBytes));
+  SOIQ_RETURN_IF_ERROR(check_id(s.series.series_uid).in_field("series_uid"));
   SOIQ_RETURN_IF_ERROR(validate_text(s.series.modality, "modality", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.series.description, "series description", kMaxNameBytes));
   if (s.series.series_number < 0 || s.series.series_number > 2147483647)

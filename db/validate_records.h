@@ -1,24 +1,23 @@
 #pragma once
-// Input checks of the store's records and filters, before any SQL runs: every failure is
-// INVALID_ARGUMENT naming the field and the value (identifiers, never patient names).
+// Input checks of the store's records and filters, before any SQL runs, by the one rule of each
+// field (core/base/field_rules.h), so that both backends hold exactly the same values: every
+// failure is INVALID_ARGUMENT naming the field and the value (identifiers, never patient names).
 
 #include <string>
 
+#include "core/base/field_rules.h"
 #include "core/base/status.h"
 #include "db/store.h"
 
 namespace soiq::db {
 
-// Lengths of what a client may name, in bytes: identifiers as DICOM bounds them (LO and UI are 64
-// characters), names, descriptions and globs generously above any DICOM value, so that a 1 MB
-// "name" is refused rather than stored, logged and echoed.
-inline constexpr size_t kMaxIdBytes = 64;
-inline constexpr size_t kMaxNameBytes = 256;
+// The lengths a client may name: the field rules' (core/base/field_rules.h).
+using soiq::kMaxIdBytes;
+using soiq::kMaxNameBytes;
 // A precompute failure is kept (for `soiq info` and the log) cut to this many bytes.
 inline constexpr size_t kMaxPrecomputeFailureBytes = 1024;
 
-// At most `max_bytes` bytes and no control characters (a newline in an id splits log lines and CSV
-// rows). INVALID_ARGUMENT naming `what` and quoting at most 40 printable characters of the value.
+// check_text (UTF-8, no control characters, at most `max_bytes`), the error in the field `what`.
 Status validate_text(const std::string& value, const std::string& what, size_t max_bytes);
 
 Status validate_sex(const std::string& sex);                                 // "", "M", "F", "O"

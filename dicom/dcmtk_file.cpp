@@ -42,6 +42,13 @@ Result<std::unique_ptr<DcmFileFormat>> load_dicom_file(const std::string& path, 
       file->loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect,
                              until_pixel_data ? DCM_PixelData : DCM_UndefinedTagKey);
   if (cond.bad()) return condition_status(StatusCode::kDataLoss, path, "not a readable DICOM file", cond);
+  // Every text soiq keeps is UTF-8 (core/base/field_rules.h), so the character set is converted
+  // before any value is read: a study description in Latin-1 (ISO_IR 100) or a Japanese name (ISO 2022
+  // IR 87) arrives as the same characters in UTF-8. Where DCMTK cannot convert, the values stay as they
+  // are and each reader's rules drop the ones that are not UTF-8 rather than store them garbled.
+  DcmDataset& ds = *file->getDataset();
+  const std::string charset = get_string(ds, DCM_SpecificCharacterSet);
+  if (!charset.empty() && charset != "ISO_IR 192" && charset != "ISO_IR 6") (void)ds.convertToUTF8();
   return file;
 }
 

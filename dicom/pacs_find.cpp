@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "core/base/field_rules.h"
 #include "dicom/dcmtk_file.h"
 #include "dicom/pacs_association.h"
 
@@ -29,28 +30,8 @@ Status check_text_key(const std::string& field, const std::string& value, std::s
   return ok_status();
 }
 
-bool valid_date(const std::string& d) {
-  if (d.size() != 8 ||
-      !std::all_of(d.begin(), d.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
-    return false;
-  const int month = std::stoi(d.substr(4, 2)), day = std::stoi(d.substr(6, 2));
-  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
-}
-
-Status check_date_range(const std::string& range) {
-  const auto bad = [&] {
-    return invalid_argument("study_date '" + range +
-                            "' is not YYYYMMDD, YYYYMMDD-YYYYMMDD, YYYYMMDD- or -YYYYMMDD with a valid month and day");
-  };
-  const auto dash = range.find('-');
-  if (dash == std::string::npos) return valid_date(range) ? ok_status() : bad();
-  const std::string from = range.substr(0, dash), to = range.substr(dash + 1);
-  if (from.empty() && to.empty()) return bad();
-  if ((!from.empty() && !valid_date(from)) || (!to.empty() && !valid_date(to))) return bad();
-  if (!from.empty() && !to.empty() && from > to)
-    return invalid_argument("study_date '" + range + "' ends before it starts");
-  return ok_status();
-}
+// DICOM's date range, by the one rule of dates (core/base/field_rules.h).
+Status check_date_range(const std::string& range) { return parse_date_range(range).status().in_field("study_date"); }
 
 std::vector<std::string> split_values(const std::string& s) {
   std::vector<std::string> out;

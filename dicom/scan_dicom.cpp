@@ -23,13 +23,9 @@ int64_t get_integer(DcmItem& item, const DcmTagKey& tag) {
   return v ? static_cast<int64_t>(*v) : 0;
 }
 
-// The Patient's Name in UTF-8: a file in another character set (ISO_IR 100, ISO 2022 IR 87, ...)
-// is converted first; a name that cannot be converted is left out rather than stored garbled.
+// The Patient's Name in UTF-8 (load_dicom_file converted the character set); a name that could
+// not be converted is left out rather than stored garbled.
 std::string utf8_patient_name(DcmDataset& ds) {
-  const std::string charset = get_string(ds, DCM_SpecificCharacterSet);
-  if (!charset.empty() && charset != "ISO_IR 192" && charset != "ISO_IR 6") {
-    if (ds.convertToUTF8().bad()) return "";
-  }
   std::string name = get_string(ds, DCM_PatientName);
   return is_utf8(name) ? name : "";
 }

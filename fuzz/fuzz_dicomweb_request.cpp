@@ -43,8 +43,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t newline = text.find('\n');
   const std::string boundary = text.substr(0, newline);
   const std::string body = newline == std::string::npos ? "" : text.substr(newline + 1);
-  auto parsed = http::parse_multipart_related("multipart/related; type=\"application/dicom\"; boundary=" + boundary,
-                                              body, 1000);
+  auto parsed =
+      http::parse_multipart_related("multipart/related; type=\"application/dicom\"; boundary=" + boundary, body, 1000);
   if (parsed.ok()) {
     std::vector<std::string_view> parts;
     for (const http::MultipartPart& p : parsed->parts) {

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <string>
 
-#include "proto/text/feature_expression.h"
 #include "core/regions/regions.h"
 #include "fuzz/require.h"
+#include "proto/text/feature_expression.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

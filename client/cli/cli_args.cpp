@@ -7,6 +7,8 @@
 #include <system_error>
 #include <vector>
 
+#include "proto/text/query_options.h"
+
 namespace soiq::cli {
 
 Result<double> parse_number(const std::string& text, const std::string& what) {
@@ -27,19 +29,12 @@ Result<int> parse_int(const std::string& text, const std::string& what, int lo, 
 }
 
 Result<Vec3> parse_spacing(const std::string& text) {
-  std::vector<std::string> parts;
-  size_t from = 0;
-  for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1) {
-    parts.push_back(text.substr(from, comma - from));
-  }
-  parts.push_back(text.substr(from));
-  if (parts.size() != 1 && parts.size() != 3) return invalid_argument("--spacing takes S or SX,SY,SZ (mm)");
-  Vec3 s{};
-  for (int a = 0; a < 3; ++a) {
-    SOIQ_ASSIGN_OR_RETURN(s[a], parse_number(parts[parts.size() == 1 ? 0 : a], "--spacing"));
-    if (!(s[a] > 0)) return invalid_argument("--spacing must be > 0 mm");
-  }
-  return s;
+  // The query table's reading of a spacing, so --spacing means the same to every command.
+  soiq::v1::GridSpec grid;
+  const Status s = proto_text::set_grid_spacing(text, grid);
+  if (!s.ok()) return Status(s.code(), "--spacing: " + s.message());
+  if (grid.has_spacing_xyz()) return Vec3{grid.spacing_xyz().x(), grid.spacing_xyz().y(), grid.spacing_xyz().z()};
+  return Vec3{grid.spacing_mm(), grid.spacing_mm(), grid.spacing_mm()};
 }
 
 bool ends_with(const std::string& path, const std::string& suffix) {

@@ -4,45 +4,62 @@
 #include "client/cli/health_command.h"
 #include "client/cli/info_command.h"
 #include "client/cli/query_command.h"
+#include "proto/text/query_options.h"
 
 namespace soiq::cli {
+namespace {
+
+// The query's options are the one query table's (proto/text/query_options.h), spelled with dashes,
+// and --format, which only the command line has (the rows' output).
+const std::vector<std::string>& dashed_query_names() {
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names;
+    for (const proto_text::QueryOption& o : proto_text::query_options()) names.push_back("--" + std::string(o.name));
+    return names;
+  }();
+  return kNames;
+}
+
+std::vector<OptionSpec> query_option_specs() {
+  std::vector<OptionSpec> specs;
+  const auto options = proto_text::query_options();
+  for (size_t i = 0; i < options.size(); ++i) {
+    const proto_text::QueryOption& o = options[i];
+    specs.push_back({dashed_query_names()[i], o.value, o.default_value, o.meaning});
+  }
+  specs.push_back({"--format", "table|json|csv", "table", "output format"});
+  return specs;
+}
+
+// "query [--patient GLOB] [--sex M|F|O] ..." in lines of at most 100 characters.
+std::vector<std::string_view> query_synopsis() {
+  static const std::vector<std::string> kLines = [] {
+    std::vector<std::string> lines = {"query"};
+    for (const OptionSpec& o : query_option_specs()) {
+      std::string word = "[" + std::string(o.name) + (o.value.empty() ? "" : " " + std::string(o.value)) + "]";
+      if (o.name == "--where" || o.name == "--select") word += "...";
+      if (lines.back().size() + 1 + word.size() > 100) lines.push_back("     ");
+      lines.back() += " " + word;
+    }
+    return lines;
+  }();
+  return {kLines.begin(), kLines.end()};
+}
+
+}  // namespace
 
 std::vector<CommandSpec> query_commands() {
   return {
       {"query",
        CommandGroup::kRemote,
-       {"query [--patient GLOB] [--sex M|F|O] [--min-age Y] [--max-age Y] [--birth-date-from D] [--birth-date-to D]",
-        "      [--study-date-from D] [--study-date-to D] [--modality M] [--description GLOB] [--name GLOB]",
-        "      [--laterality L|R] [--where 'FEATURE OP NUMBER']... [--select FEATURE]...",
-        "      [--order-by FEATURE [--desc]] [--limit N] [--spacing S | --series-modality M]",
-        "      [--interpolation nearest|linear] [--format table|json|csv]"},
+       query_synopsis(),
        "the two-stage query: records, then features (computed on demand)",
        "Stage 1 filters the records, stage 2 the features (computed on demand). FEATURE is NAME, "
        "NAME[REGION], NAME[REGION,IMAGE], NAME[,IMAGE] or asym(FEATURE), REGION is inside, shell:R or core:R "
        "(mm), IMAGE a modality or series uid (PET means PT); OP is < <= > >= == !=. Rows on stdout; a "
-       "progress bar (on a terminal) and a summary line on stderr; Ctrl-C cancels.",
-       {{"--patient", "GLOB", "", "patient ids (glob: * and ?)"},
-        {"--sex", "M|F|O", "", "the patient's sex"},
-        {"--min-age", "Y", "", "age at the study, in years, at least"},
-        {"--max-age", "Y", "", "age at the study, in years, at most"},
-        {"--birth-date-from", "D", "", "born on or after (YYYYMMDD)"},
-        {"--birth-date-to", "D", "", "born on or before (YYYYMMDD)"},
-        {"--study-date-from", "D", "", "studied on or after (YYYYMMDD)"},
-        {"--study-date-to", "D", "", "studied on or before (YYYYMMDD)"},
-        {"--modality", "M", "", "a modality of the study (PET means PT)"},
-        {"--description", "GLOB", "", "the study's description"},
-        {"--name", "GLOB", "", "the structure's name"},
-        {"--laterality", "L|R", "", "the structure's side"},
-        {"--where", "'FEATURE OP NUMBER'", "", "a condition on a feature; repeatable (all must hold)"},
-        {"--select", "FEATURE", "", "a feature column to print; repeatable"},
-        {"--order-by", "FEATURE", "structure id", "sort the rows by this feature"},
-        {"--desc", "", "", "sort descending (with --order-by; ascending without)"},
-        {"--limit", "N", "the server's cap", "at most N rows"},
-        {"--spacing", "S|SX,SY,SZ", "1", "grid of the features, in mm (not with --series-modality)"},
-        {"--margin", "N", "2", "voxels of margin around the structure (with --spacing)"},
-        {"--series-modality", "M", "", "compute on the grid of the study's series of modality M"},
-        {"--interpolation", "nearest|linear", "nearest", "how images are sampled"},
-        {"--format", "table|json|csv", "table", "output format"}},
+       "progress bar (on a terminal) and a summary line on stderr; Ctrl-C cancels. The same options are "
+       "GET /soiq/v1/query's arguments without their dashes.",
+       query_option_specs(),
        {"soiq query --name 'amygdala*' --where 'voxel_volume_mm3>1500' --select sphericity",
         "soiq query --where 'mean[shell:5,PT]>2.5' --order-by 'mean[inside,PT]' --desc --limit 10"},
        run_query_command,

@@ -64,6 +64,8 @@ Status convert(const ConvertArgs& a) {
 
 }  // namespace
 
-int run_convert_command(int argc, char** argv) { return run_command("convert", parse_convert_args(argc, argv), convert); }
+int run_convert_command(int argc, char** argv) {
+  return run_command("convert", parse_convert_args(argc, argv), convert);
+}
 
 }  // namespace soiq::cli

@@ -162,7 +162,8 @@ Status demo_load(const DemoArgs& a, const client::ClientOptions& remote) {
 }  // namespace
 
 int run_demo_load_command(int argc, char** argv, const client::ClientOptions& remote) {
-  return run_command("demo-load", parse_demo_load_args(argc, argv), [&](const DemoArgs& a) { return demo_load(a, remote); });
+  return run_command("demo-load", parse_demo_load_args(argc, argv),
+                     [&](const DemoArgs& a) { return demo_load(a, remote); });
 }
 
 }  // namespace soiq::cli

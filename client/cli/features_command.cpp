@@ -140,6 +140,8 @@ Status features(const FeaturesArgs& a) {
 
 }  // namespace
 
-int run_features_command(int argc, char** argv) { return run_command("features", parse_features_args(argc, argv), features); }
+int run_features_command(int argc, char** argv) {
+  return run_command("features", parse_features_args(argc, argv), features);
+}
 
 }  // namespace soiq::cli

@@ -4,6 +4,7 @@
 
 #include "client/cli/cli_args.h"
 #include "client/cli/record_args.h"
+#include "proto/text/query_options.h"
 
 namespace soiq::cli {
 
@@ -11,14 +12,9 @@ Result<bool> parse_grid_option(int argc, char** argv, int& i, GridArgs& a) {
   const std::string arg = argv[i];
   if (arg == "--spacing") {
     SOIQ_ASSIGN_OR_RETURN(const std::string text, option_value(argc, argv, i));
-    SOIQ_ASSIGN_OR_RETURN(const Vec3 s, parse_spacing(text));
-    if (s[0] == s[1] && s[1] == s[2]) {
-      a.grid.set_spacing_mm(s[0]);
-    } else {
-      a.grid.mutable_spacing_xyz()->set_x(s[0]);
-      a.grid.mutable_spacing_xyz()->set_y(s[1]);
-      a.grid.mutable_spacing_xyz()->set_z(s[2]);
-    }
+    // The query table's reading of a spacing, so --spacing means the same to every command.
+    const Status s = proto_text::set_grid_spacing(text, a.grid);
+    if (!s.ok()) return Status(s.code(), "--spacing: " + s.message());
     ++a.given;
   } else if (arg == "--margin") {
     SOIQ_ASSIGN_OR_RETURN(const std::string text, option_value(argc, argv, i));

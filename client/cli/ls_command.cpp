@@ -40,11 +40,11 @@ Result<LsArgs> parse_ls_args(int argc, char** argv) {
       if (arg == "--study") a.study = v;
       if (arg == "--name") a.name = v;
       if (arg == "--laterality") {
-        SOIQ_RETURN_IF_ERROR(check_laterality(v));
+        SOIQ_RETURN_IF_ERROR(in_option(check_laterality(v), arg));
         a.laterality = v;
       }
       if (arg == "--sex") {
-        SOIQ_RETURN_IF_ERROR(check_sex(v));
+        SOIQ_RETURN_IF_ERROR(in_option(check_sex(v), arg));
         a.sex = v;
       }
       if (arg == "--format") {

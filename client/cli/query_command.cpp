@@ -9,12 +9,13 @@
 #include "client/cli/quiet.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/row_printer.h"
+#include "proto/text/query_columns.h"
 
 namespace soiq::cli {
 
 namespace {
 
-// `shown`: the positions of the row's values to print (distinct_columns).
+// `shown`: the positions of the row's values to print (QueryColumns::value_at).
 std::vector<Cell> row_cells(const soiq::v1::QueryRow& row, const std::vector<size_t>& shown, bool csv) {
   const soiq::v1::Structure& s = row.structure();
   std::vector<Cell> cells = {int_cell(s.id()), text_cell(s.patient_id()), text_cell(s.study_uid()), text_cell(s.name()),
@@ -52,11 +53,9 @@ void print_summary(const soiq::v1::QuerySummary& s) {
 // The number of candidates skipped: a partial answer when > 0.
 Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
-  const std::vector<std::string> features = query_feature_columns(a.request);
-  const std::vector<size_t> shown = distinct_columns(features);
-  std::vector<std::string> header = {"id", "patient_id", "study_uid", "name", "laterality"};
-  for (const size_t c : shown) header.push_back(features[c]);
-  RowPrinter out(a.format, header);
+  const proto_text::QueryColumns columns = proto_text::query_columns(a.request);
+  const std::vector<size_t>& shown = columns.value_at;
+  RowPrinter out(a.format, columns.header);
   ProgressBar bar;
   client::QueryHandlers handlers;
   handlers.on_progress = [&](const soiq::v1::QueryProgress& p) {

@@ -13,24 +13,21 @@ Result<bool> parse_text_or_json(const std::string& text) {
   return invalid_argument("--format must be text or json, got '" + text + "'");
 }
 
-Status check_date(const std::string& text, const std::string& flag) {
-  bool digits = text.size() == 8;
-  for (const char c : text) digits = digits && c >= '0' && c <= '9';
-  if (digits) {
-    const int month = std::stoi(text.substr(4, 2)), day = std::stoi(text.substr(6, 2));
-    if (month >= 1 && month <= 12 && day >= 1 && day <= 31) return ok_status();
+Status in_upload_option_words(const Status& status) {
+  static const std::pair<const char*, const char*> kOptions[] = {
+      {"patient.patient_id", "--patient"},    {"patient.sex", "--sex"},
+      {"patient.birth_date", "--birth-date"}, {"study.study_uid", "--study"},
+      {"study.study_date", "--study-date"},   {"study.modality", "--modality"},
+      {"study.description", "--description"}, {"structure_name", "--name"},
+      {"laterality", "--laterality"}};
+  for (const auto& [field, option] : kOptions) {
+    if (status.field() == field) return Status(status.code(), std::string(option) + ": " + status.reason());
   }
-  return invalid_argument(flag + " must be a date YYYYMMDD, got '" + text + "'");
+  return status;
 }
 
-Status check_sex(const std::string& text) {
-  if (text == "M" || text == "F" || text == "O") return ok_status();
-  return invalid_argument("--sex must be M, F or O, got '" + text + "'");
-}
-
-Status check_laterality(const std::string& text) {
-  if (text == "L" || text == "R") return ok_status();
-  return invalid_argument("--laterality must be L or R, got '" + text + "'");
+Status in_option(const Status& status, const std::string& option) {
+  return status.ok() ? status : Status(status.code(), option + ": " + status.message());
 }
 
 Result<bool> parse_record_option(int argc, char** argv, int& i, soiq::v1::Patient& patient, soiq::v1::Study& study) {
@@ -41,21 +38,25 @@ Result<bool> parse_record_option(int argc, char** argv, int& i, soiq::v1::Patien
   }
   SOIQ_ASSIGN_OR_RETURN(const std::string value, option_value(argc, argv, i));
   if (arg == "--patient") {
+    SOIQ_RETURN_IF_ERROR(in_option(check_id(value), arg));
     patient.set_patient_id(value);
   } else if (arg == "--study") {
+    SOIQ_RETURN_IF_ERROR(in_option(check_id(value), arg));
     study.set_study_uid(value);
   } else if (arg == "--sex") {
-    SOIQ_RETURN_IF_ERROR(check_sex(value));
+    SOIQ_RETURN_IF_ERROR(in_option(check_sex(value), arg));
     patient.set_sex(value);
   } else if (arg == "--birth-date") {
-    SOIQ_RETURN_IF_ERROR(check_date(value, arg));
+    SOIQ_RETURN_IF_ERROR(in_option(check_date(value), arg));
     patient.set_birth_date(value);
   } else if (arg == "--study-date") {
-    SOIQ_RETURN_IF_ERROR(check_date(value, arg));
+    SOIQ_RETURN_IF_ERROR(in_option(check_date(value), arg));
     study.set_study_date(value);
   } else if (arg == "--modality") {
+    SOIQ_RETURN_IF_ERROR(in_option(check_text(value, kMaxIdBytes), arg));
     study.set_modality(value);
   } else {
+    SOIQ_RETURN_IF_ERROR(in_option(check_text(value, kMaxNameBytes), arg));
     study.set_description(value);
   }
   return true;

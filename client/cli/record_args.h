@@ -1,11 +1,12 @@
 #pragma once
 // The options that describe a patient and a study on the command line, shared by `soiq upload`
 // and `soiq upload-image`: --patient ID --study UID [--sex M|F|O] [--birth-date YYYYMMDD]
-// [--study-date YYYYMMDD] [--modality MR] [--description TEXT]; and the checks of DICOM-style
-// values the listing and query commands share.
+// [--study-date YYYYMMDD] [--modality MR] [--description TEXT], each checked by its field's one
+// rule (core/base/field_rules.h), as soiqd checks it again.
 
 #include <string>
 
+#include "core/base/field_rules.h"
 #include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
@@ -17,12 +18,13 @@ Result<bool> parse_record_option(int argc, char** argv, int& i, soiq::v1::Patien
 // INVALID_ARGUMENT unless --patient and --study were given.
 Status check_record(const soiq::v1::Patient& patient, const soiq::v1::Study& study);
 
-// INVALID_ARGUMENT "<flag> must be a date YYYYMMDD, got '...'" unless 8 digits of a plausible date.
-Status check_date(const std::string& text, const std::string& flag);
-// M, F or O.
-Status check_sex(const std::string& text);
-// L or R.
-Status check_laterality(const std::string& text);
+// soiqd's error about a field of an upload's header ("patient.birth_date") as the option that set
+// it ("--birth-date: ..."), from Status::field(); other errors unchanged.
+Status in_upload_option_words(const Status& status);
+
+// A field rule's error (core/base/field_rules.h) as the option's: "--birth-date: '20230231' is not
+// a calendar date YYYYMMDD". OK stays OK.
+Status in_option(const Status& status, const std::string& option);
 
 // --format text|json of show and info: true for json. INVALID_ARGUMENT otherwise.
 Result<bool> parse_text_or_json(const std::string& text);

@@ -3,25 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "proto/text/query_columns.h"
+
 namespace soiq::cli {
 
-namespace {
-
-std::string format_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-}  // namespace
+using proto_text::number_text;
 
 std::string json_string(const std::string& text) {
   std::string out = "\"";
@@ -42,20 +28,21 @@ std::string json_string(const std::string& text) {
 
 Cell text_cell(const std::string& text) { return {text, json_string(text)}; }
 Cell int_cell(long long value) { return {std::to_string(value), std::to_string(value)}; }
-Cell number_cell(double value) { return {format_number(value), format_number(value)}; }
+Cell number_cell(double value) { return {number_text(value), number_text(value)}; }
 
 Cell numbers_cell(const std::vector<double>& values, bool csv) {
   if (values.size() == 1) return number_cell(values[0]);
   Cell c;
+  if (csv) c.text = proto_text::csv_numbers(values);
   if (!csv) c.text.push_back('(');
   c.json.push_back('[');
   for (size_t i = 0; i < values.size(); ++i) {
     if (i) {
-      c.text += csv ? ";" : ", ";
+      if (!csv) c.text += ", ";
       c.json += ", ";
     }
-    c.text += format_number(values[i]);
-    c.json += format_number(values[i]);
+    if (!csv) c.text += number_text(values[i]);
+    c.json += number_text(values[i]);
   }
   if (!csv) c.text.push_back(')');
   c.json.push_back(']');
@@ -70,8 +57,7 @@ Status check_row_format(const std::string& format) {
 RowPrinter::RowPrinter(std::string format, std::vector<std::string> header, FILE* out)
     : format_(std::move(format)), header_(std::move(header)), out_(out) {
   if (format_ == "csv") {
-    for (size_t i = 0; i < header_.size(); ++i) std::fprintf(out_, "%s%s", i ? "," : "", csv_field(header_[i]).c_str());
-    std::fputc('\n', out_);
+    std::fputs(proto_text::csv_line(header_).c_str(), out_);
   } else if (format_ == "json") {
     std::fputc('[', out_);
   }
@@ -83,10 +69,9 @@ void RowPrinter::row(const std::vector<Cell>& cells) {
     for (const Cell& c : cells) texts.push_back(c.text);
     held_.push_back(std::move(texts));
   } else if (format_ == "csv") {
-    for (size_t i = 0; i < cells.size(); ++i) {
-      std::fprintf(out_, "%s%s", i ? "," : "", csv_field(cells[i].text).c_str());
-    }
-    std::fputc('\n', out_);
+    std::vector<std::string> texts;
+    for (const Cell& c : cells) texts.push_back(c.text);
+    std::fputs(proto_text::csv_line(texts).c_str(), out_);
   } else {
     std::fprintf(out_, "%s\n  {", count_ ? "," : "");
     for (size_t i = 0; i < cells.size() && i < header_.size(); ++i) {

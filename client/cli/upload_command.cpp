@@ -31,7 +31,7 @@ Result<UploadArgs> parse_upload_args(int argc, char** argv) {
       SOIQ_ASSIGN_OR_RETURN(*a.header.mutable_structure_name(), option_value(argc, argv, i));
     } else if (arg == "--laterality") {
       SOIQ_ASSIGN_OR_RETURN(const std::string l, option_value(argc, argv, i));
-      SOIQ_RETURN_IF_ERROR(check_laterality(l));
+      SOIQ_RETURN_IF_ERROR(in_option(check_laterality(l), arg));
       a.header.set_laterality(l);
     } else if (arg == "--ras") {
       a.header.set_coordinates(soiq::v1::RAS);
@@ -63,7 +63,8 @@ Status upload(const UploadArgs& a, const client::ClientOptions& remote) {
       c.upload_surface(a.header, a.mesh, [&](int64_t done, int64_t total) { bar.update("sending", done, total); });
   bar.clear();
   if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
-  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadSurfaceResponse r, uploaded);
+  if (!uploaded.ok()) return in_upload_option_words(uploaded.status());
+  const soiq::v1::UploadSurfaceResponse& r = *uploaded;
   const soiq::v1::Structure& s = r.structure();
   if (a.wait) SOIQ_RETURN_IF_ERROR(wait_option(c));
   if (quiet()) {

@@ -54,7 +54,8 @@ Status upload_image(const UploadImageArgs& a, const client::ClientOptions& remot
       c.upload_image(a.header, a.image, [&](int64_t done, int64_t total) { bar.update("sending", done, total); });
   bar.clear();
   if (!uploaded.ok() && interrupted()) return interrupted_by_user("nothing was stored");
-  SOIQ_ASSIGN_OR_RETURN(const soiq::v1::UploadImageResponse r, uploaded);
+  if (!uploaded.ok()) return in_upload_option_words(uploaded.status());
+  const soiq::v1::UploadImageResponse& r = *uploaded;
   std::printf("series %s: %s, %s; %s\n", r.series().series_uid().c_str(), r.series().modality().c_str(),
               geometry_text(r.series().geometry()).c_str(), r.replaced() ? "replaced" : "new");
   return ok_status();

@@ -45,4 +45,18 @@ std::string Status::to_string() const {
   return std::string(status_code_name(code_)) + ": " + message_;
 }
 
+Status Status::in_field(std::string_view field) const {
+  if (ok() || field.empty()) return *this;
+  const std::string reason_text = reason();
+  Status s(code_, "");
+  s.field_ = std::string(field) + (field_.empty() ? "" : (field_.starts_with('[') ? "" : ".") + field_);
+  s.message_ = s.field_ + ": " + reason_text;
+  return s;
+}
+
+std::string Status::reason() const {
+  // in_field built message_ as field_ + ": " + reason, so the prefix is there by construction.
+  return field_.empty() ? message_ : message_.substr(field_.size() + 2);
+}
+
 }  // namespace soiq

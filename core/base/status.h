@@ -6,6 +6,7 @@
 #include <cassert>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -44,9 +45,20 @@ class [[nodiscard]] Status {
   // "INVALID_ARGUMENT: mesh 'a.stl' has 3 NaN coordinates"
   std::string to_string() const;
 
+  // The same error, about a field of a request: "stage1.min_age_years", "where[0]", "patient.sex".
+  // The message gains the field in front ("where[0]: unknown feature ..."), so every reader sees
+  // it, and field() and reason() keep the two apart, so that a client can say it in its own words
+  // (the command line's "--where 'volume > 1'") without reading the prose. An error already about
+  // a field nests under the new one: "where[0]" over "feature" is "where[0].feature".
+  Status in_field(std::string_view field) const;
+  const std::string& field() const { return field_; }
+  // The message without the field in front: "unknown feature ...".
+  std::string reason() const;
+
  private:
   StatusCode code_ = StatusCode::kOk;
   std::string message_;
+  std::string field_;  // "" unless in_field made this status
 };
 
 inline Status ok_status() { return Status(); }

@@ -81,7 +81,7 @@ CubeCaseTable read_marching_cubes_cases() {
   for_each_triangle(surface->GetOutput(), [&](const std::array<std::array<int64_t, 3>, 3>& t) {
     const int64_t lo = std::min({t[0][0], t[1][0], t[2][0]}), hi = std::max({t[0][0], t[1][0], t[2][0]});
     const int64_t p = lo / 8;
-    const bool on_a_face = lo == hi && lo != 8 * p + 1;  // all at x = 8p or all at 8p + 2
+    const bool on_a_face = lo == hi && lo != 8 * p + 1;   // all at x = 8p or all at 8p + 2
     if (p >= 256 || hi > 8 * p + 2 || on_a_face) return;  // another cube's
     CubeCaseTriangle local{};
     for (size_t v = 0; v < 3; ++v) {

@@ -61,7 +61,8 @@ const std::string* find_first(const MetaHeader& h, std::initializer_list<const c
   return nullptr;
 }
 
-Status bad_meta_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
+Status bad_meta_field(const std::string& path, const std::string& key, const std::string& value,
+                      const std::string& why) {
   return invalid_argument("MetaImage header of '" + path + "' has an invalid '" + key + " = " + value.substr(0, 80) +
                           "' (" + why + ")");
 }
@@ -78,7 +79,8 @@ Result<ImageGeometry> parse_geometry(const MetaHeader& h, const std::string& pat
   std::array<int64_t, 3> dims{};
   for (int a = 0; a < 3; ++a) {
     const auto n = a < int(sizes.size()) ? parse_integer(sizes[a]) : std::nullopt;
-    if (sizes.size() != 3 || !n || *n < 1) return bad_meta_field(path, "DimSize", *dim_size, "expected 3 positive integers");
+    if (sizes.size() != 3 || !n || *n < 1)
+      return bad_meta_field(path, "DimSize", *dim_size, "expected 3 positive integers");
     dims[a] = *n;
   }
   Vec3 spacing{1, 1, 1};
@@ -132,7 +134,8 @@ Result<Image> parse_metaimage(const std::string& bytes, const std::string& path,
   const std::string* type_name = find_first(header, {"ElementType"});
   if (!type_name) return invalid_argument("MetaImage header of '" + path + "' has no ElementType field");
   const auto type = met_voxel_type(*type_name);
-  if (!type) return bad_meta_field(path, "ElementType", *type_name, "soiq reads MET_UCHAR..MET_INT, MET_FLOAT, MET_DOUBLE");
+  if (!type)
+    return bad_meta_field(path, "ElementType", *type_name, "soiq reads MET_UCHAR..MET_INT, MET_FLOAT, MET_DOUBLE");
   SOIQ_ASSIGN_OR_RETURN(const ImageGeometry geometry, parse_geometry(header, path));
   SOIQ_RETURN_IF_ERROR(check_before_decoding(geometry, voxel_type_size(*type), limits));
   const size_t count = size_t(geometry.voxel_count());

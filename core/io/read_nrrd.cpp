@@ -89,7 +89,8 @@ Result<std::string> field(const NrrdHeader& h, const std::string& key, const std
   return it->second;
 }
 
-Status bad_nrrd_field(const std::string& path, const std::string& key, const std::string& value, const std::string& why) {
+Status bad_nrrd_field(const std::string& path, const std::string& key, const std::string& value,
+                      const std::string& why) {
   return invalid_argument("NRRD header of '" + path + "' has an invalid '" + key + ": " + value.substr(0, 80) + "' (" +
                           why + ")");
 }
@@ -102,7 +103,8 @@ Result<ImageGeometry> parse_geometry(const NrrdHeader& h, const std::string& pat
   std::array<int64_t, 3> dims{};
   for (int a = 0; a < 3; ++a) {
     const auto n = a < int(sizes.size()) ? parse_integer(sizes[a]) : std::nullopt;
-    if (sizes.size() != 3 || !n || *n < 1) return bad_nrrd_field(path, "sizes", sizes_text, "expected 3 positive integers");
+    if (sizes.size() != 3 || !n || *n < 1)
+      return bad_nrrd_field(path, "sizes", sizes_text, "expected 3 positive integers");
     dims[a] = *n;
   }
   Mat3 axes{};

@@ -38,8 +38,8 @@ Status validate_study_search(const StudySearch& s) {
   SOIQ_RETURN_IF_ERROR(validate_text(s.patient_name_glob, "patient name pattern", kMaxNameBytes));
   if (s.patient_name_words.size() > 16) return invalid_argument("more than 16 words in a patient name");
   for (const std::string& w : s.patient_name_words) SOIQ_RETURN_IF_ERROR(validate_text(w, "name word", kMaxNameBytes));
-  SOIQ_RETURN_IF_ERROR(validate_date(s.study_date_from, "study date"));
-  SOIQ_RETURN_IF_ERROR(validate_date(s.study_date_to, "study date"));
+  SOIQ_RETURN_IF_ERROR(check_date(s.study_date_from).in_field("study date"));
+  SOIQ_RETURN_IF_ERROR(check_date(s.study_date_to).in_field("study date"));
   SOIQ_RETURN_IF_ERROR(validate_text(s.accession_number, "accession number", kMaxIdBytes));
   SOIQ_RETURN_IF_ERROR(validate_text(s.study_id, "study id", kMaxIdBytes));
   return validate_text(s.modality, "modality", kMaxIdBytes);

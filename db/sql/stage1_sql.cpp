@@ -84,8 +84,7 @@ SqlConditions stage1_conditions(const Stage1Filter& f, SqlDialect dialect) {
   // index held every row; the OR was then planned as a scan of the whole table.
   if (!f.stored_features.empty()) {
     std::vector<SqlConditions::NumberComparison> all;
-    for (const StoredFeatureCondition& c : f.stored_features)
-      all.push_back({c.name, c.op == "!=" ? "<>" : c.op, c.value});
+    for (const StoredFeatureCondition& c : f.stored_features) all.push_back({c.name, sql_operator(c.op), c.value});
     where.all_unless("structure_id", "stage1_rows", "features_stored = 0", all);
   }
   return where;

@@ -133,15 +133,13 @@ Result<Predicate> parse_predicate(const std::string& text) {
   Predicate predicate;
   SOIQ_ASSIGN_OR_RETURN(*predicate.mutable_feature(), parse_feature_at(p, false));
   // Two-character operators first, so "<=" is not read as "<" then "=".
-  static const std::pair<const char*, ComparisonOp> kOps[] = {{"<=", soiq::v1::LE}, {">=", soiq::v1::GE},
-                                                              {"==", soiq::v1::EQ}, {"!=", soiq::v1::NE},
-                                                              {"<", soiq::v1::LT},  {">", soiq::v1::GT}};
   bool found = false;
-  for (const auto& [token, op] : kOps) {
-    if (p.accept(token)) {
-      predicate.set_op(op);
+  for (const size_t length : {2, 1}) {
+    for (const Comparison c : kComparisons) {
+      const std::string_view symbol = comparison_symbol(c);
+      if (found || symbol.size() != length || !p.accept(std::string(symbol))) continue;
+      predicate.set_op(proto_comparison(c));
       found = true;
-      break;
     }
   }
   if (!found) {
@@ -167,23 +165,35 @@ std::string feature_text(const FeatureRef& f) {
   return f.asymmetry() ? "asym(" + text + ")" : text;
 }
 
-const char* comparison_text(ComparisonOp op) {
+std::optional<Comparison> comparison_of(ComparisonOp op) {
   switch (op) {
     case soiq::v1::LT:
-      return "<";
+      return Comparison::kLess;
     case soiq::v1::LE:
-      return "<=";
+      return Comparison::kLessOrEqual;
     case soiq::v1::GT:
-      return ">";
+      return Comparison::kGreater;
     case soiq::v1::GE:
-      return ">=";
+      return Comparison::kGreaterOrEqual;
     case soiq::v1::EQ:
-      return "==";
+      return Comparison::kEqual;
     case soiq::v1::NE:
-      return "!=";
+      return Comparison::kNotEqual;
     default:
-      return "?";
+      return std::nullopt;
   }
+}
+
+ComparisonOp proto_comparison(Comparison op) {
+  for (const int value : {soiq::v1::LT, soiq::v1::LE, soiq::v1::GT, soiq::v1::GE, soiq::v1::EQ, soiq::v1::NE}) {
+    if (comparison_of(ComparisonOp(value)) == op) return ComparisonOp(value);
+  }
+  return soiq::v1::COMPARISON_OP_UNSPECIFIED;
+}
+
+const char* comparison_text(ComparisonOp op) {
+  const std::optional<Comparison> c = comparison_of(op);
+  return c ? comparison_symbol(*c) : "?";
 }
 
 }  // namespace soiq::proto_text

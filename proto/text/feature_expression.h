@@ -15,8 +15,10 @@
 // naming the bad region or number. Whether NAME is a known feature is the server's to say.
 // Cost: O(length); pure and thread-safe.
 
+#include <optional>
 #include <string>
 
+#include "core/base/comparison.h"
 #include "core/base/status.h"
 #include "soiq/v1/soiq.pb.h"
 
@@ -29,6 +31,10 @@ Result<soiq::v1::Predicate> parse_predicate(const std::string& text);
 // "asym(voxel_volume_mm3)", "mean[,PT]".
 std::string feature_text(const soiq::v1::FeatureRef& feature);
 
+// The API's comparison enum and soiq's (core/base/comparison.h), mapped in one place: nullopt for
+// an unset or unknown value.
+std::optional<Comparison> comparison_of(soiq::v1::ComparisonOp op);
+soiq::v1::ComparisonOp proto_comparison(Comparison op);
 // "<", "<=", ... for an operator; "?" for an unset one.
 const char* comparison_text(soiq::v1::ComparisonOp op);
 

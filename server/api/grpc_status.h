@@ -1,6 +1,7 @@
 #pragma once
 // The one place where soiq's Status becomes a gRPC status (the codes share gRPC's numbers, so the
-// mapping keeps code and message; STYLE.md: map errors once, at the edge).
+// mapping keeps code and message; STYLE.md: map errors once, at the edge). An error about a field
+// (Status::field) also carries soiq.v1.ErrorDetails in the status details.
 
 #include <grpcpp/support/status.h>
 

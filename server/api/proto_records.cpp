@@ -1,6 +1,6 @@
 #include "server/api/proto_records.h"
 
-#include <cctype>
+#include "core/base/field_rules.h"
 
 namespace soiq::server {
 
@@ -69,27 +69,6 @@ v1::Structure to_proto(const db::StructureRecord& r) {
   return s;
 }
 
-Status check_date(const std::string& date, const char* field) {
-  if (date.empty()) return ok_status();
-  bool digits = date.size() == 8;
-  for (char ch : date) digits = digits && std::isdigit(static_cast<unsigned char>(ch));
-  if (digits) {
-    const int month = std::stoi(date.substr(4, 2)), day = std::stoi(date.substr(6, 2));
-    if (month >= 1 && month <= 12 && day >= 1 && day <= 31) return ok_status();
-  }
-  return invalid_argument(std::string(field) + " must be a date YYYYMMDD, got '" + date + "'");
-}
-
-Status check_sex(const std::string& sex, const char* field) {
-  if (sex.empty() || sex == "M" || sex == "F" || sex == "O") return ok_status();
-  return invalid_argument(std::string(field) + " must be M, F, O or empty, got '" + sex + "'");
-}
-
-Status check_laterality(const std::string& laterality) {
-  if (laterality.empty() || laterality == "L" || laterality == "R") return ok_status();
-  return invalid_argument("laterality must be L, R or empty, got '" + laterality + "'");
-}
-
 v1::ImportDicomResponse to_proto(const DicomImportResult& r) {
   v1::ImportDicomResponse out;
   for (const db::PatientRecord& p : r.patients) *out.add_patients() = to_proto(p);
@@ -136,9 +115,9 @@ v1::FeatureInfo to_proto(const FeatureDef& f) {
 }
 
 Result<db::PatientRecord> from_proto(const v1::Patient& p) {
-  if (p.patient_id().empty()) return invalid_argument("patient.patient_id is required");
-  SOIQ_RETURN_IF_ERROR(check_sex(p.sex(), "patient.sex"));
-  SOIQ_RETURN_IF_ERROR(check_date(p.birth_date(), "patient.birth_date"));
+  SOIQ_RETURN_IF_ERROR(check_id(p.patient_id()).in_field("patient.patient_id"));
+  SOIQ_RETURN_IF_ERROR(check_sex(p.sex()).in_field("patient.sex"));
+  SOIQ_RETURN_IF_ERROR(check_date(p.birth_date()).in_field("patient.birth_date"));
   db::PatientRecord r;
   r.patient_id = p.patient_id();
   r.sex = p.sex();
@@ -147,13 +126,14 @@ Result<db::PatientRecord> from_proto(const v1::Patient& p) {
 }
 
 Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patient_id) {
-  if (s.study_uid().empty()) return invalid_argument("study.study_uid is required");
+  SOIQ_RETURN_IF_ERROR(check_id(s.study_uid()).in_field("study.study_uid"));
   if (!s.patient_id().empty() && s.patient_id() != patient_id)
-    return invalid_argument("study.patient_id '" + s.patient_id() + "' differs from patient.patient_id '" + patient_id +
-                            "'");
-  SOIQ_RETURN_IF_ERROR(check_date(s.study_date(), "study.study_date"));
-  if (s.has_age_years() && !(s.age_years() >= 0 && s.age_years() < 200))
-    return invalid_argument("study.age_years must be in [0, 200)");
+    return invalid_argument("'" + s.patient_id() + "' differs from patient.patient_id '" + patient_id + "'")
+        .in_field("study.patient_id");
+  SOIQ_RETURN_IF_ERROR(check_date(s.study_date()).in_field("study.study_date"));
+  SOIQ_RETURN_IF_ERROR(check_text(s.description(), kMaxNameBytes).in_field("study.description"));
+  SOIQ_RETURN_IF_ERROR(check_text(s.modality(), kMaxIdBytes).in_field("study.modality"));
+  if (s.has_age_years()) SOIQ_RETURN_IF_ERROR(check_age_years(s.age_years()).in_field("study.age_years"));
   db::StudyRecord r;
   r.study_uid = s.study_uid();
   r.patient_id = patient_id;
@@ -166,8 +146,9 @@ Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patien
 
 Status check_enum(int value, bool (*is_valid)(int), const char* field) {
   if (is_valid(value)) return ok_status();
-  return invalid_argument(std::string(field) + " has the value " + std::to_string(value) +
-                          ", which this server does not know (see proto/soiq/v1/soiq.proto for the values)");
+  return invalid_argument(std::to_string(value) +
+                          " is not a value this server knows (see proto/soiq/v1/soiq.proto for the values)")
+      .in_field(field);
 }
 
 }  // namespace soiq::server

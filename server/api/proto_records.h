@@ -2,6 +2,7 @@
 // Conversions between the store's records (db/store.h) and the API's messages (soiq.proto), in
 // one place so every handler speaks the same dialect.
 
+#include "core/base/field_rules.h"
 #include "core/base/image_geometry.h"
 #include "core/base/status.h"
 #include "core/features/feature_catalogue.h"
@@ -23,13 +24,10 @@ v1::PacsPullProgress to_proto(const PullProgress& p);
 // One catalogue entry as GetServerInfo lists it.
 v1::FeatureInfo to_proto(const FeatureDef& f);
 
-// Validates what a client sent: DICOM-like sex (M, F, O or empty), dates (YYYYMMDD or empty),
-// laterality (L, R or empty), non-empty ids. INVALID_ARGUMENT naming the field otherwise.
+// Validates what a client sent, each field by its one rule (core/base/field_rules.h): required
+// ids, sex, dates, ages, texts. INVALID_ARGUMENT in the field's path ("patient.birth_date").
 Result<db::PatientRecord> from_proto(const v1::Patient& p);
 Result<db::StudyRecord> from_proto(const v1::Study& s, const std::string& patient_id);
-Status check_laterality(const std::string& laterality);
-Status check_date(const std::string& date, const char* field);
-Status check_sex(const std::string& sex, const char* field);
 // Proto3 enums are open: a client may send any number, which would otherwise fall silently into a
 // default branch. INVALID_ARGUMENT naming the field and the value.
 Status check_enum(int value, bool (*is_valid)(int), const char* field);

@@ -5,6 +5,7 @@
 
 #include "core/features/feature_catalogue.h"
 #include "core/regions/regions.h"
+#include "proto/text/feature_expression.h"
 #include "server/api/grid_spec.h"
 #include "server/api/proto_records.h"
 #include "server/app/modality_names.h"
@@ -26,15 +27,24 @@ bool is_array_feature(const std::string& name) {
 
 Result<db::Stage1Filter> parse_stage1(const v1::Stage1Filter& s) {
   db::Stage1Filter f;
-  SOIQ_RETURN_IF_ERROR(check_sex(s.sex(), "stage1.sex"));
-  SOIQ_RETURN_IF_ERROR(check_laterality(s.laterality()));
+  // Each field by its one rule (core/base/field_rules.h), the error in the field's path.
+  SOIQ_RETURN_IF_ERROR(check_sex(s.sex()).in_field("stage1.sex"));
+  SOIQ_RETURN_IF_ERROR(check_laterality(s.laterality()).in_field("stage1.laterality"));
   const std::pair<const std::string*, const char*> dates[] = {{&s.birth_date_from(), "stage1.birth_date_from"},
                                                               {&s.birth_date_to(), "stage1.birth_date_to"},
                                                               {&s.study_date_from(), "stage1.study_date_from"},
                                                               {&s.study_date_to(), "stage1.study_date_to"}};
-  for (const auto& [date, field] : dates) SOIQ_RETURN_IF_ERROR(check_date(*date, field));
+  for (const auto& [date, field] : dates) SOIQ_RETURN_IF_ERROR(check_date(*date).in_field(field));
+  const std::pair<const std::string*, const char*> texts[] = {
+      {&s.patient_id_glob(), "stage1.patient_id_glob"},
+      {&s.study_description_glob(), "stage1.study_description_glob"},
+      {&s.structure_name_glob(), "stage1.structure_name_glob"}};
+  for (const auto& [text, field] : texts) SOIQ_RETURN_IF_ERROR(check_text(*text, kMaxNameBytes).in_field(field));
+  SOIQ_RETURN_IF_ERROR(check_text(s.modality(), kMaxIdBytes).in_field("stage1.modality"));
+  if (s.has_min_age_years()) SOIQ_RETURN_IF_ERROR(check_age_years(s.min_age_years()).in_field("stage1.min_age_years"));
+  if (s.has_max_age_years()) SOIQ_RETURN_IF_ERROR(check_age_years(s.max_age_years()).in_field("stage1.max_age_years"));
   if (s.has_min_age_years() && s.has_max_age_years() && s.min_age_years() > s.max_age_years())
-    return invalid_argument("stage1.min_age_years is greater than stage1.max_age_years");
+    return invalid_argument("is greater than stage1.max_age_years").in_field("stage1.min_age_years");
   f.patient_id_glob = s.patient_id_glob();
   f.sex = s.sex();
   if (s.has_min_age_years()) f.min_age_years = s.min_age_years();
@@ -53,19 +63,21 @@ Result<db::Stage1Filter> parse_stage1(const v1::Stage1Filter& s) {
 Result<QueryFeature> parse_ref(const v1::FeatureRef& r, const char* field) {
   QueryFeature p;
   p.name = r.name();
-  if (p.name.empty()) return invalid_argument(std::string(field) + ": feature name is empty");
-  if (Status known = check_feature_name(p.name); !known.ok())
-    return invalid_argument(std::string(field) + ": " + known.message());
+  if (p.name.empty()) return invalid_argument("feature name is empty").in_field(field);
+  if (Status known = check_feature_name(p.name); !known.ok()) return invalid_argument(known.message()).in_field(field);
   // voxel_count with an image is the region's samples on it, without one the structure's voxels.
   p.intensity = is_intensity_only(p.name) || (find_intensity_feature(p.name) != nullptr && !r.image().empty());
   if (p.intensity) {
     if (r.image().empty())
-      return invalid_argument(std::string(field) + ": intensity feature '" + p.name +
-                              "' needs an image (a modality of the study such as PT, or a series uid)");
-    SOIQ_ASSIGN_OR_RETURN(p.region, parse_region(r.region().empty() ? "inside" : r.region()));
+      return invalid_argument("intensity feature '" + p.name +
+                              "' needs an image (a modality of the study such as PT, or a series uid)")
+          .in_field(field);
+    Result<RegionSpec> region = parse_region(r.region().empty() ? "inside" : r.region());
+    if (!region.ok()) return region.status().in_field(field);
+    p.region = *region;
     p.image = dicom_modality(r.image());
   } else if (!r.image().empty() || !r.region().empty()) {
-    return invalid_argument(std::string(field) + ": shape feature '" + p.name + "' takes no region or image");
+    return invalid_argument("shape feature '" + p.name + "' takes no region or image").in_field(field);
   }
   p.asymmetry = r.asymmetry();
   p.label.name = p.asymmetry ? "asym(" + p.name + ")" : p.name;
@@ -77,22 +89,9 @@ Result<QueryFeature> parse_ref(const v1::FeatureRef& r, const char* field) {
 }
 
 Result<Comparison> comparison_of(v1::ComparisonOp op, const std::string& field) {
-  switch (op) {
-    case v1::LT:
-      return Comparison::kLess;
-    case v1::LE:
-      return Comparison::kLessOrEqual;
-    case v1::GT:
-      return Comparison::kGreater;
-    case v1::GE:
-      return Comparison::kGreaterOrEqual;
-    case v1::EQ:
-      return Comparison::kEqual;
-    case v1::NE:
-      return Comparison::kNotEqual;
-    default:
-      return invalid_argument(field + ": comparison is not set (LT, LE, GT, GE, EQ or NE)");
-  }
+  const std::optional<Comparison> c = proto_text::comparison_of(op);
+  if (!c) return invalid_argument("comparison is not set (LT, LE, GT, GE, EQ or NE)").in_field(field);
+  return *c;
 }
 
 }  // namespace
@@ -105,9 +104,9 @@ Result<Query> parse_query(const v1::QueryRequest& request, int result_cap) {
     const std::string field = "where[" + std::to_string(i) + "]";
     SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(p.feature(), field.c_str()));
     if (is_array_feature(ref.name))
-      return invalid_argument(field + ": " + ref.name + " is an array; it can be selected, not compared");
+      return invalid_argument(ref.name + " is an array; it can be selected, not compared").in_field(field);
     SOIQ_ASSIGN_OR_RETURN(const Comparison op, comparison_of(p.op(), field));
-    if (!std::isfinite(p.value())) return invalid_argument(field + ": the value must be a finite number");
+    if (!std::isfinite(p.value())) return invalid_argument("the value must be a finite number").in_field(field);
     q.where.push_back({q.features.size(), op, p.value()});
     q.features.push_back(std::move(ref));
   }
@@ -115,17 +114,17 @@ Result<Query> parse_query(const v1::QueryRequest& request, int result_cap) {
     const std::string field = "select[" + std::to_string(i) + "]";
     SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(request.select(i), field.c_str()));
     if (ref.asymmetry && is_array_feature(ref.name))
-      return invalid_argument(field + ": the asymmetry of an array feature is not defined");
+      return invalid_argument("the asymmetry of an array feature is not defined").in_field(field);
     q.features.push_back(std::move(ref));
   }
   if (request.has_order_by()) {
     SOIQ_ASSIGN_OR_RETURN(QueryFeature ref, parse_ref(request.order_by(), "order_by"));
-    if (is_array_feature(ref.name)) return invalid_argument("order_by: " + ref.name + " is an array");
+    if (is_array_feature(ref.name)) return invalid_argument(ref.name + " is an array").in_field("order_by");
     q.order_by = q.features.size();
     q.features.push_back(std::move(ref));
   }
   q.descending = request.descending();
-  if (request.limit() < 0) return invalid_argument("limit must be >= 0 (0: the server's cap)");
+  if (request.limit() < 0) return invalid_argument("must be >= 0 (0: the server's cap)").in_field("limit");
   q.limit = request.limit() == 0 ? result_cap : std::min(request.limit(), result_cap);
 
   SOIQ_ASSIGN_OR_RETURN(q.ask.grid, grid_choice(request.grid()));

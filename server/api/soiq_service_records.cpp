@@ -22,7 +22,7 @@ db::PageRequest page_of(int32_t size, const std::string& token) {
 grpc::Status SoiqService::ListPatients(grpc::ServerContext* ctx, const v1::ListPatientsRequest* request,
                                        v1::ListPatientsResponse* response) {
   return handle(__func__, *ctx, [&]() -> Status {
-    SOIQ_RETURN_IF_ERROR(check_sex(request->sex(), "sex"));
+    SOIQ_RETURN_IF_ERROR(check_sex(request->sex()).in_field("sex"));
     db::PatientFilter f{request->patient_id_glob(), request->sex()};
     SOIQ_ASSIGN_OR_RETURN(auto page, store_.list_patients(f, page_of(request->page_size(), request->page_token())));
     for (const auto& p : page.items) *response->add_patients() = to_proto(p);
@@ -64,7 +64,7 @@ grpc::Status SoiqService::GetStudy(grpc::ServerContext* ctx, const v1::GetStudyR
 grpc::Status SoiqService::ListStructures(grpc::ServerContext* ctx, const v1::ListStructuresRequest* request,
                                          v1::ListStructuresResponse* response) {
   return handle(__func__, *ctx, [&]() -> Status {
-    SOIQ_RETURN_IF_ERROR(check_laterality(request->laterality()));
+    SOIQ_RETURN_IF_ERROR(check_laterality(request->laterality()).in_field("laterality"));
     db::StructureFilter f{request->patient_id(), request->study_uid(), request->name_glob(), request->laterality()};
     SOIQ_ASSIGN_OR_RETURN(auto page, store_.list_structures(f, page_of(request->page_size(), request->page_token())));
     for (const auto& s : page.items) *response->add_structures() = to_proto(s);

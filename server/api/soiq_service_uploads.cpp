@@ -67,8 +67,9 @@ Result<SurfaceUpload> surface_upload_of(const v1::UploadSurfaceHeader& h) {
   SurfaceUpload u;
   SOIQ_ASSIGN_OR_RETURN(u.patient, from_proto(h.patient()));
   SOIQ_ASSIGN_OR_RETURN(u.study, from_proto(h.study(), u.patient.patient_id));
-  if (h.structure_name().empty()) return invalid_argument("structure_name is required");
-  SOIQ_RETURN_IF_ERROR(check_laterality(h.laterality()));
+  if (h.structure_name().empty()) return invalid_argument("is required").in_field("structure_name");
+  SOIQ_RETURN_IF_ERROR(check_text(h.structure_name(), kMaxNameBytes).in_field("structure_name"));
+  SOIQ_RETURN_IF_ERROR(check_laterality(h.laterality()).in_field("laterality"));
   SOIQ_RETURN_IF_ERROR(check_enum(h.coordinates(), v1::CoordinateSystem_IsValid, "coordinates"));
   u.structure_name = h.structure_name();
   u.laterality = h.laterality();

@@ -4,6 +4,7 @@
 #include <map>
 #include <optional>
 
+#include "core/base/field_rules.h"
 #include "core/base/run_length_volume.h"
 #include "db/age_years.h"
 #include "db/image_blob.h"
@@ -37,7 +38,7 @@ db::PatientRecord patient_of(const dicom::DicomPatient& p, bool keep_name) {
   r.patient_id = p.patient_id;
   if (keep_name && db::validate_text(p.name, "", db::kMaxNameBytes).ok()) r.patient_name = p.name;
   if (db::validate_sex(p.sex).ok()) r.sex = p.sex;
-  if (db::validate_date(p.birth_date, "birth_date").ok()) r.birth_date = p.birth_date;
+  if (check_date(p.birth_date).ok()) r.birth_date = p.birth_date;
   return r;
 }
 
@@ -45,14 +46,14 @@ db::StudyRecord study_of(const dicom::DicomStudy& s) {
   db::StudyRecord r;
   r.study_uid = s.study_uid;
   r.patient_id = s.patient_id;
-  if (db::validate_date(s.study_date, "study_date").ok()) r.study_date = s.study_date;
+  if (check_date(s.study_date).ok()) r.study_date = s.study_date;
   // Kept for the SEGs soiq writes on the study (server/app/structure_seg.h), which checks each against
   // its VR; here only what the store takes.
   const auto storable = [](const std::string& v) { return db::validate_text(v, "", db::kMaxIdBytes).ok(); };
   if (storable(s.study_time)) r.study_time = s.study_time;
   if (storable(s.study_id)) r.study_id = s.study_id;
   if (storable(s.accession_number)) r.accession_number = s.accession_number;
-  r.description = s.description;
+  if (check_text(s.description, kMaxNameBytes).ok()) r.description = s.description;
   r.age_years = s.age_years;
   return r;
 }
@@ -79,7 +80,7 @@ Status records_of(const dicom::DicomScan& scan, const std::string& series_uid, b
 }
 
 // The stored patient and study of a stored series (a structure set or SEG sent without its images).
-Status stored_records_of(db::Store& store, const std::string& series_uid, db::PatientRecord& patient,
+Status stored_records_of(db::RecordStore& store, const std::string& series_uid, db::PatientRecord& patient,
                          db::StudyRecord& study) {
   SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord series, store.get_series(series_uid));
   SOIQ_ASSIGN_OR_RETURN(study, store.get_study(series.study_uid));
@@ -88,7 +89,7 @@ Status stored_records_of(db::Store& store, const std::string& series_uid, db::Pa
 }
 
 // Series soiq already stores, for dicom::import_dicom's FindKnownSeries.
-dicom::FindKnownSeries stored_series(db::Store& store) {
+dicom::FindKnownSeries stored_series(db::RecordStore& store) {
   return [&store](const std::string& uid) -> std::optional<dicom::KnownSeries> {
     Result<db::SeriesRecord> s = store.get_series(uid);
     if (!s.ok()) return std::nullopt;
@@ -104,8 +105,8 @@ struct Planned {
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(db::Store& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names, bool replace,
-                     DicomImportResult& r) {
+Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names,
+                     bool replace, DicomImportResult& r) {
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
     db::NewSeries s;
@@ -188,7 +189,7 @@ void list_records(const db::ImportBatch& batch, DicomImportResult& r) {
 
 }  // namespace
 
-Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
+Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
                                               bool keep_patient_names, bool replace) {

@@ -76,7 +76,7 @@ struct DicomImportResult {
   double milliseconds = 0;
 };
 
-Result<DicomImportResult> import_dicom_folder(db::Store& store, const std::string& dir,
+Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
                                               bool keep_patient_names = false, bool replace = false);

@@ -18,7 +18,7 @@ std::string held(const std::vector<std::string>& modalities) {
 
 }  // namespace
 
-Result<bool> ImageRefsCheck::known(db::Store& store, const std::string& modality, bool fresh) {
+Result<bool> ImageRefsCheck::known(db::RecordStore& store, const std::string& modality, bool fresh) {
   if (fresh) {
     SOIQ_ASSIGN_OR_RETURN(db::Counts counts, store.counts());
     std::lock_guard<std::mutex> lock(mutex_);
@@ -29,7 +29,7 @@ Result<bool> ImageRefsCheck::known(db::Store& store, const std::string& modality
                      [&](const std::string& m) { return same_modality(m, modality); });
 }
 
-Status ImageRefsCheck::check(db::Store& store, const std::vector<std::string>& refs) {
+Status ImageRefsCheck::check(db::RecordStore& store, const std::vector<std::string>& refs) {
   for (const std::string& ref : refs) {
     if (is_series_uid(ref)) {
       Result<db::SeriesRecord> series = store.get_series(ref);

@@ -27,11 +27,11 @@ namespace soiq::server {
 
 class ImageRefsCheck {
  public:
-  Status check(db::Store& store, const std::vector<std::string>& refs);
+  Status check(db::RecordStore& store, const std::vector<std::string>& refs);
 
  private:
   // Whether `modality` is among those last read; reads them again first when `fresh` is asked.
-  Result<bool> known(db::Store& store, const std::string& modality, bool fresh);
+  Result<bool> known(db::RecordStore& store, const std::string& modality, bool fresh);
 
   std::mutex mutex_;
   std::vector<std::string> modalities_;  // as the store last listed them

@@ -5,47 +5,6 @@
 
 namespace soiq::server {
 
-bool compare(double value, Comparison op, double threshold) {
-  if (std::isnan(value)) return false;
-  switch (op) {
-    case Comparison::kLess:
-      return value < threshold;
-    case Comparison::kLessOrEqual:
-      return value <= threshold;
-    case Comparison::kGreater:
-      return value > threshold;
-    case Comparison::kGreaterOrEqual:
-      return value >= threshold;
-    case Comparison::kEqual:
-      return value == threshold;
-    case Comparison::kNotEqual:
-      return value != threshold;
-  }
-  return false;
-}
-
-namespace {
-
-const char* sql_operator(Comparison op) {
-  switch (op) {
-    case Comparison::kLess:
-      return "<";
-    case Comparison::kLessOrEqual:
-      return "<=";
-    case Comparison::kGreater:
-      return ">";
-    case Comparison::kGreaterOrEqual:
-      return ">=";
-    case Comparison::kEqual:
-      return "=";
-    case Comparison::kNotEqual:
-      return "!=";
-  }
-  return "=";
-}
-
-}  // namespace
-
 std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q) {
   // Precompute's grid is GridChoice{}; any margin of a voxel or more gives the same values (a shell
   // only widens it: grid_choice.h).
@@ -59,7 +18,7 @@ std::vector<db::StoredFeatureCondition> stored_feature_conditions(const Query& q
   for (const QueryPredicate& p : q.where) {
     const QueryFeature& f = q.features.at(p.feature);
     if (f.intensity || f.asymmetry || std::find(stored.begin(), stored.end(), f.name) == stored.end()) continue;
-    out.push_back({f.name, sql_operator(p.op), p.value});
+    out.push_back({f.name, p.op, p.value});
   }
   return out;
 }

@@ -9,17 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "core/base/comparison.h"
 #include "core/base/status.h"
 #include "core/regions/regions.h"
 #include "db/store.h"
 #include "server/app/feature_engine.h"
 
 namespace soiq::server {
-
-enum class Comparison { kLess, kLessOrEqual, kGreater, kGreaterOrEqual, kEqual, kNotEqual };
-
-// `value op threshold`; NaN never matches.
-bool compare(double value, Comparison op, double threshold);
 
 // How a row names one value: the feature ("asym(name)" for an asymmetry), and for intensity
 // features the region ("shell:5") and the image (a modality or a series uid) as the client gave it.

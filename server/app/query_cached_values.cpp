@@ -6,7 +6,7 @@ namespace soiq::server::query_run {
 namespace {
 
 // The keys of `subjects` and the entries their plans want, each once.
-Result<std::vector<db::CachedFeature>> read(db::Store& store, const std::vector<const Subject*>& subjects) {
+Result<std::vector<db::CachedFeature>> read(db::FeatureStore& store, const std::vector<const Subject*>& subjects) {
   std::vector<std::string> keys, entries;
   for (const Subject* s : subjects) {
     keys.push_back(s->plan->cache_key);
@@ -26,7 +26,7 @@ void add(std::vector<db::CachedFeature>&& found, CachedValues& out) {
 
 }  // namespace
 
-Result<CachedValues> read_cached_values(db::Store& store, const std::vector<Subject>& subjects,
+Result<CachedValues> read_cached_values(db::FeatureStore& store, const std::vector<Subject>& subjects,
                                         const std::vector<size_t>& planned) {
   CachedValues out;
   std::vector<const Subject*> all;

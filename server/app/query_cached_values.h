@@ -25,7 +25,7 @@ struct CachedValues {
   std::vector<std::pair<size_t, Status>> damaged;  // subject -> why its values cannot be read
 };
 
-Result<CachedValues> read_cached_values(db::Store& store, const std::vector<Subject>& subjects,
+Result<CachedValues> read_cached_values(db::FeatureStore& store, const std::vector<Subject>& subjects,
                                         const std::vector<size_t>& planned);
 
 }  // namespace soiq::server::query_run

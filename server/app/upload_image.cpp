@@ -8,7 +8,7 @@
 
 namespace soiq::server {
 
-Result<UploadedImage> upload_image(db::Store& store, MemoryBudget& budget, int64_t max_grid_voxels,
+Result<UploadedImage> upload_image(db::RecordStore& store, MemoryBudget& budget, int64_t max_grid_voxels,
                                    const ImageUpload& upload, const std::string& bytes,
                                    const std::function<Status()>& stop) {
   // Held until the series is stored: the decoded voxels and the encoded blob live that long.

@@ -43,7 +43,7 @@ struct UploadedImage {
   bool replaced = false;
 };
 
-Result<UploadedImage> upload_image(db::Store& store, MemoryBudget& budget, int64_t max_grid_voxels,
+Result<UploadedImage> upload_image(db::RecordStore& store, MemoryBudget& budget, int64_t max_grid_voxels,
                                    const ImageUpload& upload, const std::string& bytes,
                                    const std::function<Status()>& stop);
 

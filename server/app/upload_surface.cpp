@@ -5,7 +5,7 @@
 
 namespace soiq::server {
 
-Result<UploadedSurface> upload_surface(db::Store& store, const SurfaceUpload& upload, const std::string& bytes) {
+Result<UploadedSurface> upload_surface(db::RecordStore& store, const SurfaceUpload& upload, const std::string& bytes) {
   SOIQ_ASSIGN_OR_RETURN(ParsedSurface parsed,
                         parse_surface(bytes, upload.format, upload.ras, upload.robust, upload.structure_name));
   SOIQ_ASSIGN_OR_RETURN(db::EncodedSurface encoded, db::encode_surface(parsed.mesh));

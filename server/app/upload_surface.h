@@ -38,6 +38,6 @@ struct UploadedSurface {
   MeshDefects defects;
 };
 
-Result<UploadedSurface> upload_surface(db::Store& store, const SurfaceUpload& upload, const std::string& bytes);
+Result<UploadedSurface> upload_surface(db::RecordStore& store, const SurfaceUpload& upload, const std::string& bytes);
 
 }  // namespace soiq::server

@@ -39,6 +39,11 @@ std::string error_body(const Status& s) { return error_body(s, http_status_of(s.
 std::string error_body(const Status& s, int http_status) {
   nlohmann::json body = {
       {"error", {{"code", status_code_name(s.code())}, {"status", http_status}, {"message", s.message()}}}};
+  // The request field the error is about, apart from the prose, as gRPC's ErrorDetails carries it.
+  if (!s.field().empty()) {
+    body["error"]["field"] = s.field();
+    body["error"]["reason"] = s.reason();
+  }
   return body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

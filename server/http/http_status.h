@@ -1,7 +1,8 @@
 #pragma once
 // The one mapping of soiq's Status to HTTP (as server/api/grpc_status.h is to gRPC): the status
 // code and the JSON error body every DICOMweb and /soiq/v1 error carries,
-//   {"error": {"code": "INVALID_ARGUMENT", "status": 400, "message": "..."}}.
+//   {"error": {"code": "INVALID_ARGUMENT", "status": 400, "message": "..."}},
+// with "field" and "reason" besides when the error is about one field of a request (Status::field).
 //
 //   INVALID_ARGUMENT -> 400                    NOT_FOUND -> 404
 //   UNAUTHENTICATED -> 401                     PERMISSION_DENIED -> 403

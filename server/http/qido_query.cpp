@@ -4,6 +4,7 @@
 #include <charconv>
 #include <map>
 
+#include "core/base/field_rules.h"
 #include "db/age_years.h"
 #include "db/validate_records.h"
 #include "server/app/structure_seg_uids.h"
@@ -39,23 +40,12 @@ Result<int64_t> parse_int(const std::string& name, const std::string& v, int64_t
   return n;
 }
 
+// DICOM's date range, by the one rule of dates (core/base/field_rules.h).
 Status date_range(const std::string& v, std::string& from, std::string& to) {
-  const size_t dash = v.find('-');
-  if (dash == std::string::npos) {
-    from = to = v;
-  } else {
-    if (v.find('-', dash + 1) != std::string::npos) return invalid_argument("StudyDate '" + v + "' has two '-'");
-    from = v.substr(0, dash);
-    to = v.substr(dash + 1);
-  }
-  const auto check = [&](const std::string& d) -> Status {
-    if (!d.empty() && (d.size() != 8 || !db::validate_date(d, "StudyDate").ok()))
-      return invalid_argument("StudyDate '" + v + "' is not YYYYMMDD or a range YYYYMMDD-YYYYMMDD (either end open)");
-    return ok_status();
-  };
-  SOIQ_RETURN_IF_ERROR(check(from));
-  SOIQ_RETURN_IF_ERROR(check(to));
-  if (from.empty() && to.empty()) return invalid_argument("StudyDate '-' has neither end");
+  Result<DateRange> range = parse_date_range(v);
+  if (!range.ok()) return range.status().in_field("StudyDate");
+  from = range->from;
+  to = range->to;
   return ok_status();
 }
 

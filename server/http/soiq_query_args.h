@@ -1,19 +1,11 @@
 #pragma once
-// The query arguments of GET /soiq/v1/query as the API's QueryRequest: the options of `soiq query`
-// under the same names without their dashes in front (docs/INTEROP.md), so a query moves between
-// the command line and a URL word for word.
-//
-//   patient sex min-age max-age birth-date-from birth-date-to study-date-from study-date-to
-//   modality description name laterality        stage 1, as soiq query's options
-//   where (repeatable) select (repeatable) order-by desc=true|false limit
-//   spacing (S or SX,SY,SZ) margin series-modality interpolation=nearest|linear
-//
-// Features and predicates in the grammar of proto/text/feature_expression.h. Values are checked
-// here for form only (numbers, one value per key but where and select); soiqd's parse_query checks
-// their meaning as for gRPC.
-// Errors: INVALID_ARGUMENT naming the argument: unknown, given twice, not a number, a malformed
-// expression (with its column), desc without order-by, margin without spacing, both spacing and
-// series-modality.
+// The query arguments of GET /soiq/v1/query as the API's QueryRequest: the options of the one
+// query table (proto/text/query_options.h), the names `soiq query` takes without their dashes
+// (docs/INTEROP.md), so a query moves between the command line and a URL word for word: min-age=40,
+// where=voxel_volume_mm3>1000 (repeatable), desc or desc=true|false.
+// Errors: INVALID_ARGUMENT naming the argument, as the table gives them (unknown, given twice, a
+// bad value, a malformed expression with its column, the rules between options); soiqd's
+// parse_query then checks what only the server knows (the feature catalogue), as for gRPC.
 
 #include <string>
 #include <utility>

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "proto/text/feature_expression.h"
+#include "proto/text/query_columns.h"
 #include "server/api/query_request.h"
 #include "server/http/http_handlers.h"
 #include "server/http/soiq_query_args.h"
@@ -19,37 +19,7 @@ namespace {
 // Ordered: a row's keys in its columns' order.
 using ordered_json = nlohmann::ordered_json;  // columns keep their query order
 
-std::string number_text(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 ordered_json number_json(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(); }
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-// The feature columns, as `soiq query` names them: where's, select's, order_by's (feature_text),
-// each name once (its first position).
-std::vector<std::pair<std::string, size_t>> feature_columns(const v1::QueryRequest& r) {
-  std::vector<std::string> all;
-  for (const auto& p : r.where()) all.push_back(proto_text::feature_text(p.feature()));
-  for (const auto& f : r.select()) all.push_back(proto_text::feature_text(f));
-  if (r.has_order_by()) all.push_back(proto_text::feature_text(r.order_by()));
-  std::vector<std::pair<std::string, size_t>> out;
-  for (size_t i = 0; i < all.size(); ++i) {
-    bool first = true;
-    for (const auto& [name, at] : out) first = first && name != all[i];
-    if (first) out.emplace_back(all[i], i);
-  }
-  return out;
-}
 
 ordered_json summary_json(const QuerySummary& s) {
   ordered_json skipped = ordered_json::array();
@@ -94,25 +64,18 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     std::stable_sort(rows.begin(), rows.end(),
                      [](const QueryRow& a, const QueryRow& b) { return a.structure.id < b.structure.id; });
 
-  const auto columns = feature_columns(request);
-  std::vector<std::string> header = {"id", "patient_id", "study_uid", "name", "laterality"};
-  for (const auto& [name, at] : columns) header.push_back(name);
+  const proto_text::QueryColumns columns = proto_text::query_columns(request);
+  const std::vector<std::string>& header = columns.header;
+  const size_t first_feature = proto_text::structure_columns().size();
   HttpReply reply;
   if (csv) {
-    std::string body;
-    for (size_t i = 0; i < header.size(); ++i) body += (i ? "," : "") + csv_field(header[i]);
-    body += "\n";
+    std::string body = proto_text::csv_line(header);
     for (const QueryRow& r : rows) {
-      body += std::to_string(r.structure.id) + "," + csv_field(r.structure.patient_id) + "," +
-              csv_field(r.structure.study_uid) + "," + csv_field(r.structure.name) + "," +
-              csv_field(r.structure.laterality);
-      for (const auto& [name, at] : columns) {
-        body += ",";
-        if (at >= r.values.size()) continue;
-        const std::vector<double>& v = r.values[at].values;
-        for (size_t k = 0; k < v.size(); ++k) body += (k ? ";" : "") + number_text(v[k]);
-      }
-      body += "\n";
+      std::vector<std::string> fields = {std::to_string(r.structure.id), r.structure.patient_id, r.structure.study_uid,
+                                         r.structure.name, r.structure.laterality};
+      for (const size_t at : columns.value_at)
+        fields.push_back(at < r.values.size() ? proto_text::csv_numbers(r.values[at].values) : "");
+      body += proto_text::csv_line(fields);
     }
     reply.content_type = "text/csv; charset=utf-8";
     reply.body = std::move(body);
@@ -121,11 +84,13 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
   ordered_json out_rows = ordered_json::array();
   for (const QueryRow& r : rows) {
     ordered_json row = {{"id", r.structure.id},
-                {"patient_id", r.structure.patient_id},
-                {"study_uid", r.structure.study_uid},
-                {"name", r.structure.name},
-                {"laterality", r.structure.laterality}};
-    for (const auto& [name, at] : columns) {
+                        {"patient_id", r.structure.patient_id},
+                        {"study_uid", r.structure.study_uid},
+                        {"name", r.structure.name},
+                        {"laterality", r.structure.laterality}};
+    for (size_t k = 0; k < columns.value_at.size(); ++k) {
+      const std::string& name = header[first_feature + k];
+      const size_t at = columns.value_at[k];
       if (at >= r.values.size() || r.values[at].values.empty()) {
         row[name] = nullptr;
       } else if (r.values[at].values.size() == 1) {

@@ -1,150 +1,78 @@
+// The feature grammar (proto/text/feature_expression.h) against the shared cases
+// (tests/data/shared_cases/feature_expressions.json), which the Python client is held to as well:
+// the same texts accepted as the same messages with the same canonical text, the same texts refused
+// at the same column.
 #include "proto/text/feature_expression.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
+#include "tests/support/shared_cases.h"
+
 namespace soiq::proto_text {
 namespace {
 
-TEST(ParseFeature, NameAloneIsAShapeFeature) {
-  const auto f = parse_feature("voxel_volume_mm3");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(f->name(), "voxel_volume_mm3");
-  EXPECT_EQ(f->region(), "");
-  EXPECT_EQ(f->image(), "");
-  EXPECT_FALSE(f->asymmetry());
+using soiq::testing::same_message;
+using soiq::testing::shared_cases;
+
+std::string predicate_text(const soiq::v1::Predicate& p) {
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", p.value());
+  return feature_text(p.feature()) + " " + comparison_text(p.op()) + " " + value;
 }
 
-TEST(ParseFeature, RegionAndImageInBrackets) {
-  const auto f = parse_feature("mean[shell:5,PT]");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(f->name(), "mean");
-  EXPECT_EQ(f->region(), "shell:5");
-  EXPECT_EQ(f->image(), "PT");
-}
-
-TEST(ParseFeature, RegionWithoutImage) {
-  const auto f = parse_feature("voxel_count[core:2.5]");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(f->region(), "core:2.5");
-  EXPECT_EQ(f->image(), "");
-}
-
-TEST(ParseFeature, ImageWithoutRegionIsASeriesUidToo) {
-  const auto f = parse_feature("mean[,1.2.840.113619.2]");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(f->region(), "");
-  EXPECT_EQ(f->image(), "1.2.840.113619.2");
-}
-
-TEST(ParseFeature, AsymWrapsAFeature) {
-  const auto f = parse_feature(" asym( mean[inside,MR] ) ");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_TRUE(f->asymmetry());
-  EXPECT_EQ(f->name(), "mean");
-  EXPECT_EQ(f->region(), "inside");
-  EXPECT_EQ(f->image(), "MR");
-}
-
-TEST(ParseFeature, NameStartingWithAsymIsNotTheFunction) {
-  const auto f = parse_feature("asymmetry_score");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(f->name(), "asymmetry_score");
-  EXPECT_FALSE(f->asymmetry());
-}
-
-TEST(ParseFeature, BlanksBetweenTokensAreAllowed) {
-  const auto f = parse_feature("mean [ shell:5 , PT ]");
-  ASSERT_TRUE(f.ok()) << f.status().to_string();
-  EXPECT_EQ(feature_text(*f), "mean[shell:5,PT]");
-}
-
-struct BadFeature {
-  const char* text;
-  const char* phrase;
-};
-
-class ParseFeatureError : public testing::TestWithParam<BadFeature> {};
-
-TEST_P(ParseFeatureError, SaysWhatIsWrongAndWhere) {
-  const auto f = parse_feature(GetParam().text);
-  ASSERT_FALSE(f.ok());
-  EXPECT_EQ(f.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(f.status().message().find(GetParam().phrase), std::string::npos) << f.status().message();
-  EXPECT_NE(f.status().message().find("column"), std::string::npos) << f.status().message();
-}
-
-INSTANTIATE_TEST_SUITE_P(Malformed, ParseFeatureError,
-                         testing::Values(BadFeature{"", "expected a feature name at column 1"},
-                                         BadFeature{"1mean", "expected a feature name at column 1"},
-                                         BadFeature{"mean[shell:5,PT", "expected ']' at column 16"},
-                                         BadFeature{"mean[]", "expected a region"},
-                                         BadFeature{"mean[shell:0]", "radius > 0"},
-                                         BadFeature{"mean[shell:x]", "radius > 0"},
-                                         BadFeature{"mean[around]", "unknown region 'around'"},
-                                         BadFeature{"mean[insde]", "did you mean 'inside'?"},
-                                         BadFeature{"mean[shel:5]", "did you mean 'shell:5'?"},
-                                         BadFeature{"mean[inside,]", "expected an image"},
-                                         BadFeature{"asym(voxel_count", "expected ')' closing asym("},
-                                         BadFeature{"asym(asym(voxel_count))", "cannot be nested"},
-                                         BadFeature{"mean extra", "unexpected text after the feature at column 6"}));
-
-TEST(ParsePredicate, FeatureOperatorNumber) {
-  const auto p = parse_predicate("voxel_volume_mm3>50000");
-  ASSERT_TRUE(p.ok()) << p.status().to_string();
-  EXPECT_EQ(p->feature().name(), "voxel_volume_mm3");
-  EXPECT_EQ(p->op(), soiq::v1::GT);
-  EXPECT_EQ(p->value(), 50000);
-}
-
-TEST(ParsePredicate, TwoCharacterOperatorsAreNotSplit) {
-  struct Case {
-    const char* text;
-    soiq::v1::ComparisonOp op;
-  };
-  for (const Case& c : {Case{"a <= 1", soiq::v1::LE}, Case{"a >= 1", soiq::v1::GE}, Case{"a == 1", soiq::v1::EQ},
-                        Case{"a != 1", soiq::v1::NE}, Case{"a < 1", soiq::v1::LT}, Case{"a > 1", soiq::v1::GT}}) {
-    const auto p = parse_predicate(c.text);
-    ASSERT_TRUE(p.ok()) << c.text << ": " << p.status().to_string();
-    EXPECT_EQ(p->op(), c.op) << c.text;
-    EXPECT_STREQ(comparison_text(p->op()), std::string(c.text).substr(2, std::string(c.text).size() - 4).c_str());
+template <typename Parse, typename Text>
+void check_cases(const char* kind, const char* message_key, Parse parse, Text text_of) {
+  int accepted = 0, refused = 0;
+  const nlohmann::json cases = shared_cases("feature_expressions.json");
+  for (const auto& c : cases.at(kind)) {
+    const std::string text = c.at("text");
+    const auto got = parse(text);
+    if (c.contains("error")) {
+      ++refused;
+      ASSERT_FALSE(got.ok()) << "'" << text << "' was accepted";
+      EXPECT_EQ(got.status().code(), StatusCode::kInvalidArgument);
+      const std::string& m = got.status().message();
+      EXPECT_NE(m.find(c.at("error").get<std::string>()), std::string::npos) << text << ": " << m;
+      const std::string column = "at column " + std::to_string(c.at("column").get<int>()) + " of";
+      EXPECT_NE(m.find(column), std::string::npos) << text << ": " << m;
+      continue;
+    }
+    ++accepted;
+    ASSERT_TRUE(got.ok()) << text << ": " << got.status().message();
+    EXPECT_TRUE(same_message(c.at(message_key), *got)) << text;
+    EXPECT_EQ(text_of(*got), c.at("canonical").get<std::string>()) << text;
+    // The canonical text reads back as the same message.
+    const auto again = parse(text_of(*got));
+    ASSERT_TRUE(again.ok()) << text_of(*got);
+    EXPECT_TRUE(same_message(c.at(message_key), *again)) << text_of(*got);
   }
+  EXPECT_GT(accepted, 5);
+  EXPECT_GT(refused, 5);
 }
 
-TEST(ParsePredicate, NumbersMayBeNegativeOrScientific) {
-  const auto p = parse_predicate("asym(voxel_volume_mm3) < -0.05");
-  ASSERT_TRUE(p.ok()) << p.status().to_string();
-  EXPECT_TRUE(p->feature().asymmetry());
-  EXPECT_DOUBLE_EQ(p->value(), -0.05);
-  const auto q = parse_predicate("mean[shell:5,PT]>=2.5e0 ");
-  ASSERT_TRUE(q.ok()) << q.status().to_string();
-  EXPECT_DOUBLE_EQ(q->value(), 2.5);
+TEST(FeatureGrammar, FeaturesAsTheSharedCasesSay) { check_cases("features", "feature", parse_feature, feature_text); }
+
+TEST(FeatureGrammar, PredicatesAsTheSharedCasesSay) {
+  check_cases("predicates", "predicate", parse_predicate, predicate_text);
 }
 
-TEST(ParsePredicate, MissingOperatorIsNamed) {
-  const auto p = parse_predicate("voxel_volume_mm3");
-  ASSERT_FALSE(p.ok());
-  EXPECT_NE(p.status().message().find("expected a comparison"), std::string::npos) << p.status().message();
-}
-
-TEST(ParsePredicate, BadNumberIsNamedWithItsColumn) {
-  const auto p = parse_predicate("mean[inside,PT] > big");
-  ASSERT_FALSE(p.ok());
-  EXPECT_EQ(p.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(p.status().message().find("expected a number at column 19"), std::string::npos) << p.status().message();
-}
-
-TEST(ParsePredicate, SingleEqualsIsNotAnOperator) {
-  const auto p = parse_predicate("voxel_count = 3");
-  ASSERT_FALSE(p.ok());
-  EXPECT_NE(p.status().message().find("expected a comparison"), std::string::npos) << p.status().message();
-}
-
-TEST(FeatureText, ReadsBackAsTheSameFeature) {
-  for (const char* text : {"voxel_count", "mean[shell:5,PT]", "mean[,MR]", "mean[inside]", "asym(mean[core:2,PT])"}) {
-    const auto f = parse_feature(text);
-    ASSERT_TRUE(f.ok()) << text;
-    EXPECT_EQ(feature_text(*f), text);
+TEST(FeatureGrammar, EveryComparisonHasOneSymbolBothWays) {
+  for (const Comparison c : kComparisons) {
+    const soiq::v1::ComparisonOp op = proto_comparison(c);
+    EXPECT_NE(op, soiq::v1::COMPARISON_OP_UNSPECIFIED);
+    EXPECT_EQ(comparison_of(op), c);
+    EXPECT_EQ(comparison_of_symbol(comparison_symbol(c)), c);
+    const auto p = parse_predicate(std::string("a ") + comparison_symbol(c) + " 1");
+    ASSERT_TRUE(p.ok()) << comparison_symbol(c);
+    EXPECT_EQ(p->op(), op);
   }
+  EXPECT_EQ(comparison_of(soiq::v1::COMPARISON_OP_UNSPECIFIED), std::nullopt);
+  EXPECT_STREQ(comparison_text(soiq::v1::COMPARISON_OP_UNSPECIFIED), "?");
+  EXPECT_EQ(comparison_of_symbol("="), std::nullopt);
+  EXPECT_STREQ(sql_operator(Comparison::kNotEqual), "<>");
+  EXPECT_STREQ(sql_operator(Comparison::kEqual), "=");
 }
 
 }  // namespace

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "tests/support/simulated_models.h"
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
 #include "core/voxelize/voxelize_1d.h"
+#include "tests/support/simulated_models.h"
 
 namespace soiq {
 namespace {

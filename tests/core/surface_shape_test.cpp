@@ -11,7 +11,6 @@
 namespace soiq {
 namespace {
 
-
 TEST(SurfaceShape, BoxHasHandComputedFeatures) {
   const auto s = surface_shape(box({1, 2, 3}, {3, 5, 7}));  // 2 x 3 x 4 mm
   ASSERT_TRUE(s.ok()) << s.status().to_string();

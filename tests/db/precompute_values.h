@@ -36,7 +36,7 @@ inline Precomputed values_for(const StructureRecord& s, double volume) {
 // The ids stage 1 keeps with voxel_volume_mm3 > 100.
 inline std::vector<int64_t> large(Store& store) {
   Stage1Filter f;
-  f.stored_features.push_back({"voxel_volume_mm3", ">", 100});
+  f.stored_features.push_back({"voxel_volume_mm3", Comparison::kGreater, 100});
   auto got = store.stage1(f, 1000);
   EXPECT_TRUE(got.ok()) << got.status().to_string();
   std::vector<int64_t> ids;

@@ -46,7 +46,7 @@ TEST_F(Precompute, AContentFilterIsSearchedByIndexWhateverTheStatisticsSay) {
   store_ = open_store(dir_.file("p.db"));
   for (const StructureRecord& s : all) ASSERT_TRUE(store_->put_precomputed(values_for(s, double(s.id))).ok());
   Stage1Filter f;
-  f.stored_features.push_back({"voxel_volume_mm3", ">", 190});
+  f.stored_features.push_back({"voxel_volume_mm3", Comparison::kGreater, 190});
   auto plan = store_->stage1_plan(f, 1000);
   ASSERT_TRUE(plan.ok()) << plan.status().to_string();
   std::string text;

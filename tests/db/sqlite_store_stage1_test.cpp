@@ -34,7 +34,7 @@ TEST_F(Stage1, EverySelectiveFilterIsAnIndexSearch) {
     const bool one_sided = (f.min_age_years.has_value() != f.max_age_years.has_value()) ||
                            (!f.birth_date_from.empty() && f.birth_date_to.empty()) ||
                            (!f.study_date_from.empty() && f.study_date_to.empty());
-    const bool not_equal = !f.stored_features.empty() && f.stored_features[0].op == "!=";
+    const bool not_equal = !f.stored_features.empty() && f.stored_features[0].op == Comparison::kNotEqual;
     const bool unindexed =
         one_sided || not_equal || !f.sex.empty() || !f.laterality.empty() || !f.modality.empty() ||
         (!f.patient_id_glob.empty() && std::string("*?[").find(f.patient_id_glob[0]) != std::string::npos) ||

@@ -65,14 +65,15 @@ struct Row {
 };
 
 // `value op threshold` as stage 2 compares (server/app/query.h): NaN and unknown never hold.
-inline bool holds(const std::optional<double>& value, const std::string& op, double threshold) {
+// Written out here rather than calling soiq::compare: the oracle stays independent of the code under test.
+inline bool holds(const std::optional<double>& value, Comparison op, double threshold) {
   if (!value || std::isnan(*value)) return false;
   const double v = *value;
-  if (op == "<") return v < threshold;
-  if (op == "<=") return v <= threshold;
-  if (op == ">") return v > threshold;
-  if (op == ">=") return v >= threshold;
-  if (op == "=") return v == threshold;
+  if (op == Comparison::kLess) return v < threshold;
+  if (op == Comparison::kLessOrEqual) return v <= threshold;
+  if (op == Comparison::kGreater) return v > threshold;
+  if (op == Comparison::kGreaterOrEqual) return v >= threshold;
+  if (op == Comparison::kEqual) return v == threshold;
   return v != threshold;
 }
 

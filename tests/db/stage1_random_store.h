@@ -180,12 +180,15 @@ inline std::vector<std::pair<std::string, std::function<void(Stage1Filter&)>>> s
   }
   for (std::string l : {"L", "R"}) out.push_back({"laterality " + l, [l](Stage1Filter& f) { f.laterality = l; }});
   // Each stored feature with each operator (the values are tenths in [0, 100)).
-  const std::vector<std::string> ops = {"<", "<=", ">", ">=", "=", "!="};
+  const std::vector<Comparison> ops = {Comparison::kLess,           Comparison::kLessOrEqual, Comparison::kGreater,
+                                       Comparison::kGreaterOrEqual, Comparison::kEqual,       Comparison::kNotEqual};
   for (size_t i = 0; i < stored_feature_names().size(); ++i) {
     const std::string name = stored_feature_names()[i];
-    const std::string op = ops[i % ops.size()];
-    const double value = op == "=" || op == "!=" ? 42.5 : 20.0 + 10.0 * double(i);
-    out.push_back({name + " " + op, [=](Stage1Filter& f) { f.stored_features.push_back({name, op, value}); }});
+    const Comparison op = ops[i % ops.size()];
+    const double value = op == Comparison::kEqual || op == Comparison::kNotEqual ? 42.5 : 20.0 + 10.0 * double(i);
+    out.push_back({name + " " + comparison_symbol(op), [=](Stage1Filter& f) {
+                     f.stored_features.push_back({name, op, value});
+                   }});
   }
   return out;
 }

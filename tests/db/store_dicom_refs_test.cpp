@@ -59,7 +59,7 @@ TYPED_TEST(StoreDicomRefs, BadReferencesAreRefusedNamingTheField) {
   backslash.series.slice_instance_uids[1] = "1.2\\3";  // would split into two on reading
   r = store->put_series(backslash);
   ASSERT_EQ(r.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_TRUE(contains(r.status().message(), "slice instance uid '1.2\\3'")) << r.status().message();
+  EXPECT_TRUE(contains(r.status().message(), "slice instance uid: '1.2\\3'")) << r.status().message();
 
   NewStructure s = imported_structure("GTV", 0);
   s.source_series_uid = "not a uid";

@@ -3,6 +3,9 @@
 // store of the backend (store_backends.h). Derive a suite template from it
 // (template <typename B> class StoreWriteSeries : public testing::StoreTest<B> {};): two fixture
 // classes may not share one suite name in a binary. Typed tests reach the members through this->.
+// The suites follow the store's roles: records (store_write_*, store_import_batch, store_stage1*,
+// store_dicomweb_search, ...), features (store_write_cache, store_precompute) and replicas
+// (store_stage2_work).
 
 #include <gtest/gtest.h>
 
@@ -26,6 +29,12 @@ class StoreTest : public ::testing::Test {
     EXPECT_TRUE(c.ok()) << c.status().to_string();
     return c.ok() ? *c : Counts{};
   }
+
+  // The store by role (db/store.h): a suite of one role's contract reaches the store through its
+  // role only, so the role's interface alone is what it holds to that contract.
+  RecordStore& records() { return *store_; }
+  FeatureStore& features() { return *store_; }
+  ReplicaStore& replicas() { return *store_; }
 
   TempDir dir_;
   std::unique_ptr<Store> store_;

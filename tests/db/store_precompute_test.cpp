@@ -36,11 +36,11 @@ TYPED_TEST(Precompute, ANewStructureIsQueuedAndLeavesTheQueueWithItsValues) {
   // Unstored structures pass a stored-feature condition: stage 2 decides them.
   EXPECT_EQ(large(*this->store_), (std::vector<int64_t>{a->structure.id, b->structure.id}));
 
-  ASSERT_TRUE(this->store_->put_precomputed(values_for(a->structure, 50)).ok());
-  ASSERT_TRUE(this->store_->put_precomputed(values_for(b->structure, 500)).ok());
+  ASSERT_TRUE(this->features().put_precomputed(values_for(a->structure, 50)).ok());
+  ASSERT_TRUE(this->features().put_precomputed(values_for(b->structure, 500)).ok());
   EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_EQ(large(*this->store_), (std::vector<int64_t>{b->structure.id}));
-  auto cached = this->store_->cached_features({"v7|" + b->structure.surface.sha256 + "|grid|nonzero|"});
+  auto cached = this->features().cached_features({"v7|" + b->structure.surface.sha256 + "|grid|nonzero|"});
   ASSERT_TRUE(cached.ok());
   ASSERT_EQ(cached->size(), 1u);
   EXPECT_EQ(cached->at(0).value, std::vector<double>{500});
@@ -59,7 +59,7 @@ TYPED_TEST(Precompute, AFailureLeavesTheQueueAndIsCountedAndTheStructureStillRea
   failed.structure_id = a->structure.id;
   failed.surface_sha256 = a->structure.surface.sha256;
   failed.failure = "RESOURCE_EXHAUSTED: grid too large";
-  ASSERT_TRUE(this->store_->put_precomputed(failed).ok());
+  ASSERT_TRUE(this->features().put_precomputed(failed).ok());
   EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_EQ(this->store_->counts()->precompute_failed, 1);
   EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});
@@ -79,9 +79,9 @@ TYPED_TEST(Precompute, ValuesOfASurfaceNoLongerStoredAreDropped) {
   moved.source_uid = "1.2.3/1";
   auto b = this->store_->add_structure(moved);
   ASSERT_TRUE(b.ok() && b->replaced);
-  ASSERT_TRUE(this->store_->put_precomputed(values_for(a->structure, 500)).ok());
+  ASSERT_TRUE(this->features().put_precomputed(values_for(a->structure, 500)).ok());
   EXPECT_EQ(queued_ids(*this->store_), std::vector<int64_t>{a->structure.id});  // still to do, on the new surface
-  ASSERT_TRUE(this->store_->put_precomputed(values_for(b->structure, 50)).ok());
+  ASSERT_TRUE(this->features().put_precomputed(values_for(b->structure, 50)).ok());
   EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_TRUE(large(*this->store_).empty());
   // A new surface forgets the values and queues it; the same surface again keeps them.
@@ -92,18 +92,18 @@ TYPED_TEST(Precompute, ValuesOfASurfaceNoLongerStoredAreDropped) {
   EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});  // unstored: passes to stage 2
   // Deleted while computed: nothing stored, no error.
   ASSERT_TRUE(this->store_->delete_structure(a->structure.id).ok());
-  EXPECT_TRUE(this->store_->put_precomputed(values_for(b->structure, 50)).ok());
+  EXPECT_TRUE(this->features().put_precomputed(values_for(b->structure, 50)).ok());
   EXPECT_EQ(this->store_->counts()->precompute_queued, 0);
 }
 
 TYPED_TEST(Precompute, ValuesOfAnotherDefinitionVersionAreQueuedAgain) {
   auto a = this->store_->add_structure(new_structure("P1", "1.1", "A", 0));
   ASSERT_TRUE(a.ok());
-  ASSERT_TRUE(this->store_->put_precomputed(values_for(a->structure, 50)).ok());  // version 7
-  EXPECT_EQ(*this->store_->requeue_precompute(7), 0);
+  ASSERT_TRUE(this->features().put_precomputed(values_for(a->structure, 50)).ok());  // version 7
+  EXPECT_EQ(*this->features().requeue_precompute(7), 0);
   EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_TRUE(large(*this->store_).empty());
-  EXPECT_EQ(*this->store_->requeue_precompute(8), 1);
+  EXPECT_EQ(*this->features().requeue_precompute(8), 1);
   EXPECT_EQ(queued_ids(*this->store_), std::vector<int64_t>{a->structure.id});
   EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});
 }
@@ -113,17 +113,17 @@ TYPED_TEST(Precompute, MalformedValuesAndConditionsAreInvalidArgument) {
   ASSERT_TRUE(a.ok());
   Precomputed p = values_for(a->structure, 1);
   p.values.pop_back();
-  EXPECT_EQ(this->store_->put_precomputed(p).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(this->features().put_precomputed(p).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(queued_ids(*this->store_).size(), 1u);
   for (const StoredFeatureCondition& c :
-       std::vector<StoredFeatureCondition>{{"mean", ">", 1},
-                                           {"voxel_volume_mm3); DROP TABLE x; --", ">", 1},
-                                           {"sphericity", "LIKE", 1},
-                                           {"sphericity", ">", std::nan("")}}) {
+       std::vector<StoredFeatureCondition>{{"mean", Comparison::kGreater, 1},
+                                           {"voxel_volume_mm3); DROP TABLE x; --", Comparison::kGreater, 1},
+                                           {"sphericity", static_cast<Comparison>(17), 1},
+                                           {"sphericity", Comparison::kGreater, std::nan("")}}) {
     Stage1Filter f;
     f.stored_features.push_back(c);
     auto got = this->store_->stage1(f, 10);
-    EXPECT_EQ(got.status().code(), StatusCode::kInvalidArgument) << c.name << " " << c.op;
+    EXPECT_EQ(got.status().code(), StatusCode::kInvalidArgument) << c.name << " " << comparison_symbol(c.op);
   }
 }
 

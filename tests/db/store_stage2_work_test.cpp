@@ -26,17 +26,17 @@ template <typename Backend>
 class StoreStage2Work : public testing::StoreTest<Backend> {
  protected:
   int beat(const std::string& replica, int64_t live_ms = 60000) {
-    Result<int> live = this->store_->replica_heartbeat(replica, live_ms);
+    Result<int> live = this->replicas().replica_heartbeat(replica, live_ms);
     EXPECT_TRUE(live.ok()) << live.status().to_string();
     return live.ok() ? *live : -1;
   }
   std::vector<Stage2Work> claim(const std::string& replica, int64_t limit, int64_t live_ms = 60000) {
-    auto got = this->store_->claim_stage2_work(replica, limit, live_ms);
+    auto got = this->replicas().claim_stage2_work(replica, limit, live_ms);
     EXPECT_TRUE(got.ok()) << got.status().to_string();
     return got.ok() ? *got : std::vector<Stage2Work>{};
   }
   int64_t left(const std::string& query) {
-    auto n = this->store_->stage2_work_left(query);
+    auto n = this->replicas().stage2_work_left(query);
     EXPECT_TRUE(n.ok()) << n.status().to_string();
     return n.ok() ? *n : -1;
   }
@@ -53,15 +53,15 @@ TYPED_TEST(StoreStage2Work, AHeartbeatCountsTheReplicasHeardFromWithinTheWindow)
 }
 
 TYPED_TEST(StoreStage2Work, TheFirstLiveReplicaIsTheSmallestIdHeardFrom) {
-  EXPECT_EQ(*this->store_->first_live_replica(60000), "");
+  EXPECT_EQ(*this->replicas().first_live_replica(60000), "");
   this->beat("b");
   this->beat("c");
-  EXPECT_EQ(*this->store_->first_live_replica(60000), "b");
+  EXPECT_EQ(*this->replicas().first_live_replica(60000), "b");
   this->beat("a");
-  EXPECT_EQ(*this->store_->first_live_replica(60000), "a");
+  EXPECT_EQ(*this->replicas().first_live_replica(60000), "a");
   std::this_thread::sleep_for(300ms);
   this->beat("c");
-  EXPECT_EQ(*this->store_->first_live_replica(200), "c");  // a and b are silent
+  EXPECT_EQ(*this->replicas().first_live_replica(200), "c");  // a and b are silent
 }
 
 TYPED_TEST(StoreStage2Work, EveryPostedItemIsClaimedOnceAndFinishedItemsAreNotLeft) {
@@ -70,7 +70,7 @@ TYPED_TEST(StoreStage2Work, EveryPostedItemIsClaimedOnceAndFinishedItemsAreNotLe
   std::vector<int64_t> ids;
   for (int64_t i = 1; i <= 300; ++i) ids.push_back(i);  // more than one statement's list
   ids.push_back(7);                                     // twice: one item
-  ASSERT_TRUE(this->store_->post_stage2_work("a", "q1", "ask one", ids).ok());
+  ASSERT_TRUE(this->replicas().post_stage2_work("a", "q1", "ask one", ids).ok());
   EXPECT_EQ(this->left("q1"), 300);
   const std::vector<Stage2Work> first = this->claim("a", 120);
   const std::vector<Stage2Work> second = this->claim("b", 1000);
@@ -86,18 +86,18 @@ TYPED_TEST(StoreStage2Work, EveryPostedItemIsClaimedOnceAndFinishedItemsAreNotLe
     }
   }
   EXPECT_EQ(claimed.size(), 300u);
-  for (const Stage2Work& w : first) ASSERT_TRUE(this->store_->finish_stage2_work(w.query_id, w.structure_id).ok());
+  for (const Stage2Work& w : first) ASSERT_TRUE(this->replicas().finish_stage2_work(w.query_id, w.structure_id).ok());
   EXPECT_EQ(this->left("q1"), 180);
-  EXPECT_TRUE(this->store_->finish_stage2_work("q1", 1).ok());  // finished before: no error
-  ASSERT_TRUE(this->store_->drop_stage2_work("q1").ok());
+  EXPECT_TRUE(this->replicas().finish_stage2_work("q1", 1).ok());  // finished before: no error
+  ASSERT_TRUE(this->replicas().drop_stage2_work("q1").ok());
   EXPECT_EQ(this->left("q1"), 0);
 }
 
 TYPED_TEST(StoreStage2Work, ADeadReplicasClaimsAreClaimedAgainAndItsPostsDropped) {
   this->beat("poster");
   this->beat("dies");
-  ASSERT_TRUE(this->store_->post_stage2_work("poster", "q", "ask", {1, 2, 3}).ok());
-  ASSERT_TRUE(this->store_->post_stage2_work("dies", "orphan", "ask", {4}).ok());
+  ASSERT_TRUE(this->replicas().post_stage2_work("poster", "q", "ask", {1, 2, 3}).ok());
+  ASSERT_TRUE(this->replicas().post_stage2_work("dies", "orphan", "ask", {4}).ok());
   ASSERT_EQ(this->claim("dies", 3).size(), 3u);  // q's 1, 2, 3 (posted first)
   std::this_thread::sleep_for(300ms);
   this->beat("poster", 200);  // "dies" has been silent for 300 ms: dead; its own post is dropped
@@ -111,7 +111,7 @@ TYPED_TEST(StoreStage2Work, ReplicasClaimingAtOnceNeverShareAnItem) {
   std::vector<int64_t> ids;
   for (int64_t i = 1; i <= 400; ++i) ids.push_back(i);
   for (const char* r : {"r0", "r1", "r2", "r3"}) this->beat(r);
-  ASSERT_TRUE(this->store_->post_stage2_work("r0", "q", "ask", ids).ok());
+  ASSERT_TRUE(this->replicas().post_stage2_work("r0", "q", "ask", ids).ok());
   std::mutex mutex;
   std::map<int64_t, int> times;
   std::atomic<int> failures{0};
@@ -120,7 +120,7 @@ TYPED_TEST(StoreStage2Work, ReplicasClaimingAtOnceNeverShareAnItem) {
     replicas.emplace_back([&, r] {
       const std::string id = "r" + std::to_string(r);
       for (int round = 0; round < 400; ++round) {  // bounded: a broken claim must fail, not hang
-        auto got = this->store_->claim_stage2_work(id, 7, 60000);
+        auto got = this->replicas().claim_stage2_work(id, 7, 60000);
         if (!got.ok()) {
           ++failures;
           return;
@@ -139,10 +139,10 @@ TYPED_TEST(StoreStage2Work, ReplicasClaimingAtOnceNeverShareAnItem) {
 }
 
 TYPED_TEST(StoreStage2Work, BadIdsAreInvalidArguments) {
-  EXPECT_EQ(this->store_->replica_heartbeat("", 1000).status().code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(this->store_->replica_heartbeat("a\nb", 1000).status().code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(this->store_->post_stage2_work("a", "", "ask", {1}).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(this->store_->claim_stage2_work("a", 0, 1000).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(this->replicas().replica_heartbeat("", 1000).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(this->replicas().replica_heartbeat("a\nb", 1000).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(this->replicas().post_stage2_work("a", "", "ask", {1}).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(this->replicas().claim_stage2_work("a", 0, 1000).status().code(), StatusCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -29,15 +29,15 @@ TYPED_TEST(StoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
     entries.push_back({keys.back(), "mean|inside|", {double(i), 0.5}});
   }
   entries.push_back({"key3", "empty", {}});
-  ASSERT_TRUE(this->store_->put_cached_features(sha, entries).ok());
-  auto got = this->store_->cached_features(keys);
+  ASSERT_TRUE(this->features().put_cached_features(sha, entries).ok());
+  auto got = this->features().cached_features(keys);
   ASSERT_TRUE(got.ok()) << got.status().to_string();
   EXPECT_EQ(got->size(), 701u);
-  ASSERT_TRUE(this->store_->put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
-  auto one = this->store_->cached_features({"key5", "nope"});
+  ASSERT_TRUE(this->features().put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
+  auto one = this->features().cached_features({"key5", "nope"});
   ASSERT_EQ(one->size(), 1u);
   EXPECT_EQ((*one)[0].value, std::vector<double>{-1});
-  auto empty = this->store_->cached_features({"key3"});
+  auto empty = this->features().cached_features({"key3"});
   ASSERT_EQ(empty->size(), 2u);
   EXPECT_EQ((*empty)[0].entry, "empty");
   EXPECT_TRUE((*empty)[0].value.empty());
@@ -55,13 +55,13 @@ TYPED_TEST(StoreWriteCache, CachedFeaturesReadOnlyTheNamedEntries) {
                                               {"k2", "volume", {5}},
                                               {"k2", "area", {6}}})
                   .ok());
-  auto some = this->store_->cached_features({"k1", "k2"}, {"volume", "mean|inside|x", "not cached"});
+  auto some = this->features().cached_features({"k1", "k2"}, {"volume", "mean|inside|x", "not cached"});
   ASSERT_TRUE(some.ok()) << some.status().to_string();
   std::vector<std::string> got;
   for (const CachedFeature& f : *some) got.push_back(f.key + " " + f.entry);
   EXPECT_EQ(got, (std::vector<std::string>{"k1 mean|inside|x", "k1 volume", "k2 volume"}));
   EXPECT_EQ((*some)[0].value, (std::vector<double>{3, 4}));
-  auto all = this->store_->cached_features({"k1", "k2"}, {});
+  auto all = this->features().cached_features({"k1", "k2"}, {});
   ASSERT_TRUE(all.ok());
   EXPECT_EQ(all->size(), 5u);
 }
@@ -76,16 +76,16 @@ TYPED_TEST(StoreWriteCache, ABatchStoresEverySurfacesEntriesAndSkipsAGoneSurface
   std::vector<SurfaceFeatures> batch = {{a->structure.surface.sha256, {{"ka", "volume", {1}}}},
                                         {gone, {{"kg", "volume", {9}}}},
                                         {b->structure.surface.sha256, {{"kb", "volume", {2}}, {"kb", "area", {3}}}}};
-  ASSERT_TRUE(this->store_->put_cached_features(batch).ok());
-  auto got = this->store_->cached_features({"ka", "kb", "kg"});
+  ASSERT_TRUE(this->features().put_cached_features(batch).ok());
+  auto got = this->features().cached_features({"ka", "kb", "kg"});
   ASSERT_TRUE(got.ok());
   EXPECT_EQ(got->size(), 3u);  // ka volume, kb volume and area; nothing of the gone surface
   for (const CachedFeature& f : *got) EXPECT_NE(f.key, "kg");
 
   batch[0].entries[0].entry = "";
-  const Status s = this->store_->put_cached_features(batch);
+  const Status s = this->features().put_cached_features(batch);
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
-  EXPECT_TRUE(this->store_->put_cached_features(std::vector<SurfaceFeatures>{}).ok());
+  EXPECT_TRUE(this->features().put_cached_features(std::vector<SurfaceFeatures>{}).ok());
 }
 
 }  // namespace

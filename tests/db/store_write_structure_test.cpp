@@ -138,12 +138,17 @@ TYPED_TEST(StoreWriteStructure, InvalidInputsAreInvalidArgumentNamingTheField) {
       {[](NewStructure& s) { s.patient.patient_id = std::string(""); }, "patient_id"},
       {[](NewStructure& s) { s.study.study_uid = std::string(""); }, "study_uid"},
       {[](NewStructure& s) { s.name = std::string(""); }, "name"},
-      {[](NewStructure& s) { s.patient.sex = std::string("X"); }, "sex 'X'"},
-      {[](NewStructure& s) { s.laterality = std::string("left"); }, "laterality 'left'"},
+      {[](NewStructure& s) { s.patient.sex = std::string("X"); }, "sex: 'X' is not a sex"},
+      {[](NewStructure& s) { s.laterality = std::string("left"); }, "laterality: 'left' is not a laterality"},
       {[](NewStructure& s) { s.patient.birth_date = std::string("1960-01-01"); }, "birth date"},
       {[](NewStructure& s) { s.study.study_date = std::string("20201340"); }, "study date"},
       {[](NewStructure& s) { s.study.patient_id = std::string("P2"); }, "names patient 'P2'"},
       {[](NewStructure& s) { s.surface.sha256 = std::string("ABC"); }, "sha256"},
+      // Not UTF-8 (Latin-1 bytes): PostgreSQL's text would refuse it in its own words, SQLite would
+      // store it; both backends refuse it by the same rule before any SQL runs.
+      {[](NewStructure& s) { s.name = std::string("GTV \xe9"); }, "structure name: 'GTV \xe9' is not UTF-8 text"},
+      {[](NewStructure& s) { s.study.description = std::string("Cr\xe2ne"); }, "is not UTF-8 text"},
+      {[](NewStructure& s) { s.patient.birth_date = std::string("20230229"); }, "is not a calendar date"},
   };
   for (const Case& c : cases) {
     NewStructure s = new_structure("P1", "S1", "x");

@@ -32,7 +32,7 @@ base="http://127.0.0.1:$(tr -d '[:space:]' <"$tmp/dw.http-port")/dicom-web"
 study=1.3.6.1.4.1.5962.1.2.1.20040119072730.12322
 
 expect 400 "unknown query key 'Colour'" "$base/studies?Colour=red"
-expect 400 "StudyDate '20201' is not YYYYMMDD" "$base/studies?StudyDate=20201"
+expect 400 "StudyDate: '20201' is not a date or a date range" "$base/studies?StudyDate=20201"
 expect 400 "limit must be an integer" "$base/studies?limit=many"
 expect 400 "given twice" "$base/studies?PatientID=a&PatientID=b"
 expect 400 "--keep-patient-names" "$base/studies?PatientName=Doe*"
@@ -86,6 +86,9 @@ json_rows=$(curl -s "${base%/dicom-web}/soiq/v1/query?name=GTV*&select=sphericit
 [ "$json_rows" = "2 sphericity" ] || { echo "FAIL: /soiq/v1/query JSON: $json_rows"; failures=$((failures + 1)); }
 expect 400 "did you mean 'name'" "${base%/dicom-web}/soiq/v1/query?nmae=GTV*"
 expect 400 "unknown feature 'spherity'" "${base%/dicom-web}/soiq/v1/query?where=spherity%3E1"
+# The field the error is about, apart from the prose (as gRPC's ErrorDetails).
+field=$(/usr/bin/python3 -c 'import json,sys; e=json.load(open(sys.argv[1]))["error"]; print(e.get("field"), e.get("reason", "")[:15])' "$tmp/body")
+[ "$field" = "where[0] unknown feature" ] || { echo "FAIL: the error's field and reason: '$field'"; failures=$((failures + 1)); }
 expect 400 "at column" "${base%/dicom-web}/soiq/v1/query?where=sphericity%3E%3E1"
 expect 400 "desc needs order-by" "${base%/dicom-web}/soiq/v1/query?desc=true"
 

@@ -217,7 +217,7 @@ TEST_F(HostileInputs, OversizeAndControlCharacterTextIsRefused) {
   const TriangleMesh ball = uv_sphere({0, 0, 0}, 10, 12, 24);
   for (const auto& [patient, name, says] : {std::tuple{std::string(1 << 20, 'P'), std::string("ok"), "patient_id"},
                                             std::tuple{std::string("P\nX"), std::string("ok"), "control character"},
-                                            std::tuple{std::string("P"), std::string(300, 'n'), "structure name"},
+                                            std::tuple{std::string("P"), std::string(300, 'n'), "structure_name"},
                                             std::tuple{std::string("P"), std::string("a\tb"), "control character"}}) {
     Result<v1::UploadSurfaceResponse> r = upload(ball, patient, "S", name);
     ASSERT_FALSE(r.ok());
@@ -238,7 +238,8 @@ TEST_F(HostileInputs, OversizeAndControlCharacterTextIsRefused) {
   q.mutable_stage1()->set_structure_name_glob(glob);
   Result<v1::QuerySummary> summary = client_->query(q, {});
   EXPECT_EQ(summary.status().code(), StatusCode::kInvalidArgument) << summary.status().to_string();
-  EXPECT_NE(summary.status().message().find("structure name glob"), std::string::npos);
+  EXPECT_NE(summary.status().message().find("stage1.structure_name_glob"), std::string::npos);
+  EXPECT_EQ(summary.status().field(), "stage1.structure_name_glob");
   expect_serving_with(0, 0);
 }
 
@@ -252,7 +253,8 @@ TEST_F(HostileInputs, UnknownEnumValuesAreRefused) {
   c.set_fill_rule(static_cast<v1::FillRule>(77));
   Result<v1::ConvertSummary> r = client_->convert(c, {});
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
-  EXPECT_NE(r.status().message().find("fill_rule has the value 77"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("fill_rule: 77 is not a value this server knows"), std::string::npos)
+      << r.status().message();
   v1::FeaturesRequest f;
   f.set_structure_id(up->structure().id());
   f.set_interpolation(static_cast<v1::Interpolation>(-3));

@@ -70,7 +70,8 @@ TEST_F(UploadSurfaceTest, TheSameSurfaceTwiceIsStoredOnce) {
 }
 
 TEST_F(UploadSurfaceTest, MalformedBytesAreInvalidAndStoreNothing) {
-  Result<UploadedSurface> up = upload_surface(*store_, surface_upload_of("P1", "S1", "junk"), "solid x\nfacet normal oops");
+  Result<UploadedSurface> up =
+      upload_surface(*store_, surface_upload_of("P1", "S1", "junk"), "solid x\nfacet normal oops");
   EXPECT_EQ(up.status().code(), StatusCode::kInvalidArgument);
   EXPECT_TRUE(contains(up.status().message(), "junk")) << up.status().message();
   EXPECT_EQ(stored_structures(), 0);
@@ -104,7 +105,8 @@ TEST_F(UploadSurfaceTest, AnOpenSurfaceNeedsRobustModeAndIsStoredWithIt) {
 
 TEST_F(UploadSurfaceTest, AStudyOfAnotherPatientIsRefusedAndNothingMoves) {
   ASSERT_TRUE(upload_surface(*store_, surface_upload_of("P1", "S1", "a"), box_).ok());
-  Result<UploadedSurface> up = upload_surface(*store_, surface_upload_of("P2", "S1", "b"), stl_of(box({0, 0, 0}, {1, 2, 3})));
+  Result<UploadedSurface> up =
+      upload_surface(*store_, surface_upload_of("P2", "S1", "b"), stl_of(box({0, 0, 0}, {1, 2, 3})));
   EXPECT_EQ(up.status().code(), StatusCode::kFailedPrecondition);
   EXPECT_TRUE(contains(up.status().message(), "another patient")) << up.status().message();
   EXPECT_EQ(stored_structures(), 1);

@@ -14,7 +14,7 @@ import os
 import grpc
 
 from soiq import errors
-from soiq.features import feature_text, parse_feature, parse_predicate
+from soiq.query_options import OPTIONS, python_name, query_columns, query_request
 from soiq.v1 import soiq_pb2, soiq_pb2_grpc
 
 _CHUNK = 1 << 20
@@ -163,9 +163,7 @@ class Client:
         on_progress(stage, done, total) is called as stage 1 and stage 2 advance."""
         request = self._query_request(where, select, order_by, desc, limit, spacing, margin, series_modality,
                                       interpolation, stage1)
-        columns = [feature_text(p.feature) for p in request.where] + [feature_text(f) for f in request.select]
-        if request.HasField("order_by"):
-            columns.append(feature_text(request.order_by))
+        columns = query_columns(request)
         self.last_summary = None
         events = _call(self._stub.Query, request, timeout=self.timeout, metadata=self._metadata)
         try:
@@ -195,53 +193,42 @@ class Client:
     @staticmethod
     def _query_request(where, select, order_by, desc, limit, spacing, margin, series_modality, interpolation,
                        stage1):
-        known = {"patient": "patient_id_glob", "sex": "sex", "min_age": "min_age_years",
-                 "max_age": "max_age_years", "birth_date_from": "birth_date_from", "birth_date_to": "birth_date_to",
-                 "study_date_from": "study_date_from", "study_date_to": "study_date_to", "modality": "modality",
-                 "description": "study_description_glob", "name": "structure_name_glob", "laterality": "laterality"}
-        filters = {}
+        """The options as the one query table's (name, value) pairs (soiq.query_options)."""
+        options = []
+        stage1_names = [name for name, _, _ in OPTIONS[:12]]
         for key, value in stage1.items():
-            if key not in known:
-                raise errors.InvalidArgument("unknown query filter '%s' (known: %s)" % (key, ", ".join(known)))
+            name = key.replace("_", "-")
+            if name not in stage1_names:
+                raise errors.InvalidArgument("unknown query filter '%s' (known: %s)" % (
+                    key, ", ".join(python_name(n) for n in stage1_names)))
             if value is not None:
-                filters[known[key]] = value
-        if isinstance(where, str):
-            where = [where]
-        if isinstance(select, str):
-            select = [select]
-        request = soiq_pb2.QueryRequest(stage1=soiq_pb2.Stage1Filter(**filters),
-                                        where=[parse_predicate(w) for w in where],
-                                        select=[parse_feature(s) for s in select], descending=desc, limit=limit)
+                options.append((name, value))
+        options += [("where", w) for w in ([where] if isinstance(where, str) else where)]
+        options += [("select", s) for s in ([select] if isinstance(select, str) else select)]
         if order_by is not None:
-            request.order_by.CopyFrom(parse_feature(order_by))
-        elif desc:
-            raise errors.InvalidArgument("desc needs order_by")
-        if spacing is not None and series_modality:
-            raise errors.InvalidArgument("give either spacing or series_modality, not both")
+            options.append(("order-by", order_by))
+        if desc:
+            options.append(("desc", True))
+        if limit:
+            options.append(("limit", limit))
         if spacing is not None:
-            if isinstance(spacing, (int, float)):
-                request.grid.spacing_mm = float(spacing)
-            else:
-                x, y, z = spacing
-                request.grid.spacing_xyz.CopyFrom(soiq_pb2.SpacingXYZ(x=x, y=y, z=z))
+            options.append(("spacing", spacing))
         if margin is not None:
-            request.grid.margin_voxels = margin
+            options.append(("margin", margin))
         if series_modality:
-            request.grid.series_modality = series_modality
+            options.append(("series-modality", series_modality))
         if interpolation is not None:
-            if interpolation not in ("nearest", "linear"):
-                raise errors.InvalidArgument("interpolation must be nearest or linear")
-            request.interpolation = soiq_pb2.LINEAR if interpolation == "linear" else soiq_pb2.NEAREST
-        return request
+            options.append(("interpolation", interpolation))
+        return query_request(options)
 
 
 def _row_dict(row, columns):
+    """A row as a dict keyed by the answer's columns (query_columns: the header and, per feature
+    column, where its value is in the row)."""
+    header, value_at = columns
     s = row.structure
-    out = {"id": s.id, "patient_id": s.patient_id, "study_uid": s.study_uid, "name": s.name,
-           "laterality": s.laterality}
-    for i, column in enumerate(columns):
-        if column in out:
-            continue  # a feature named twice (select and order_by) is one column, as in soiq query
+    out = dict(zip(header, (s.id, s.patient_id, s.study_uid, s.name, s.laterality)))
+    for column, i in zip(header[len(out):], value_at):
         values = list(row.values[i].value) if i < len(row.values) else []
         out[column] = None if not values else values[0] if len(values) == 1 else values
     return out

@@ -9,13 +9,15 @@ import grpc
 
 
 class SoiqError(Exception):
-    """A call soiqd refused or could not answer. `code` is the grpc.StatusCode."""
+    """A call soiqd refused or could not answer. `code` is the grpc.StatusCode; `field` the request
+    field the error is about ("stage1.min_age_years", "where[0]") when soiqd named one, else ""."""
 
     code = grpc.StatusCode.UNKNOWN
 
-    def __init__(self, message, code=None):
+    def __init__(self, message, code=None, field=""):
         super().__init__(message)
         self.message = message
+        self.field = field
         if code is not None:
             self.code = code
 
@@ -78,4 +80,19 @@ def from_rpc_error(error):
     code = error.code() if hasattr(error, "code") else grpc.StatusCode.UNKNOWN
     details = error.details() if hasattr(error, "details") else str(error)
     cls = _BY_CODE.get(code, SoiqError)
-    return cls(details or code.name, code)
+    return cls(details or code.name, code, _field_of(error))
+
+
+def _field_of(error):
+    """The field soiqd named in the status details (soiq.v1.ErrorDetails), or ""."""
+    trailers = error.trailing_metadata() if hasattr(error, "trailing_metadata") else None
+    for key, value in trailers or ():
+        if key == "grpc-status-details-bin":
+            from soiq.v1 import soiq_pb2
+            details = soiq_pb2.ErrorDetails()
+            try:
+                details.ParseFromString(value)
+            except Exception:  # not ours: a proxy's google.rpc.Status with other details
+                return ""
+            return details.field
+    return ""

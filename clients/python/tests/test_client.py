@@ -101,10 +101,12 @@ def test_errors_are_typed_and_carry_soiqds_message(soiqd, tmp_path):
     with soiq.Client(soiqd.address) as c:
         with pytest.raises(soiq.NotFound, match="structure 424242"):
             c.structure(424242)
-        with pytest.raises(soiq.InvalidArgument, match="did you mean 'sphericity'"):
+        with pytest.raises(soiq.InvalidArgument, match="did you mean 'sphericity'") as e:
             c.query(where=["spherity > 1"])
-        with pytest.raises(soiq.InvalidArgument, match="not a condition"):
+        assert e.value.field == "where[0]"  # soiqd's field, apart from its prose
+        with pytest.raises(soiq.InvalidArgument, match="expected a comparison") as e:
             c.query(where=["sphericity"])
+        assert e.value.field == ""  # the client's own refusal, before any call
         with pytest.raises(soiq.InvalidArgument, match="unknown query filter 'nmae'"):
             c.query(nmae="x")
         with pytest.raises(soiq.NotFound):

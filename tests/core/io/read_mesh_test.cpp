@@ -85,8 +85,8 @@ TEST(ReadMesh, NanVertexInBinaryStlIsInvalidArgumentNamingTheFacet) {
   // VTK passed NaN corners through and validate_mesh refused them later without saying where; the
   // parser refuses them at once, naming the facet.
   const float nan = std::nanf("");
-  const std::string path =
-      write_bytes("nan.stl", binary_stl_of({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {nan, 0, 0}, {0, 0, 1}}}}));
+  const std::string path = write_bytes(
+      "nan.stl", binary_stl_of({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {nan, 0, 0}, {0, 0, 1}}}}));
   const auto mesh = read_mesh(path);
   EXPECT_EQ(mesh.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(mesh.status().message().find("facet 2 corner 2 has a non-finite coordinate"), std::string::npos)

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/shared_cases.h"
+
 namespace soiq::server::http {
 namespace {
 
@@ -40,19 +42,28 @@ TEST(SoiqQueryArgs, TheCommandLinesOptionsByName) {
   EXPECT_EQ(r->interpolation(), v1::LINEAR);
 }
 
-TEST(SoiqQueryArgs, RefusalsNameTheArgument) {
+TEST(SoiqQueryArgs, TheSharedCasesAsTheOtherFaces) {
+  const auto cases = soiq::testing::shared_cases("query_options.json");
+  for (const auto& c : cases.at("accepted")) {
+    Result<v1::QueryRequest> r = parse_soiq_query_args(soiq::testing::query_args_of(c));
+    ASSERT_TRUE(r.ok()) << c.dump() << ": " << r.status().message();
+    EXPECT_TRUE(soiq::testing::same_message(c.at("request"), *r)) << c.dump();
+  }
+  for (const auto& c : cases.at("refused")) {
+    Result<v1::QueryRequest> r = parse_soiq_query_args(soiq::testing::query_args_of(c));
+    ASSERT_FALSE(r.ok()) << c.dump();
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(r.status().message().find(c.at("option").get<std::string>()), std::string::npos) << r.status().message();
+  }
+}
+
+TEST(SoiqQueryArgs, RefusalsNameTheArgumentWithoutDashes) {
   const std::vector<std::pair<Args, std::string>> cases = {
-      {{{"nmae", "x"}}, "did you mean 'name'"},
-      {{{"name", "a"}, {"name", "b"}}, "given twice"},
-      {{{"min-age", "old"}}, "min-age must be a number"},
-      {{{"limit", "0"}}, "limit must be an integer"},
-      {{{"where", "sphericity >> 1"}}, "where='sphericity >> 1'"},
+      {{{"nmae", "x"}}, "unknown option 'nmae'; did you mean 'name'?"},
+      {{{"name", "a"}, {"name", "b"}}, "name is given twice"},
+      {{{"where", "sphericity >> 1"}}, "where 'sphericity >> 1': expected a number at column 13"},
       {{{"desc", "true"}}, "desc needs order-by"},
       {{{"margin", "2"}}, "margin goes with spacing"},
-      {{{"spacing", "1,2"}}, "spacing is S or SX,SY,SZ"},
-      {{{"spacing", "-1"}}, "spacing must be > 0"},
-      {{{"spacing", "1"}, {"series-modality", "CT"}}, "not both"},
-      {{{"interpolation", "cubic"}}, "nearest or linear"},
   };
   for (const auto& [args, text] : cases) {
     Result<v1::QueryRequest> r = parse_soiq_query_args(args);
@@ -60,6 +71,12 @@ TEST(SoiqQueryArgs, RefusalsNameTheArgument) {
     EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
     EXPECT_NE(r.status().message().find(text), std::string::npos) << r.status().message();
   }
+}
+
+TEST(SoiqQueryArgs, ABareDescIsTrue) {
+  Result<v1::QueryRequest> r = parse_soiq_query_args({{"order-by", "sphericity"}, {"desc", ""}});
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_TRUE(r->descending());
 }
 
 }  // namespace
