@@ -10,6 +10,7 @@
 
 #include "bench/clock.h"
 #include "client/soiq_client.h"
+#include "server/api/proto_records.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
 #include "db/sqlite/sqlite_store.h"
@@ -24,24 +25,6 @@ struct PreparedPatient {
   std::vector<std::pair<cohort::SyntheticStructure, std::string>> surfaces;  // mesh freed, name kept; path
   int64_t triangles = 0;
 };
-
-v1::Patient to_proto(const db::PatientRecord& p) {
-  v1::Patient out;
-  out.set_patient_id(p.patient_id);
-  out.set_sex(p.sex);
-  out.set_birth_date(p.birth_date);
-  return out;
-}
-
-v1::Study to_proto(const db::StudyRecord& s) {
-  v1::Study out;
-  out.set_study_uid(s.study_uid);
-  out.set_patient_id(s.patient_id);
-  out.set_study_date(s.study_date);
-  out.set_description(s.description);
-  out.set_modality(s.modality);
-  return out;
-}
 
 // Writes one matched patient's files: its image as .nii, its surfaces as binary .ply.
 Result<PreparedPatient> prepare(const CohortPatient& p, const QueryCohortSize& size, const std::string& dir) {
@@ -134,8 +117,8 @@ Result<LoadFigures> upload_matched(const std::string& address, const std::string
   SOIQ_RETURN_IF_ERROR(parallel(prepared.size(), threads, [&](size_t i) -> Status {
     const PreparedPatient& p = prepared[i];
     v1::UploadImageHeader h;
-    *h.mutable_patient() = to_proto(patient_record(*p.patient));
-    *h.mutable_study() = to_proto(study_record(*p.patient));
+    *h.mutable_patient() = server::to_proto(patient_record(*p.patient));
+    *h.mutable_study() = server::to_proto(study_record(*p.patient));
     h.set_series_uid(p.patient->person.series_uid);
     h.set_modality("MR");
     SOIQ_RETURN_IF_ERROR(c.upload_image(h, p.image_path).status());
@@ -150,8 +133,8 @@ Result<LoadFigures> upload_matched(const std::string& address, const std::string
     const PreparedPatient& p = prepared[i];
     for (const auto& [s, path] : p.surfaces) {
       v1::UploadSurfaceHeader h;
-      *h.mutable_patient() = to_proto(patient_record(*p.patient));
-      *h.mutable_study() = to_proto(study_record(*p.patient));
+      *h.mutable_patient() = server::to_proto(patient_record(*p.patient));
+      *h.mutable_study() = server::to_proto(study_record(*p.patient));
       h.set_structure_name(s.name);
       h.set_laterality(s.laterality);
       Result<v1::UploadSurfaceResponse> r = c.upload_surface(h, path);
