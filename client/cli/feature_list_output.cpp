@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/features/feature_catalogue.h"
+#include "proto/text/query_columns.h"
 
 namespace soiq::cli {
 
@@ -23,24 +24,14 @@ std::vector<FeatureListRow> server_rows(const soiq::v1::ServerInfo& info) {
   return rows;
 }
 
-namespace {
-
-// CSV cells are quoted when they hold a comma or a quote (the summaries do).
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-}  // namespace
-
 void print_feature_list(const std::vector<FeatureListRow>& rows, const std::string& format) {
   if (format == "csv") {
-    std::puts("name,family,unit,needs,summary,version");
+    // soiq's one CSV writer (the summaries hold commas and quotes).
+    std::fputs(proto_text::csv_line({"name", "family", "unit", "needs", "summary", "version"}).c_str(), stdout);
     for (const FeatureListRow& r : rows) {
-      std::printf("%s,%s,%s,%s,%s,%d\n", r.name.c_str(), r.family.c_str(), csv_cell(r.unit).c_str(),
-                  csv_cell(r.needs).c_str(), csv_cell(r.summary).c_str(), r.version);
+      std::fputs(
+          proto_text::csv_line({r.name, r.family, r.unit, r.needs, r.summary, std::to_string(r.version)}).c_str(),
+          stdout);
     }
     return;
   }

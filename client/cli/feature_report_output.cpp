@@ -5,16 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "proto/text/query_columns.h"
+
 namespace soiq::cli {
 
 namespace {
 
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  const std::string s = buf;
-  return (s == "nan" || s == "-nan" || s == "inf" || s == "-inf") ? "null" : s;
-}
+// soiq's one way of writing a number (%.10g, "null" for NaN and infinities).
+std::string number(double v) { return proto_text::number_text(v); }
 
 std::string value_text(const std::vector<double>& v, const char* open, const char* sep, const char* close) {
   if (v.size() == 1) return number(v[0]);
@@ -70,11 +68,9 @@ void print_json(const FeatureReport& r) {
 }
 
 void print_csv(const FeatureReport& r) {
-  std::puts("region,image,feature,value");
-  for (const Feature& f : r.features) {
-    std::printf("%s,%s,%s,%s\n", f.region.c_str(), f.image.c_str(), f.name.c_str(),
-                value_text(f.value, "", ";", "").c_str());
-  }
+  std::fputs(proto_text::csv_line({"region", "image", "feature", "value"}).c_str(), stdout);
+  for (const Feature& f : r.features)
+    std::fputs(proto_text::csv_line({f.region, f.image, f.name, value_text(f.value, "", ";", "")}).c_str(), stdout);
 }
 
 void print_table(const FeatureReport& r) {
