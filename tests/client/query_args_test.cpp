@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "client/cli/record_args.h"
+
 namespace soiq::cli {
 namespace {
 
@@ -83,6 +85,17 @@ TEST(InCommandLineWords, NamesTheOptionFromTheFieldNotFromTheMessage) {
   EXPECT_EQ(in_command_line_words(not_found("out of range").in_field("where[7]"), a->request).message(),
             "where[7]: out of range");
   EXPECT_EQ(in_command_line_words(Status(StatusCode::kUnavailable, "no server"), a->request).message(), "no server");
+}
+
+TEST(InUploadOptionWords, NamesTheOptionThatSetTheField) {
+  EXPECT_EQ(in_upload_option_words(
+                invalid_argument("'20230231' is not a calendar date YYYYMMDD").in_field("patient.birth_date"))
+                .message(),
+            "--birth-date: '20230231' is not a calendar date YYYYMMDD");
+  EXPECT_EQ(in_upload_option_words(invalid_argument("is required").in_field("structure_name")).message(),
+            "--name: is required");
+  EXPECT_EQ(in_upload_option_words(invalid_argument("x").in_field("study.age_years")).message(), "study.age_years: x");
+  EXPECT_EQ(in_upload_option_words(not_found("no such study")).message(), "no such study");
 }
 
 }  // namespace
