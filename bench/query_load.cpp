@@ -10,11 +10,11 @@
 
 #include "bench/clock.h"
 #include "client/soiq_client.h"
-#include "server/api/proto_records.h"
 #include "core/io/write_image.h"
 #include "core/io/write_mesh.h"
 #include "db/sqlite/sqlite_store.h"
 #include "db/surface_blob.h"
+#include "server/api/proto_records.h"
 
 namespace soiq::bench {
 namespace {
