@@ -6,7 +6,7 @@ CMAKE_CONFIG ?= -DCMAKE_BUILD_TYPE=Release
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps build run demo test test-sanitize fuzz soak bench format clean
+.PHONY: deps build run demo test test-sanitize test-container fuzz soak bench format clean
 
 deps:
 	scripts/install-deps
@@ -38,6 +38,14 @@ SANITIZE_CONFIG = -C $(CURDIR)/cmake/sanitize.cmake
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer.
 test-sanitize:
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=$(SANITIZE_BUILD) CMAKE_CONFIG="$(SANITIZE_CONFIG)"
+
+# The container end to end (docker/test-container; not part of `make test`): podman, podman-compose
+# and debootstrap installed, the debian:12 base image made from Debian's archive, soiq's and
+# PostgreSQL's images built (compile jobs: JOBS), soiqd's container and the compose file's three
+# replicas on PostgreSQL loaded with the demo and queried, everything it started removed. Root only.
+test-container:
+	scripts/install-deps --container
+	JOBS=$(JOBS) docker/test-container
 
 # Every libFuzzer harness of fuzz/ for FUZZ_SECONDS each, after replaying fuzz/regressions/; fails on
 # any crash, leak, timeout or out-of-memory (FUZZING.md).
