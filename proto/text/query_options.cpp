@@ -29,11 +29,10 @@ Result<int> integer(const std::string& v, int lo, int hi) {
   return int(*d);
 }
 
-Status years(const std::string& v, std::optional<double>& out) {
+Result<double> years(const std::string& v) {
   SOIQ_ASSIGN_OR_RETURN(const double y, number(v));
   SOIQ_RETURN_IF_ERROR(check_age_years(y));
-  out = y;
-  return ok_status();
+  return y;
 }
 
 // Sets a string field after the field's rule.
@@ -58,16 +57,14 @@ Status sex(const std::string& v, QueryRequest& r) {
 }
 
 Status min_age(const std::string& v, QueryRequest& r) {
-  std::optional<double> y;
-  SOIQ_RETURN_IF_ERROR(years(v, y));
-  r.mutable_stage1()->set_min_age_years(*y);
+  SOIQ_ASSIGN_OR_RETURN(const double y, years(v));
+  r.mutable_stage1()->set_min_age_years(y);
   return ok_status();
 }
 
 Status max_age(const std::string& v, QueryRequest& r) {
-  std::optional<double> y;
-  SOIQ_RETURN_IF_ERROR(years(v, y));
-  r.mutable_stage1()->set_max_age_years(*y);
+  SOIQ_ASSIGN_OR_RETURN(const double y, years(v));
+  r.mutable_stage1()->set_max_age_years(y);
   return ok_status();
 }
 

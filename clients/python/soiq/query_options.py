@@ -11,7 +11,7 @@ import datetime
 import math
 
 from soiq.errors import InvalidArgument
-from soiq.features import parse_feature, parse_predicate
+from soiq.features import _NUMBER, feature_text, parse_feature, parse_predicate
 from soiq.v1 import soiq_pb2
 
 _MAX_ID_BYTES = 64
@@ -45,8 +45,7 @@ def _date(value):
 def _number(value):
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         number = float(value)
-    else:
-        from soiq.features import _NUMBER  # strtod's reading, as the table's
+    else:  # text as strtod reads it, as the table does
         if not _NUMBER.fullmatch(str(value)):
             raise ValueError("'%s' is not a number" % str(value)[:40])
         number = float(value)
@@ -194,7 +193,6 @@ def query_columns(request):
     """The answer's columns as every face heads them (proto/text/query_columns.h): the structure's,
     then each feature once, at its first place among where's, select's and order_by's; with, for
     each feature column, the index of its value in a row's values."""
-    from soiq.features import feature_text
     texts = [feature_text(p.feature) for p in request.where] + [feature_text(f) for f in request.select]
     if request.HasField("order_by"):
         texts.append(feature_text(request.order_by))
