@@ -263,6 +263,29 @@ Result<v1::SegInfo> Client::export_seg(const v1::ExportSegRequest& request, cons
   return *info;
 }
 
+Result<v1::RenderInfo> Client::render(const v1::RenderRequest& request, const std::string& out_path) const {
+  std::optional<v1::RenderInfo> info;
+  int64_t written = 0;
+  SOIQ_RETURN_IF_ERROR(stream_to_file<v1::RenderResponse>(
+      out_path, [&](grpc::ClientContext* ctx) { return stub_->Render(ctx, request); },
+      [&](const v1::RenderResponse& r) -> const std::string* {
+        if (!r.has_info()) return &r.chunk();
+        info = r.info();
+        return nullptr;
+      },
+      written));
+  Status check;
+  if (!info) check = data_loss("soiqd at " + options_.address + " sent the picture without its summary");
+  if (check.ok() && written != info->size_bytes())
+    check = data_loss("soiqd at " + options_.address + " announced a picture of " + std::to_string(info->size_bytes()) +
+                      " bytes but sent " + std::to_string(written));
+  if (!check.ok()) {
+    std::remove(out_path.c_str());
+    return check;
+  }
+  return *info;
+}
+
 Result<v1::ImportDicomResponse> Client::pacs_pull(const v1::PacsPullRequest& request,
                                                   const std::function<bool(const v1::PacsPullProgress&)>& on_progress,
                                                   const std::atomic<bool>* cancel) const {

@@ -121,6 +121,9 @@ class Client {
   // Streams progress and rows to the handlers; returns the closing summary.
   Result<soiq::v1::QuerySummary> query(const soiq::v1::QueryRequest& request, const QueryHandlers& handlers) const;
 
+  // A picture of a structure written to `out_path` (replaced; removed again on failure).
+  Result<soiq::v1::RenderInfo> render(const soiq::v1::RenderRequest& request, const std::string& out_path) const;
+
   // DICOM out and the PACS soiqd is configured with (its --pacs). Long calls: stream_deadline.
   // The SEG of imported structures written to `out_path` (replaced; removed again on failure).
   Result<soiq::v1::SegInfo> export_seg(const soiq::v1::ExportSegRequest& request, const std::string& out_path) const;

@@ -53,6 +53,11 @@ struct SeriesRecord {
   std::vector<std::string> slice_instance_uids;  // SOP Instance UID of slice k, by k
   int64_t series_number = 0;                     // (0020,0011), 0 when unknown
   std::string description;                       // (0008,103E), "" when unknown
+  // The first Window Center/Width (0028,1050/1051) of its slices, in the stored voxels' units: how
+  // the modality's reader meant it shown (pictures start from it). Width 0: none (an upload, a PET
+  // series whose voxels became SUV, or a store from before these were kept).
+  double window_center = 0;
+  double window_width = 0;
 };
 
 struct SurfaceInfo {

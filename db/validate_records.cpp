@@ -108,6 +108,9 @@ Status validate_new_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_text(s.series.description, "series description", kMaxNameBytes));
   if (s.series.series_number < 0 || s.series.series_number > 2147483647)
     return invalid_argument("series number " + std::to_string(s.series.series_number) + " is outside 0..2^31-1");
+  if (!std::isfinite(s.series.window_center) || !std::isfinite(s.series.window_width) || s.series.window_width < 0)
+    return invalid_argument("series window " + std::to_string(s.series.window_center) + "," +
+                            std::to_string(s.series.window_width) + " is not a finite centre and a width >= 0");
   if (!s.series.study_uid.empty() && s.series.study_uid != s.study.study_uid) {
     return invalid_argument("series '" + s.series.series_uid + "' names study '" + s.series.study_uid +
                             "' but is sent with study '" + s.study.study_uid + "'");

@@ -49,10 +49,13 @@ struct DicomInstance {
 struct DicomSeries {
   std::string series_uid;  // (0020,000E)
   std::string study_uid;
-  std::string modality;                  // (0008,0060): "CT", "MR", "PT", "RTSTRUCT", ...
-  std::string frame_of_reference_uid;    // (0020,0052), "" for series without one
-  std::string description;               // (0008,103E)
-  int64_t series_number = 0;             // (0020,0011), 0 when absent
+  std::string modality;                // (0008,0060): "CT", "MR", "PT", "RTSTRUCT", ...
+  std::string frame_of_reference_uid;  // (0020,0052), "" for series without one
+  std::string description;             // (0008,103E)
+  int64_t series_number = 0;           // (0020,0011), 0 when absent
+  // The first Window Center/Width (0028,1050/1051) of the first file that has both, width > 0;
+  // 0 and 0 when none does.
+  double window_center = 0, window_width = 0;
   std::vector<DicomInstance> instances;  // sorted by instance number, then path
 };
 

@@ -1,6 +1,7 @@
 #include "dicom/scan_dicom.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -169,6 +170,14 @@ class Index {
     fill_if_empty(se.frame_of_reference_uid, get_string(ds, DCM_FrameOfReferenceUID));
     fill_if_empty(se.description, get_string(ds, DCM_SeriesDescription));
     if (se.series_number == 0) se.series_number = get_integer(ds, DCM_SeriesNumber);
+    if (se.window_width <= 0) {
+      const auto centre = get_number(ds, DCM_WindowCenter);
+      const auto width = get_number(ds, DCM_WindowWidth);
+      if (centre && width && std::isfinite(*centre) && std::isfinite(*width) && *width > 0) {
+        se.window_center = *centre;
+        se.window_width = *width;
+      }
+    }
     se.instances.push_back(std::move(inst));
   }
 

@@ -10,7 +10,7 @@ namespace soiq::cli {
 namespace {
 
 // The query's options are the one query table's (proto/text/query_options.h), spelled with dashes,
-// and --format, which only the command line has (the rows' output).
+// and --format and --plot, which only the command line has (the rows' output).
 const std::vector<std::string>& dashed_query_names() {
   static const std::vector<std::string> kNames = [] {
     std::vector<std::string> names;
@@ -28,6 +28,8 @@ std::vector<OptionSpec> query_option_specs() {
     specs.push_back({dashed_query_names()[i], o.value, o.default_value, o.meaning});
   }
   specs.push_back({"--format", "table|json|csv", "table", "output format"});
+  specs.push_back({"--plot", "FILE.png|.svg", "",
+                   "also draw the rows: a histogram of the first --select feature, a scatter of the first two"});
   return specs;
 }
 

@@ -1,10 +1,11 @@
 // The rows of the commands that store, list, show, remove and fetch records on soiqd in the
-// command table: upload, upload-image, import, export-seg, ls, show, rm, download.
+// command table: upload, upload-image, import, export-seg, render, ls, show, rm, download.
 #include "client/cli/command_table.h"
 #include "client/cli/download_command.h"
 #include "client/cli/export_seg_command.h"
 #include "client/cli/import_command.h"
 #include "client/cli/ls_command.h"
+#include "client/cli/render_command.h"
 #include "client/cli/rm_command.h"
 #include "client/cli/show_command.h"
 #include "client/cli/upload_command.h"
@@ -87,6 +88,32 @@ std::vector<CommandSpec> record_commands() {
        {output, {"--description", "TEXT", "", "the SEG series' description"}},
        {"soiq export-seg 1 2 -o seg.dcm"},
        run_export_seg_command},
+      {"render",
+       CommandGroup::kRemote,
+       {"render ID [--image MODALITY|SERIES_UID|none] [--plane axial|coronal|sagittal]",
+        "       [--slice K | --through largest|centroid | --montage] [--window C,W] [--width PX]",
+        "       [--patient-caption] [--quality Q] -o FILE.png|.svg|.jpg"},
+       "a picture of a structure over a slice of its image",
+       "Draws a stored structure over a slice of its image, as soiqd converts it: the windowed slice, the "
+       "structure's voxels filled and outlined, a scale bar, orientation letters from the image's direction "
+       "cosines and a caption without patient data. A structure without images is drawn as its mask alone. "
+       "The picture's format follows FILE's extension.",
+       {output,
+        {"--image", "MODALITY|SERIES_UID|none", "",
+         "the image under the structure: a series of its study by modality or uid; default: the series it "
+         "was imported on, else the study's first; none: the mask alone"},
+        {"--plane", "axial|coronal|sagittal", "axial", "the plane of the slice"},
+        {"--slice", "K", "", "the slice number along the plane's normal (0-based, as the grid numbers it)"},
+        {"--through", "largest|centroid", "largest",
+         "the slice holding most of the structure, or the one holding its centroid"},
+        {"--montage", "", "", "every slice holding the structure, side by side"},
+        {"--window", "C,W", "", "the window's centre and width (default: from the image, robust percentiles)"},
+        {"--width", "PX", "", "the picture's width in pixels (default: 512 for a slice, 256 per montage tile)"},
+        {"--patient-caption", "", "", "add the patient id and study date to the caption"},
+        {"--quality", "Q", "90", "JPEG quality 1..100"}},
+       {"soiq render 1 -o gtv.png", "soiq render 1 --image PT --through centroid --window 2.5,5 -o gtv_pet.png",
+        "soiq render 1 --montage -o gtv_all.svg"},
+       run_render_command},
       {"ls",
        CommandGroup::kRemote,
        {"ls [patients|studies|structures] [--patient ID|GLOB] [--study UID] [--name GLOB] [--laterality L|R]",

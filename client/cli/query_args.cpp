@@ -7,6 +7,7 @@
 #include "client/cli/row_printer.h"
 #include "proto/text/feature_expression.h"
 #include "proto/text/query_options.h"
+#include "render/picture.h"
 
 namespace soiq::cli {
 
@@ -18,6 +19,13 @@ Result<QueryArgs> parse_query_args(int argc, char** argv) {
     if (arg == "--format") {
       SOIQ_ASSIGN_OR_RETURN(a.format, option_value(argc, argv, i));
       SOIQ_RETURN_IF_ERROR(check_row_format(a.format));
+      continue;
+    }
+    if (arg == "--plot") {
+      SOIQ_ASSIGN_OR_RETURN(a.plot, option_value(argc, argv, i));
+      const Result<render::PictureFormat> format = render::picture_format_of_path(a.plot);
+      if (!format.ok() || *format == render::PictureFormat::kJpeg)
+        return invalid_argument("--plot '" + a.plot + "': a plot is written as .png or .svg");
       continue;
     }
     if (!arg.starts_with("--")) {
@@ -33,6 +41,8 @@ Result<QueryArgs> parse_query_args(int argc, char** argv) {
     SOIQ_RETURN_IF_ERROR(request.add(name, value));
   }
   SOIQ_ASSIGN_OR_RETURN(a.request, request.finish());
+  if (!a.plot.empty() && a.request.select_size() == 0 && a.request.where_size() == 0 && !a.request.has_order_by())
+    return invalid_argument("--plot needs a feature to draw: add --select FEATURE (two for a scatter)");
   return a;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The command line of `soiq query` as the API's QueryRequest (pure: no server involved): every
 // option of the one query table (proto/text/query_options.h) as --NAME VALUE (--desc alone), plus
-// --format table|json|csv for the rows' output.
+// --format table|json|csv for the rows' output and --plot FILE.png|.svg (proto/text/query_plot.h
+// says what is drawn; the file's extension its format).
 // Errors: INVALID_ARGUMENT for an unknown option, a missing or bad value, a malformed expression
 // (saying what is wrong and at which column), and the table's rules between options (--desc
 // without --order-by, ...), each naming the option as it was typed.
@@ -17,6 +18,7 @@ namespace soiq::cli {
 struct QueryArgs {
   soiq::v1::QueryRequest request;
   std::string format = "table";
+  std::string plot;  // "" for none
 };
 
 // argv[0] is "query".

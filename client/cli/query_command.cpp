@@ -9,7 +9,10 @@
 #include "client/cli/quiet.h"
 #include "client/cli/remote_options.h"
 #include "client/cli/row_printer.h"
+#include "core/io/write_file_bytes.h"
 #include "proto/text/query_columns.h"
+#include "proto/text/query_plot.h"
+#include "render/plot_picture.h"
 
 namespace soiq::cli {
 
@@ -50,6 +53,24 @@ void print_summary(const soiq::v1::QuerySummary& s) {
   }
 }
 
+// The rows' plot into a.plot (nothing to do without --plot).
+Status write_plot(const QueryArgs& a, const std::vector<soiq::v1::QueryRow>& rows) {
+  SOIQ_ASSIGN_OR_RETURN(
+      const std::vector<proto_text::PlotColumn> columns,
+      proto_text::query_plot_columns(a.request, rows.size(), [&](size_t r, size_t k) -> std::optional<double> {
+        if (k >= size_t(rows[r].values_size())) return std::nullopt;
+        const auto& v = rows[r].values(int(k)).value();
+        if (v.size() != 1) return std::nullopt;
+        return v[0];
+      }));
+  std::vector<render::PlotAxis> axes;
+  for (const proto_text::PlotColumn& c : columns) axes.push_back({c.name, c.unit, c.values});
+  render::PictureOptions picture;
+  SOIQ_ASSIGN_OR_RETURN(picture.format, render::picture_format_of_path(a.plot));
+  SOIQ_ASSIGN_OR_RETURN(const std::string bytes, render::plot_picture(axes, "", 720, 480, picture));
+  return write_file_bytes(a.plot, bytes, "the plot");
+}
+
 // The number of candidates skipped: a partial answer when > 0.
 Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(remote));
@@ -62,8 +83,10 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
     bar.update(p.stage(), p.done(), p.total());
     return true;
   };
+  std::vector<soiq::v1::QueryRow> plotted;  // kept only for --plot
   handlers.on_row = [&](const soiq::v1::QueryRow& row) {
     out.row(row_cells(row, shown, a.format == "csv"));
+    if (!a.plot.empty()) plotted.push_back(row);
     return true;
   };
   const Result<soiq::v1::QuerySummary> summary = c.query(a.request, handlers);
@@ -75,6 +98,11 @@ Result<int64_t> query(const QueryArgs& a, const client::ClientOptions& remote) {
   if (!summary.ok()) return in_command_line_words(summary.status(), a.request);
   out.end();
   print_summary(*summary);
+  if (!a.plot.empty()) {
+    SOIQ_RETURN_IF_ERROR(make_output_folder(a.plot));
+    SOIQ_RETURN_IF_ERROR(write_plot(a, plotted));
+    if (!quiet()) std::fprintf(stderr, "plot of %zu rows -> %s\n", plotted.size(), a.plot.c_str());
+  }
   return summary->failed();
 }
 

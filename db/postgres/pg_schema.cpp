@@ -208,6 +208,12 @@ ALTER TABLE series ADD COLUMN series_number bigint NOT NULL DEFAULT 0;
 ALTER TABLE series ADD COLUMN description text COLLATE "C" NOT NULL DEFAULT '';
 )sql";
 
+// Version 6: SQLite's version 10, the series' DICOM window.
+constexpr char kSchemaV6[] = R"sql(
+ALTER TABLE series ADD COLUMN window_center double precision NOT NULL DEFAULT 0;
+ALTER TABLE series ADD COLUMN window_width double precision NOT NULL DEFAULT 0;
+)sql";
+
 // Version 5: SQLite's version 9, no stored byte unchecked: surface blobs in version 3 and cached
 // values with their checksum (db/sql/checksum_stored_bytes.h, the same step). No table changes.
 Status checksum_stored_bytes_step(PgConnection& c) {
@@ -224,7 +230,7 @@ struct Step {
 // Append new steps here; never edit a released one.
 const std::vector<Step>& steps() {
   static const std::vector<Step> kSteps = {
-      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step},
+      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step}, {kSchemaV6},
   };
   return kSteps;
 }

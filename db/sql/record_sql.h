@@ -47,8 +47,8 @@ inline constexpr char kSeriesColumns[] = R"sql(
   se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x,
   se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11,
   se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid,
-  se.slice_instance_uids, se.series_number, se.description)sql";
-inline constexpr int kSeriesColumnCount = 27;
+  se.slice_instance_uids, se.series_number, se.description, se.window_center, se.window_width)sql";
+inline constexpr int kSeriesColumnCount = 29;
 
 // The row count of each table, in the order of Counts' fields.
 inline constexpr char kCountsSql[] = R"sql(
@@ -151,6 +151,8 @@ SeriesRecord read_series(const Row& row, int col) {
   s.slice_instance_uids = split_uid_list(row.text(col + 24));
   s.series_number = row.int64(col + 25);
   s.description = row.text(col + 26);
+  s.window_center = row.real(col + 27);
+  s.window_width = row.real(col + 28);
   return s;
 }
 

@@ -77,9 +77,10 @@ Result<std::optional<StoredSeries>> stored_series(SqlSession& c, const NewSeries
 constexpr char kUpsertSeriesSql[] = R"sql(
   INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, spacing_y, spacing_z,
                      dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, image_sha256,
-                     frame_of_reference_uid, sop_class_uid, slice_instance_uids, series_number, description)
+                     frame_of_reference_uid, sop_class_uid, slice_instance_uids, series_number, description,
+                     window_center, window_width)
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22,
-          ?23, ?24, ?25, ?26, ?27)
+          ?23, ?24, ?25, ?26, ?27, ?28, ?29)
   ON CONFLICT(series_uid) DO UPDATE SET
     study_pk = excluded.study_pk, modality = excluded.modality,
     origin_x = excluded.origin_x, origin_y = excluded.origin_y, origin_z = excluded.origin_z,
@@ -90,7 +91,8 @@ constexpr char kUpsertSeriesSql[] = R"sql(
     d20 = excluded.d20, d21 = excluded.d21, d22 = excluded.d22,
     image_sha256 = excluded.image_sha256, frame_of_reference_uid = excluded.frame_of_reference_uid,
     sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids,
-    series_number = excluded.series_number, description = excluded.description)sql";
+    series_number = excluded.series_number, description = excluded.description,
+    window_center = excluded.window_center, window_width = excluded.window_width)sql";
 
 Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t study_pk) {
   SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertSeriesSql));
@@ -112,6 +114,8 @@ Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t stud
   up.bind(25, join_uid_list(series.slice_instance_uids));
   up.bind(26, series.series_number);
   up.bind(27, series.description);
+  up.bind(28, series.window_center);
+  up.bind(29, series.window_width);
   return up.run();
 }
 

@@ -271,6 +271,12 @@ ALTER TABLE series ADD COLUMN description TEXT NOT NULL DEFAULT '';
 // No table changes.
 constexpr char kSchemaV9[] = "";
 
+// Version 10: the series' DICOM window (SeriesRecord::window_center/width), where pictures start.
+constexpr char kSchemaV10[] = R"sql(
+ALTER TABLE series ADD COLUMN window_center REAL NOT NULL DEFAULT 0;
+ALTER TABLE series ADD COLUMN window_width REAL NOT NULL DEFAULT 0;
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -283,6 +289,7 @@ const std::vector<Migration>& migrations() {
       {7, kSchemaV7},
       {8, kSchemaV8},
       {9, kSchemaV9, sqlite_checksum_stored_bytes},
+      {10, kSchemaV10},
   };
   return kMigrations;
 }

@@ -6,6 +6,7 @@
 #include "server/api/grid_spec.h"
 #include "server/api/proto_records.h"
 #include "server/api/query_request.h"
+#include "server/api/render_request.h"
 #include "server/api/rpc_handling.h"
 #include "server/app/modality_names.h"
 #include "server/app/stored_structure_features.h"
@@ -14,7 +15,8 @@
 namespace soiq::server {
 namespace {
 
-constexpr size_t kMaskChunkBytes = 1 << 20;  // mask chunks: well under gRPC's 4 MiB message limit
+constexpr size_t kMaskChunkBytes = 1 << 20;
+constexpr size_t kPictureChunkBytes = 1 << 20;  // mask chunks: well under gRPC's 4 MiB message limit
 constexpr int kRunsPerMessage = 65536;
 
 FillRule fill_rule_of(v1::FillRule f) { return f == v1::EVEN_ODD ? FillRule::kEvenOdd : FillRule::kNonZero; }
@@ -143,6 +145,35 @@ grpc::Status SoiqService::Query(grpc::ServerContext* ctx, const v1::QueryRequest
     SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, queries_.run(
                                                           query, [&] { return stop_status(*ctx); }, out));
     return write(to_event(summary));
+  });
+}
+
+grpc::Status SoiqService::Render(grpc::ServerContext* ctx, const v1::RenderRequest* request,
+                                 grpc::ServerWriter<v1::RenderResponse>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    SOIQ_ASSIGN_OR_RETURN(const RenderAsk ask, render_ask(*request));
+    SOIQ_ASSIGN_OR_RETURN(
+        const RenderedPicture picture,
+        render_structure(store_, features_, pool_, request->structure_id(), ask, [&] { return stop_status(*ctx); }));
+    v1::RenderResponse head;
+    v1::RenderInfo& info = *head.mutable_info();
+    info.set_media_type(render::media_type(picture.format));
+    info.set_series_uid(picture.series_uid);
+    info.set_plane(proto_plane(picture.plane));
+    for (const int64_t k : picture.slices) info.add_slices(k);
+    info.set_slice_count(picture.slice_count);
+    info.set_window_center(picture.window.center);
+    info.set_window_width(picture.window.width);
+    info.set_width(picture.size.width);
+    info.set_height(picture.size.height);
+    info.set_size_bytes(int64_t(picture.bytes.size()));
+    if (!writer->Write(head)) return Status(StatusCode::kCancelled, "the client closed the picture");
+    for (size_t at = 0; at < picture.bytes.size(); at += kPictureChunkBytes) {
+      v1::RenderResponse chunk;
+      chunk.set_chunk(picture.bytes.substr(at, kPictureChunkBytes));
+      if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the picture");
+    }
+    return ok_status();
   });
 }
 

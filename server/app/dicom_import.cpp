@@ -125,6 +125,11 @@ Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const
         s.series.series_number = scanned->series_number;
       if (db::validate_text(scanned->description, "", db::kMaxNameBytes).ok())
         s.series.description = scanned->description;
+      // A PET series' window is in its stored units, not the SUV its voxels become.
+      if (image.modality != "PT" && image.modality != "NM") {
+        s.series.window_center = scanned->window_center;
+        s.series.window_width = scanned->window_width;
+      }
     }
     s.series.slice_instance_uids = image.slice_sop_instance_uids;
     s.image_blob = std::move(encoded.blob);

@@ -141,8 +141,10 @@ class FeatureEngine {
 
   int64_t max_grid_voxels() const { return max_grid_voxels_; }
 
- private:
+  // The series' stored image, decoded (cached). DATA_LOSS naming the series for a damaged blob.
   Result<std::shared_ptr<const Image>> image(const db::SeriesRecord& series);
+
+ private:
   // admit()'s reservation once the surface's measure is known.
   Result<Admission> reserve_for(const db::StructureRecord& structure, const ImageGeometry& geometry,
                                 const WorkExtras& extras, const SurfaceMeasure& measure,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/base/did_you_mean.h"
+#include "core/base/field_rules.h"
 #include "core/voxelize/memory_estimate.h"
 #include "server/app/pacs_address.h"
 
@@ -74,6 +75,9 @@ constexpr OptionText kOptionTexts[] = {
     {"--keep-patient-names", "on|off", "off",
      "store the Patient's Name of imported DICOM (QIDO-RS answers and matches it); off: names are "
      "dropped at import"},
+    {"--viewer-url", "URL", "",
+     "the query page's 'open in viewer' link: an http(s) URL with {study} where the Study Instance UID "
+     "goes (OHIF: http://HOST:3000/viewer?StudyInstanceUIDs={study}); unset: no link"},
 };
 
 // "--max-grid-voxels" -> "SOIQ_MAX_GRID_VOXELS".
@@ -172,6 +176,14 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--http-timeout", count(c.http_timeout_seconds, 1, 3600)},
       {"--http-max-connections", count(c.http_max_connections, 1, 100'000)},
       {"--keep-patient-names", on_off(c.keep_patient_names)},
+      {"--viewer-url",
+       [&c](const std::string& v, const std::string& what) -> Status {
+         const bool web = v.rfind("http://", 0) == 0 || v.rfind("https://", 0) == 0;
+         if (!web || v.find("{study}") == std::string::npos || !check_text(v, 2048).ok())
+           return invalid_argument(what + " must be an http:// or https:// URL with {study} in it, got '" + v + "'");
+         c.viewer_url = v;
+         return ok_status();
+       }},
   };
   auto setter = [&](const char* flag) -> const Setter& { return setters.at(flag); };
   for (const OptionText& o : kOptionTexts) {

@@ -42,6 +42,8 @@ struct ServerConfig {
   int http_max_connections = 256;  // more are answered 503 and closed
   // Patient names from DICOM are stored (and answered by QIDO-RS) only when true.
   bool keep_patient_names = false;
+  // The query page's link to a viewer: a URL with "{study}" for the Study Instance UID; "": none.
+  std::string viewer_url;
   // Replicas on a shared database (PostgreSQL; shared_stage2.h). share_stage2 is set by soiqd from
   // the store's kind, not a flag: a SQLite file has one soiqd.
   std::string replica_id;  // "": default_replica_id()

@@ -86,8 +86,34 @@ struct DicomwebServer::Impl {
     r.add("GET", series + "/metadata", wado_at(WadoWhat::kMetadata));
     r.add("GET", instance + "/metadata", wado_at(WadoWhat::kMetadata));
     r.add("GET", instance + "/bulkdata", wado_at(WadoWhat::kBulkData));
+    auto rendered_at = [this](bool thumbnail) {
+      return handler([thumbnail](const HandlerContext& c, const HttpRequest& req) {
+        const auto group = [&](size_t g) { return g < req.matches.size() ? req.matches[g] : std::string(); };
+        return wado_rendered(c, thumbnail, group(1), group(2), group(3), group(4), req);
+      });
+    };
+    r.add("GET", study + "/thumbnail", rendered_at(true));
+    for (const std::string& at : {series, instance, instance + "/frames/{}"}) {
+      r.add("GET", at + "/rendered", rendered_at(false));
+      r.add("GET", at + "/thumbnail", rendered_at(true));
+    }
     r.add("GET", "/soiq/v1/query",
           handler([](const HandlerContext& c, const HttpRequest& req) { return soiq_query(c, req); }));
+    r.add("GET", "/soiq/v1/query/plot",
+          handler([](const HandlerContext& c, const HttpRequest& req) { return soiq_query_plot(c, req); }));
+    const std::pair<const char*, StructureResource> structure_resources[] = {
+        {"rendered", StructureResource::kRendered},
+        {"thumbnail", StructureResource::kThumbnail},
+        {"seg", StructureResource::kSeg},
+        {"mask", StructureResource::kMask},
+        {"surface", StructureResource::kSurface}};
+    for (const auto& [name, what] : structure_resources)
+      r.add("GET", std::string("/soiq/v1/structures/{}/") + name,
+            handler([what = what](const HandlerContext& c, const HttpRequest& req) {
+              return soiq_structure(c, what, req.matches.size() > 1 ? req.matches[1] : std::string(), req);
+            }));
+    r.add("GET", "/soiq/v1/info",
+          handler([](const HandlerContext& c, const HttpRequest& req) { return soiq_info(c, req); }));
     // STOW-RS: the only routes with a body, received to a file (http_connection.cpp).
     auto stow_at = [this] {
       return handler([](const HandlerContext& c, const HttpRequest& req) {

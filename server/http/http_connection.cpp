@@ -12,6 +12,8 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/ssl.hpp>
 #include <chrono>
+#include <future>
+#include <memory>
 #include <optional>
 
 #include "server/http/http_range.h"
@@ -156,7 +158,8 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       request_.path = request_.target.substr(0, request_.target.find('?'));
       return refuse(400, s);
     }
-    if (!authorized()) {
+    route_ = shared_->router.find(request_.method, request_.path, request_.matches);
+    if (!authorized() && !(route_ != nullptr && route_->open)) {
       HttpReply r = error_reply(
           401, Status(StatusCode::kUnauthenticated, request_.has_header("Authorization")
                                                         ? "the bearer token is not valid for this server"
@@ -164,7 +167,6 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       r.headers.emplace("WWW-Authenticate", "Bearer");
       return write(std::move(r));
     }
-    route_ = shared_->router.find(request_.method, request_.path, request_.matches);
     if (route_ == nullptr)  // the connection stays open unless a body was sent with the request
       return write(error_reply(404, not_found("no such resource: " + request_.method + " " + request_.path)));
     if (!has_body) return dispatch();
@@ -258,6 +260,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       pollfd p{fd, POLLRDHUP, 0};
       return ::poll(&p, 1, 0) > 0 && (p.revents & (POLLRDHUP | POLLHUP | POLLERR)) != 0;
     };
+    if (request_.method == "GET") set_chunk_writers();
     asio::post(*shared_->handlers, [self = this->shared_from_this()] {
       Result<HttpReply> reply = self->run_handler();
       asio::post(self->stream_.get_executor(),
@@ -275,7 +278,114 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     }
   }
 
+  // HEAD gets the whole answer's head from the plain path: only GET streams.
+  void set_chunk_writers() {
+    request_.start_chunks = [weak = this->weak_from_this()](const std::string& content_type) {
+      return on_io(weak, [content_type](ConnectionOf& c, Done done) { c.write_chunked_head(content_type, done); });
+    };
+    request_.send_chunk = [weak = this->weak_from_this()](std::string piece) {
+      return on_io(weak, [piece = std::make_shared<std::string>(std::move(piece))](ConnectionOf& c, Done done) {
+        c.write_chunk(piece, done);
+      });
+    };
+  }
+
+  // A step of a chunked answer, run on the connection's thread while the handler's thread waits
+  // for `done`: the handler never touches the socket, and each piece is written before the next
+  // is made.
+  using Done = std::function<void(Status)>;
+  template <typename Step>
+  static Status on_io(const std::weak_ptr<ConnectionOf>& weak, Step step) {
+    const auto self = weak.lock();
+    if (!self) return Status(StatusCode::kCancelled, "the HTTP client closed its connection");
+    auto promise = std::make_shared<std::promise<Status>>();
+    std::future<Status> result = promise->get_future();
+    asio::post(self->stream_.get_executor(), [self, step, promise] {
+      if (self->phase_ == Phase::kClosed) {
+        promise->set_value(Status(StatusCode::kCancelled, "the HTTP client closed its connection"));
+        return;
+      }
+      step(*self, [promise](Status s) { promise->set_value(std::move(s)); });
+    });
+    // A server that stops no longer runs its I/O thread's work: the wait is bounded by the write
+    // timeout, and the step's late completion only sets a promise nobody reads.
+    if (result.wait_for(self->timeout() + std::chrono::seconds(5)) != std::future_status::ready)
+      return Status(StatusCode::kDeadlineExceeded, "a piece of the answer was not written within --http-timeout");
+    return result.get();
+  }
+
+  static Status write_status(beast::error_code ec) {
+    if (!ec) return ok_status();
+    return Status(StatusCode::kCancelled, "the HTTP client closed its connection (" + ec.message() + ")");
+  }
+
+  void write_chunked_head(const std::string& content_type, const Done& done) {
+    phase_ = Phase::kWriting;
+    chunked_started_ = true;
+    chunked_head_.emplace();
+    bhttp::response<bhttp::empty_body>& res = *chunked_head_;
+    res.version(11);
+    res.result(bhttp::status::ok);
+    res.set(bhttp::field::content_type, content_type);
+    res.set(bhttp::field::cache_control, "no-store");
+    keep_alive_ = !close_after_ && parser_ && parser_->keep_alive() && !stopping();
+    res.keep_alive(keep_alive_);
+    res.chunked(true);
+    chunked_serializer_.emplace(res);
+    lowest().expires_after(timeout());
+    bhttp::async_write_header(stream_, *chunked_serializer_,
+                              [self = this->shared_from_this(), done](beast::error_code ec, size_t) {
+                                if (ec) self->close();
+                                done(write_status(ec));
+                              });
+  }
+
+  void write_chunk(const std::shared_ptr<std::string>& piece, const Done& done) {
+    if (piece->empty()) return done(ok_status());  // an empty chunk would end the answer
+    chunked_bytes_ += int64_t(piece->size());
+    lowest().expires_after(timeout());
+    asio::async_write(stream_, bhttp::make_chunk(asio::buffer(*piece)),
+                      [self = this->shared_from_this(), piece, done](beast::error_code ec, size_t) {
+                        if (ec) self->close();
+                        done(write_status(ec));
+                      });
+  }
+
+  // The last chunk, then the next request or the end, as write_some does for a whole answer.
+  void finish_chunked(int status) {
+    log_answer(status, chunked_bytes_);
+    lowest().expires_after(timeout());
+    asio::async_write(stream_, bhttp::make_chunk_last(),
+                      [self = this->shared_from_this()](beast::error_code ec, size_t) {
+                        self->chunked_serializer_.reset();
+                        self->chunked_head_.reset();
+                        self->chunked_started_ = false;
+                        self->chunked_bytes_ = 0;
+                        if (ec || !self->keep_alive_ || self->body_pending_) return self->close();
+                        self->read_head();
+                      });
+  }
+
+  void log_answer(int status, int64_t size) {
+    const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
+    log_event("info", {{"event", "http"},
+                       {"method", request_.method.empty() ? "-" : request_.method},
+                       {"path", request_.path.empty() ? "-" : request_.path},
+                       {"status", std::to_string(status)},
+                       {"bytes", std::to_string(size)},
+                       {"ms", std::to_string(int64_t(ms))}});
+  }
+
   void answer(Result<HttpReply> r) {
+    if (chunked_started_) {
+      if (phase_ == Phase::kClosed) return;
+      // Its status line went out as 200: a failure can only cut the answer short.
+      if (!r.ok() || !r->chunked) {
+        log_answer(r.ok() ? 500 : http_status_of(r.status().code()), chunked_bytes_);
+        return close();
+      }
+      return finish_chunked(200);
+    }
     if (!r.ok()) return write(error_reply(http_status_of(r.status().code()), r.status()));
     HttpReply reply = std::move(*r);
     if (reply.status == 406 && reply.body.empty() && reply.pieces.empty()) {
@@ -310,13 +420,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     res.keep_alive(keep_alive_);
     res.content_length(std::uint64_t(size));
     if (request_.method == "HEAD") res.body().clear();  // the head says the size; no body follows
-    const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
-    log_event("info", {{"event", "http"},
-                       {"method", request_.method.empty() ? "-" : request_.method},
-                       {"path", request_.path.empty() ? "-" : request_.path},
-                       {"status", std::to_string(reply.status)},
-                       {"bytes", std::to_string(size)},
-                       {"ms", std::to_string(int64_t(ms))}});
+    log_answer(reply.status, size);
     serializer_.emplace(res);
     write_some();
   }
@@ -378,6 +482,10 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
   std::optional<bhttp::response<PiecesBody>> response_;
   std::optional<bhttp::response_serializer<PiecesBody>> serializer_;
   std::vector<MemoryBudget::Reservation> held_;
+  std::optional<bhttp::response<bhttp::empty_body>> chunked_head_;
+  std::optional<bhttp::response_serializer<bhttp::empty_body>> chunked_serializer_;
+  bool chunked_started_ = false;
+  int64_t chunked_bytes_ = 0;
   asio::steady_timer read_deadline_;
   uint64_t read_generation_ = 0;
   bool read_timed_out_ = false;

@@ -40,6 +40,24 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
 // with Accept: text/csv.
 Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req);
 
+// WADO-RS rendered and thumbnail resources of a study (thumbnail only), series, instance or one
+// frame (`frames` "" for none): PNG or JPEG with window, viewport and quality.
+Result<HttpReply> wado_rendered(const HandlerContext& c, bool thumbnail, const std::string& study_uid,
+                                const std::string& series_uid, const std::string& instance_uid,
+                                const std::string& frames, const HttpRequest& req);
+
+// GET /soiq/v1/query/plot: the query's histogram or scatter, SVG or PNG.
+Result<HttpReply> soiq_query_plot(const HandlerContext& c, const HttpRequest& req);
+
+// GET /soiq/v1/structures/{id}/{rendered|thumbnail|seg|mask|surface}.
+enum class StructureResource { kRendered, kThumbnail, kSeg, kMask, kSurface };
+Result<HttpReply> soiq_structure(const HandlerContext& c, StructureResource what, const std::string& id,
+                                 const HttpRequest& req);
+
+// GET /soiq/v1/info: the feature catalogue, the query options and the viewer link, as JSON (the
+// query page's form).
+Result<HttpReply> soiq_info(const HandlerContext& c, const HttpRequest& req);
+
 // STOW-RS: POST /dicom-web/studies[/{study}] with multipart/related DICOM, imported as ImportDicom
 // imports files; study_uid "" takes any study. The body is the file the connection received it
 // into (req.body_path), read through a mapping, never held in memory.

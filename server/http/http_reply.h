@@ -25,6 +25,8 @@ struct HttpReply {
   std::vector<std::string> pieces;
   // The memory budget's share of the body's bytes, given back once the answer is written.
   std::vector<MemoryBudget::Reservation> held;
+  // The handler sent its answer itself through HttpRequest::send_chunk; the rest of this is unused.
+  bool chunked = false;
 
   int64_t size() const {
     int64_t n = int64_t(body.size());

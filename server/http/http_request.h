@@ -27,6 +27,14 @@ struct HttpRequest {
   int64_t body_bytes = 0;
   // True once the client has closed its side of the connection: a long answer stops early.
   std::function<bool()> client_gone = [] { return false; };
+  // For answers sent as they are computed (chunked transfer coding): start_chunks sends the head,
+  // 200 with this content type; send_chunk sends one piece. Each returns once its bytes are
+  // written, so a slow reader slows the handler and nothing queues up in memory; CANCELLED once the
+  // client has gone, DEADLINE_EXCEEDED when a write stalls past --http-timeout. A handler that
+  // started returns HttpReply::chunked (the connection ends the answer); one that fails after
+  // starting has the connection cut short, since its status line has already gone.
+  std::function<Status(const std::string& content_type)> start_chunks;
+  std::function<Status(std::string piece)> send_chunk;
 
   bool has_header(std::string_view name) const;
   // The first header of that name (case-insensitive), or "".

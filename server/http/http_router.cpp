@@ -20,7 +20,11 @@ std::vector<std::string> split(const std::string& path) {
 void Router::add(std::string method, const std::string& pattern, Route::Handler handle, int64_t max_body_bytes,
                  std::string body_limit_name) {
   routes_.push_back(
-      Route{std::move(method), split(pattern), max_body_bytes, std::move(body_limit_name), std::move(handle)});
+      Route{std::move(method), split(pattern), max_body_bytes, std::move(body_limit_name), false, std::move(handle)});
+}
+
+void Router::add_open(const std::string& pattern, Route::Handler handle) {
+  routes_.push_back(Route{"GET", split(pattern), 0, "", true, std::move(handle)});
 }
 
 const Route* Router::find(const std::string& method, const std::string& path, std::vector<std::string>& matches) const {

@@ -20,6 +20,9 @@ struct Route {
   std::vector<std::string> segments;  // the pattern split at '/', "{}" for a capture
   int64_t max_body_bytes = 0;         // 0: the route takes no body
   std::string body_limit_name;        // the option that sets it, for the 413's message
+  // Answered without the bearer token: only the query page's static files, which hold nothing of
+  // the store (the page asks for the token before it calls the API).
+  bool open = false;
   Handler handle;
 };
 
@@ -27,6 +30,8 @@ class Router {
  public:
   void add(std::string method, const std::string& pattern, Route::Handler handle, int64_t max_body_bytes = 0,
            std::string body_limit_name = "");
+  // A GET route answered without the token (Route::open).
+  void add_open(const std::string& pattern, Route::Handler handle);
   // The route for `method` and decoded `path`, its captures in `matches` ([0] is the path); nullptr
   // when none matches.
   const Route* find(const std::string& method, const std::string& path, std::vector<std::string>& matches) const;

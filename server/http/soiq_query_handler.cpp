@@ -1,8 +1,12 @@
 // GET /soiq/v1/query: soiq's two-stage query over HTTP, with `soiq query`'s options as query
 // arguments (soiq_query_args.h), checked by the same parse_query as the gRPC call and run by the
-// same engine. The rows come as JSON ({"columns", "rows", "summary"}) or, with Accept: text/csv,
-// as the CSV `soiq query --format csv` prints: the same header, the same numbers (%.10g). Without
-// order-by the rows are by structure id (the command line prints them as they are computed).
+// same engine. The rows come as JSON ({"columns", "rows", "summary"}), with Accept: text/csv as the
+// CSV `soiq query --format csv` prints (the same header, the same numbers, %.10g), or, with Accept:
+// application/x-ndjson, as soiqd computes them: one JSON object per line, {"columns"} first, then
+// {"row"} each, then {"summary"}, or {"error"} when the query fails after its first line (the
+// query page shows rows as they come). A whole answer has one order: the query's, else by structure
+// id; a streamed one has the query's order when it has one (the engine then sends rows sorted),
+// else the order they were ready in.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -37,25 +41,81 @@ ordered_json summary_json(const QuerySummary& s) {
           {"total_ms", s.total_ms}};
 }
 
+ordered_json row_json(const QueryRow& r, const proto_text::QueryColumns& columns) {
+  const size_t first_feature = proto_text::structure_columns().size();
+  ordered_json row = {{"id", r.structure.id},
+                      {"patient_id", r.structure.patient_id},
+                      {"study_uid", r.structure.study_uid},
+                      {"name", r.structure.name},
+                      {"laterality", r.structure.laterality}};
+  for (size_t k = 0; k < columns.value_at.size(); ++k) {
+    const std::string& name = columns.header[first_feature + k];
+    const size_t at = columns.value_at[k];
+    if (at >= r.values.size() || r.values[at].values.empty()) {
+      row[name] = nullptr;
+    } else if (r.values[at].values.size() == 1) {
+      row[name] = number_json(r.values[at].values[0]);
+    } else {
+      ordered_json a = ordered_json::array();
+      for (const double v : r.values[at].values) a.push_back(number_json(v));
+      row[name] = a;
+    }
+  }
+  return row;
+}
+
+std::string json_text(const ordered_json& j) { return j.dump(-1, ' ', false, ordered_json::error_handler_t::replace); }
+
+// The NDJSON answer: each row written as the engine hands it over. A client that has gone stops
+// the query at its next row.
+Result<HttpReply> stream_query(const HttpRequest& req, const AppEngines& engines, const Query& query,
+                               const proto_text::QueryColumns& columns, const std::function<Status()>& stop) {
+  SOIQ_RETURN_IF_ERROR(req.start_chunks("application/x-ndjson"));
+  SOIQ_RETURN_IF_ERROR(req.send_chunk(json_text({{"columns", columns.header}}) + "\n"));
+  QueryOutput out;
+  out.progress = [](const QueryProgress&) { return ok_status(); };
+  out.row = [&](QueryRow&& r) { return req.send_chunk(json_text({{"row", row_json(r, columns)}}) + "\n"); };
+  const Result<QuerySummary> summary = engines.queries.run(query, stop, out);
+  if (!summary.ok()) {
+    if (summary.status().code() == StatusCode::kCancelled && req.client_gone()) return summary.status();
+    ordered_json error = {{"code", status_code_name(summary.status().code())}, {"message", summary.status().message()}};
+    if (!summary.status().field().empty()) {
+      error["field"] = summary.status().field();
+      error["reason"] = summary.status().reason();
+    }
+    SOIQ_RETURN_IF_ERROR(req.send_chunk(json_text({{"error", error}}) + "\n"));
+  } else {
+    SOIQ_RETURN_IF_ERROR(req.send_chunk(json_text({{"summary", summary_json(*summary)}}) + "\n"));
+  }
+  HttpReply reply;
+  reply.chunked = true;
+  return reply;
+}
+
 }  // namespace
 
 Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
-  // text/csv only when asked for by name; JSON otherwise.
-  const bool csv = req.has_header("Accept") && req.header("Accept").find("text/csv") != std::string::npos;
-  if (!csv && !accepts(req, "application/json")) return HttpReply{406, "application/json or text/csv", "", {}};
+  // text/csv and NDJSON only when asked for by name; JSON otherwise.
+  const std::string accept = req.header("Accept");
+  const bool csv = accept.find("text/csv") != std::string::npos;
+  const bool ndjson = accept.find("application/x-ndjson") != std::string::npos && req.start_chunks != nullptr;
+  if (!csv && !ndjson && !accepts(req, "application/json"))
+    return HttpReply{406, "application/json, application/x-ndjson or text/csv", "", {}};
   const std::vector<std::pair<std::string, std::string>>& args = req.params;
   SOIQ_ASSIGN_OR_RETURN(const v1::QueryRequest request, parse_soiq_query_args(args));
   SOIQ_ASSIGN_OR_RETURN(const Query query, parse_query(request, c.engines.config.query_result_cap));
+  const proto_text::QueryColumns columns = proto_text::query_columns(request);
+  // A client that has gone stops the query: its conversions are not worth finishing.
+  const auto stop = [&req]() -> Status {
+    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
+  };
+  if (ndjson) return stream_query(req, c.engines, query, columns, stop);
   std::vector<QueryRow> rows;
   QueryOutput out;
   out.progress = [](const QueryProgress&) { return ok_status(); };
   out.row = [&](QueryRow&& r) {
     rows.push_back(std::move(r));
     return ok_status();
-  };
-  // A client that has gone stops the query: its conversions are not worth finishing.
-  const auto stop = [&req]() -> Status {
-    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
   };
   SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, c.engines.queries.run(query, stop, out));
   // The engine streams rows as their features are ready; a whole answer has one order: the query's,
@@ -64,9 +124,7 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     std::stable_sort(rows.begin(), rows.end(),
                      [](const QueryRow& a, const QueryRow& b) { return a.structure.id < b.structure.id; });
 
-  const proto_text::QueryColumns columns = proto_text::query_columns(request);
   const std::vector<std::string>& header = columns.header;
-  const size_t first_feature = proto_text::structure_columns().size();
   HttpReply reply;
   if (csv) {
     std::string body = proto_text::csv_line(header);
@@ -82,30 +140,9 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     return reply;
   }
   ordered_json out_rows = ordered_json::array();
-  for (const QueryRow& r : rows) {
-    ordered_json row = {{"id", r.structure.id},
-                        {"patient_id", r.structure.patient_id},
-                        {"study_uid", r.structure.study_uid},
-                        {"name", r.structure.name},
-                        {"laterality", r.structure.laterality}};
-    for (size_t k = 0; k < columns.value_at.size(); ++k) {
-      const std::string& name = header[first_feature + k];
-      const size_t at = columns.value_at[k];
-      if (at >= r.values.size() || r.values[at].values.empty()) {
-        row[name] = nullptr;
-      } else if (r.values[at].values.size() == 1) {
-        row[name] = number_json(r.values[at].values[0]);
-      } else {
-        ordered_json a = ordered_json::array();
-        for (const double v : r.values[at].values) a.push_back(number_json(v));
-        row[name] = a;
-      }
-    }
-    out_rows.push_back(std::move(row));
-  }
+  for (const QueryRow& r : rows) out_rows.push_back(row_json(r, columns));
   reply.content_type = "application/json";
-  reply.body = ordered_json({{"columns", header}, {"rows", out_rows}, {"summary", summary_json(summary)}})
-                   .dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+  reply.body = json_text({{"columns", header}, {"rows", out_rows}, {"summary", summary_json(summary)}});
   return reply;
 }
 

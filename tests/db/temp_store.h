@@ -34,12 +34,16 @@ inline TriangleMesh tetrahedron(double offset) {
   return m;
 }
 
-// The SQL that takes a store of the latest schema back to version 7's tables, to version 6's, 4's and
-// 3's, for the tests of older files' migration (each test then drops what its own older version
-// lacked too).
-#define SOIQ_BACK_TO_SCHEMA_V7                                                      \
-  "DROP INDEX patients_name_lower; ALTER TABLE patients DROP COLUMN patient_name; " \
-  "ALTER TABLE series DROP COLUMN series_number; ALTER TABLE series DROP COLUMN description; "
+// The SQL that takes a store of the latest schema back to version 9's tables, to version 7's, 6's,
+// 4's and 3's, for the tests of older files' migration (each test then drops what its own older
+// version lacked too).
+#define SOIQ_BACK_TO_SCHEMA_V9 \
+  "ALTER TABLE series DROP COLUMN window_center; ALTER TABLE series DROP COLUMN window_width; "
+inline constexpr char kBackToSchemaV9[] = SOIQ_BACK_TO_SCHEMA_V9;
+#define SOIQ_BACK_TO_SCHEMA_V7                                                          \
+  SOIQ_BACK_TO_SCHEMA_V9                                                                \
+      "DROP INDEX patients_name_lower; ALTER TABLE patients DROP COLUMN patient_name; " \
+      "ALTER TABLE series DROP COLUMN series_number; ALTER TABLE series DROP COLUMN description; "
 inline constexpr char kBackToSchemaV7[] = SOIQ_BACK_TO_SCHEMA_V7;
 #define SOIQ_BACK_TO_SCHEMA_V6 SOIQ_BACK_TO_SCHEMA_V7 "DROP TABLE stage2_work; DROP TABLE replicas; "
 inline constexpr char kBackToSchemaV6[] = SOIQ_BACK_TO_SCHEMA_V6;
@@ -61,6 +65,7 @@ inline constexpr char kBackToSchemaV3[] = SOIQ_BACK_TO_SCHEMA_V4
 #undef SOIQ_BACK_TO_SCHEMA_V4
 #undef SOIQ_BACK_TO_SCHEMA_V6
 #undef SOIQ_BACK_TO_SCHEMA_V7
+#undef SOIQ_BACK_TO_SCHEMA_V9
 
 inline NewStructure new_structure(const std::string& patient_id, const std::string& study_uid, const std::string& name,
                                   double surface_offset = 0) {

@@ -92,6 +92,94 @@ field=$(/usr/bin/python3 -c 'import json,sys; e=json.load(open(sys.argv[1]))["er
 expect 400 "at column" "${base%/dicom-web}/soiq/v1/query?where=sphericity%3E%3E1"
 expect 400 "desc needs order-by" "${base%/dicom-web}/soiq/v1/query?desc=true"
 
+# Pictures: WADO-RS rendered and thumbnail of the GTV's SEG (its frames on their CT slices) and of
+# the CT's instances; soiq's own /soiq/v1/structures/{id}/... pictures and files. Each answer is
+# judged by its status, its Content-Type and its first bytes (a PNG's size from its header).
+# expect_file STATUS TYPE MAGIC-HEX CURL-ARGS...
+expect_file() {
+  local want="$1 $2" magic=$3
+  shift 3
+  local got head
+  got=$(curl -s -o "$tmp/file" -w '%{http_code} %{content_type}' "$@")
+  head=$(head -c $((${#magic} / 2)) "$tmp/file" | od -An -tx1 | tr -d ' \n')
+  if [ "$got" != "$want" ] || [ "$head" != "$magic" ]; then
+    echo "FAIL: curl $*: '$got' starting $head, expected '$want' starting $magic"
+    failures=$((failures + 1))
+  fi
+}
+png=89504e470d0a1a0a
+jpeg=ffd8ff
+svg=3c3f786d6c
+root=${base%/dicom-web}
+sts_study=$(curl -s "$base/studies?PatientID=STS_002" | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)[0]["0020000D"]["Value"][0])')
+curl -s "$base/studies/$sts_study/series" >"$tmp/series.json"
+seg_series=$(/usr/bin/python3 -c 'import json,sys; print([s["0020000E"]["Value"][0] for s in json.load(open(sys.argv[1])) if s["00080060"]["Value"][0] == "SEG"][0])' "$tmp/series.json")
+ct_series=$(/usr/bin/python3 -c 'import json,sys; print([s["0020000E"]["Value"][0] for s in json.load(open(sys.argv[1])) if s["00080060"]["Value"][0] == "CT"][0])' "$tmp/series.json")
+seg_instance=$(curl -s "$base/studies/$sts_study/series/$seg_series/instances" | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)[0]["00080018"]["Value"][0])')
+ct_instance=$(curl -s "$base/studies/$sts_study/series/$ct_series/instances" | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)[3]["00080018"]["Value"][0])')
+seg=$base/studies/$sts_study/series/$seg_series
+ct=$base/studies/$sts_study/series/$ct_series
+expect_file 200 image/jpeg $jpeg "$seg/rendered"
+expect_file 200 image/png $png -H 'Accept: image/png' "$seg/rendered"
+expect_file 200 image/jpeg $jpeg "$seg/instances/$seg_instance/rendered?quality=60"
+expect_file 200 image/png $png -H 'Accept: image/png' "$seg/instances/$seg_instance/frames/1/rendered?window=40,400,linear"
+expect_file 200 image/jpeg $jpeg "$seg/thumbnail"
+expect_file 200 image/jpeg $jpeg "$ct/rendered"
+expect_file 200 image/jpeg $jpeg "$ct/instances/$ct_instance/rendered"
+expect_file 200 image/png $png -H 'Accept: image/png' "$ct/instances/$ct_instance/thumbnail?viewport=64,48"
+size=$(/usr/bin/python3 -c 'import struct,sys; d=open(sys.argv[1],"rb").read(24); print("%dx%d" % struct.unpack(">II", d[16:24]))' "$tmp/file")
+case $size in 64x*|*x48) ;; *) echo "FAIL: a 64x48 viewport gave a ${size} thumbnail"; failures=$((failures + 1)) ;; esac
+/usr/bin/python3 -c 'import sys; w,h=map(int,sys.argv[1].split("x")); sys.exit(0 if w<=64 and h<=48 else 1)' "$size" ||
+  { echo "FAIL: a ${size} thumbnail overflows its 64x48 viewport"; failures=$((failures + 1)); }
+expect_file 200 image/jpeg $jpeg "$base/studies/$sts_study/thumbnail"
+expect 400 "unsupported parameter 'annotation'" "$seg/rendered?annotation=patient"
+expect 400 "window must be CENTER,WIDTH" "$seg/rendered?window=40"
+expect 400 "'sigmoid' is not supported" "$seg/rendered?window=40,400,sigmoid"
+expect 400 "source rectangle" "$seg/rendered?viewport=100,100,0,0,10,10"
+expect 400 "quality must be a whole number in 1..100" "$seg/rendered?quality=0"
+expect 400 "one frame per rendered request" "$seg/instances/$seg_instance/frames/1,2/rendered"
+expect 404 "frames 1.." "$seg/instances/$seg_instance/frames/99999/rendered"
+expect 404 "not found" "$ct/instances/1.2.3.4/rendered"
+expect 406 "not acceptable" -H 'Accept: image/gif' "$seg/rendered"
+gtv=$(curl -s "$root/soiq/v1/query?name=GTV*" | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)["rows"][0]["id"])')
+expect_file 200 image/jpeg $jpeg "$root/soiq/v1/structures/$gtv/thumbnail"
+expect_file 200 image/png $png -H 'Accept: image/png' "$root/soiq/v1/structures/$gtv/rendered?plane=coronal&through=centroid"
+expect_file 200 image/svg+xml $svg -H 'Accept: image/svg+xml' "$root/soiq/v1/structures/$gtv/rendered?montage=true"
+expect_file 200 application/dicom "" "$root/soiq/v1/structures/$gtv/seg"
+[ "$(dd if="$tmp/file" bs=1 skip=128 count=4 2>/dev/null)" = DICM ] || { echo "FAIL: /seg is not a DICOM file"; failures=$((failures + 1)); }
+expect_file 200 application/gzip 1f8b "$root/soiq/v1/structures/$gtv/mask"
+expect_file 200 model/stl "" "$root/soiq/v1/structures/$gtv/surface"
+/usr/bin/python3 -c 'import struct,sys,os; d=open(sys.argv[1],"rb").read(84); n=struct.unpack("<I", d[80:84])[0]; sys.exit(0 if os.path.getsize(sys.argv[1]) == 84 + 50 * n and n > 0 else 1)' "$tmp/file" ||
+  { echo "FAIL: /surface is not a binary STL of its triangle count"; failures=$((failures + 1)); }
+disposition=$(curl -s -D - -o /dev/null "$root/soiq/v1/structures/$gtv/mask" | tr -d '\r' | grep -i '^Content-Disposition:' || true)
+[ "$disposition" = "Content-Disposition: attachment; filename=\"structure-$gtv-mask.nii.gz\"" ] ||
+  { echo "FAIL: the mask's file name: '$disposition'"; failures=$((failures + 1)); }
+expect 404 "structure '999999' not found" "$root/soiq/v1/structures/999999/thumbnail"
+expect 404 "structure 'abc' not found" "$root/soiq/v1/structures/abc/seg"
+expect 400 "slice 100000 is outside 0.." "$root/soiq/v1/structures/$gtv/rendered?slice=100000"
+expect 400 "unsupported parameter 'x'" "$root/soiq/v1/structures/$gtv/mask?x=1"
+
+# The query as rows streamed one JSON line at a time (chunked): columns first, the rows of the plain
+# JSON answer, the summary last; a bad argument still a 400 before anything is streamed.
+curl -s -D "$tmp/ndjson.head" -H 'Accept: application/x-ndjson' "$root/soiq/v1/query?name=GTV*&select=sphericity" >"$tmp/ndjson"
+curl -s "$root/soiq/v1/query?name=GTV*&select=sphericity" >"$tmp/whole.json"
+/usr/bin/python3 - "$tmp/ndjson" "$tmp/whole.json" <<'PY' || { echo "FAIL: the NDJSON answer differs from the JSON one"; failures=$((failures + 1)); }
+import json, sys
+lines = [json.loads(l) for l in open(sys.argv[1]) if l.strip()]
+whole = json.load(open(sys.argv[2]))
+assert lines[0] == {"columns": whole["columns"]}, lines[0]
+rows = sorted((l["row"] for l in lines[1:-1]), key=lambda r: r["id"])
+assert rows == whole["rows"], (rows, whole["rows"])
+assert "summary" in lines[-1] and lines[-1]["summary"]["returned"] == len(rows), lines[-1]
+PY
+grep -qi '^Transfer-Encoding: chunked' "$tmp/ndjson.head" || { echo "FAIL: the NDJSON answer is not chunked"; failures=$((failures + 1)); }
+expect 400 "unknown feature 'spherity'" -H 'Accept: application/x-ndjson' "$root/soiq/v1/query?select=spherity"
+expect_file 200 image/svg+xml $svg "$root/soiq/v1/query/plot?name=GTV*&select=voxel_volume_mm3"
+expect_file 200 image/png $png -H 'Accept: image/png' "$root/soiq/v1/query/plot?select=voxel_volume_mm3&select=sphericity"
+expect 400 "the plot needs a feature" "$root/soiq/v1/query/plot?name=GTV*"
+info=$(curl -s "$root/soiq/v1/info" | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); print(len(d["features"]) > 20, [o["name"] for o in d["query_options"]][:2], d["viewer_url"] == "")')
+[ "$info" = "True ['patient', 'sex'] True" ] || { echo "FAIL: /soiq/v1/info: $info"; failures=$((failures + 1)); }
+
 # With a token: none or a wrong one is 401 with WWW-Authenticate.
 echo "curl-test-token-0123456789abcdef" >"$tmp/token"
 start_soiqd tok --http 127.0.0.1:0 --http-port-file "$tmp/tok.http-port" --token-file "$tmp/token"
@@ -100,6 +188,12 @@ expect 401 "needs 'Authorization: Bearer TOKEN'" "$tok/studies"
 expect 401 "not valid" -H 'Authorization: Bearer wrong' "$tok/studies"
 [ "$(curl -s -o /dev/null -w '%{http_code}' -H 'Authorization: Bearer curl-test-token-0123456789abcdef' "$tok/studies")" = 200 ] ||
   { echo "FAIL: the right token was refused"; failures=$((failures + 1)); }
+# The query page's files need no token (they hold nothing of the store); its API calls do.
+tok_root=${tok%/dicom-web}
+[ "$(curl -s -o /dev/null -w '%{http_code} %{content_type}' "$tok_root/")" = "200 text/html; charset=utf-8" ] ||
+  { echo "FAIL: the query page needs no token"; failures=$((failures + 1)); }
+expect 401 "needs 'Authorization: Bearer TOKEN'" "$tok_root/soiq/v1/info"
+expect 401 "needs 'Authorization: Bearer TOKEN'" "$tok_root/soiq/v1/structures/1/thumbnail"
 challenge=$(curl -s -D - -o /dev/null "$tok/studies" | tr -d '\r' | grep -i '^WWW-Authenticate:' || true)
 [ "$challenge" = "WWW-Authenticate: Bearer" ] || { echo "FAIL: no Bearer challenge: '$challenge'"; failures=$((failures + 1)); }
 
