@@ -51,10 +51,21 @@ std::vector<double> round_ticks(double low, double high, int most, double min_st
 }
 
 std::string tick_label(double value) {
-  char text[32];
+  if (value == 0) return "0";  // and never "-0"
+  const auto close = [value](const char* text) {
+    return std::abs(std::strtod(text, nullptr) - value) <= 1e-9 * std::abs(value);
+  };
+  char text[64];
+  // Plain decimals where an axis reader expects them ("1500", "0.02"), exponents beyond.
+  if (std::abs(value) >= 1e-4 && std::abs(value) < 1e6) {
+    for (int decimals = 0; decimals <= 12; ++decimals) {
+      std::snprintf(text, sizeof text, "%.*f", decimals, value);
+      if (close(text)) return text;
+    }
+  }
   for (int digits = 1; digits <= 17; ++digits) {
     std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::abs(std::strtod(text, nullptr) - value) <= 1e-9 * std::max(1.0, std::abs(value))) break;
+    if (close(text)) break;
   }
   return text;
 }

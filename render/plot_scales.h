@@ -22,7 +22,8 @@ int histogram_bins(std::vector<double> values);
 // one value when low == high.
 std::vector<double> round_ticks(double low, double high, int most, double min_step = 0);
 
-// A tick's label: the shortest of "%g" that shows the value (0.30000000000000004 is "0.3").
+// A tick's label: the fewest decimals that show the value (0.30000000000000004 is "0.3", 1500 is
+// "1500"); below 1e-4 and from 1e6 on, the fewest significant digits with an exponent ("2.5e-05").
 std::string tick_label(double value);
 
 // "volume — 48 rows, 2 without a value": the caller's title, then the rows plotted and, when some
