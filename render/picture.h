@@ -5,7 +5,7 @@
 //
 // Inputs   width, height: the picture's size in pixels (SVG: points), each in 1..kMaxPictureSide.
 //          draw: called once with a cairo context on that surface, origin top left, y down.
-// Output   the file's bytes.
+// Output   the file's bytes. JPEG has no alpha: a pixel left translucent comes out as over black.
 // Errors   INVALID_ARGUMENT for a size out of range or a JPEG quality outside 1..100; INTERNAL when
 //          cairo or libjpeg fails (out of memory).
 // Cost     O(width x height). Thread-safe (each call has its own surface).

@@ -73,9 +73,6 @@ void draw_axes(cairo_t* cr, const PlotFrame& f, const Scale& x, const std::vecto
     draw_text(cr, tick_label(t), f.left - tick - 3, y(t), Anchor::kEnd, Anchor::kCentre, text);
   }
   cairo_stroke(cr);
-  cairo_rectangle(cr, std::round(f.left) + 0.5, std::round(f.top) + 0.5, std::round(f.right - f.left),
-                  std::round(f.bottom - f.top));
-  cairo_stroke(cr);
   draw_text(cr, x_label, (f.left + f.right) / 2, f.bottom + tick + 2 + font * 1.5, Anchor::kCentre, Anchor::kStart,
             text);
   cairo_save(cr);
@@ -84,6 +81,18 @@ void draw_axes(cairo_t* cr, const PlotFrame& f, const Scale& x, const std::vecto
   draw_text(cr, y_label, 0, 0, Anchor::kCentre, Anchor::kStart, text);
   cairo_restore(cr);
 }
+
+// Last, so that no bar or mark covers the axes.
+void draw_frame(cairo_t* cr, const PlotFrame& f) {
+  set_colour(cr, kInk);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, std::round(f.left) + 0.5, std::round(f.top) + 0.5, std::round(f.right - f.left),
+                  std::round(f.bottom - f.top));
+  cairo_stroke(cr);
+}
+
+// About one tick per `spacing` pixels.
+int tick_count(double length_px, double spacing) { return std::max(2, static_cast<int>(length_px / spacing)); }
 
 void draw_histogram(cairo_t* cr, const PlotFrame& f, const std::vector<double>& values, const PlotAxis& axis,
                     double font) {
@@ -97,10 +106,10 @@ void draw_histogram(cairo_t* cr, const PlotFrame& f, const std::vector<double>& 
     ++counts[static_cast<size_t>(std::clamp<int64_t>(bin, 0, bins - 1))];  // the maximum closes the last bin
   }
   const double most = static_cast<double>(*std::max_element(counts.begin(), counts.end()));
-  const std::vector<double> y_ticks = round_ticks(0, most, 6, 1);
+  const std::vector<double> y_ticks = round_ticks(0, most, tick_count(f.bottom - f.top, 50), 1);
   const double y_top = std::max(most, y_ticks.empty() ? 1.0 : y_ticks.back()) * 1.05;
   const Scale x{low, high, f.left, f.right}, y{0, y_top, f.bottom, f.top};
-  const std::vector<double> x_ticks = round_ticks(low, high, std::max(2, static_cast<int>((f.right - f.left) / 90)));
+  const std::vector<double> x_ticks = round_ticks(low, high, tick_count(f.right - f.left, 70));
   draw_axes(cr, f, x, x_ticks, y, y_ticks, axis_label(axis.name, axis.unit), "rows", font);
   for (int b = 0; b < bins; ++b) {
     if (counts[static_cast<size_t>(b)] == 0) continue;
@@ -121,9 +130,9 @@ void draw_scatter(cairo_t* cr, const PlotFrame& f, const PlotData& data, const s
   const auto [y_min, y_max] = std::minmax_element(data.columns[1].begin(), data.columns[1].end());
   const AxisRange xr = scatter_range(*x_min, *x_max), yr = scatter_range(*y_min, *y_max);
   const Scale x{xr.low, xr.high, f.left, f.right}, y{yr.low, yr.high, f.bottom, f.top};
-  draw_axes(cr, f, x, round_ticks(xr.low, xr.high, std::max(2, static_cast<int>((f.right - f.left) / 90))), y,
-            round_ticks(yr.low, yr.high, std::max(2, static_cast<int>((f.bottom - f.top) / 60))),
-            axis_label(axes[0].name, axes[0].unit), axis_label(axes[1].name, axes[1].unit), font);
+  draw_axes(cr, f, x, round_ticks(xr.low, xr.high, tick_count(f.right - f.left, 70)), y,
+            round_ticks(yr.low, yr.high, tick_count(f.bottom - f.top, 50)), axis_label(axes[0].name, axes[0].unit),
+            axis_label(axes[1].name, axes[1].unit), font);
   // Translucent marks: where rows pile up the colour deepens.
   set_colour(cr, kMark, 0.75);
   for (size_t row = 0; row < data.columns[0].size(); ++row) {
@@ -165,13 +174,15 @@ Result<std::string> plot_picture(const std::vector<PlotAxis>& axes, const std::s
                 axes.size() == 2 ? axis_label(axes[1].name, axes[1].unit) : "rows", font);
       draw_text(cr, "no row has a value to plot", (f.left + f.right) / 2, (f.top + f.bottom) / 2, Anchor::kCentre,
                 Anchor::kCentre, TextStyle{font, kInk, false, false});
+      draw_frame(cr, f);
       return;
     }
     if (axes.size() == 1) {
       draw_histogram(cr, f, data.columns[0], axes[0], font);
     } else {
-      draw_scatter(cr, f, data, axes, font, std::clamp(std::min(width, height) / 160.0, 2.5, 6.0));
+      draw_scatter(cr, f, data, axes, font, std::clamp(std::min(width, height) / 120.0, 3.0, 7.0));
     }
+    draw_frame(cr, f);
   });
 }
 

@@ -3,7 +3,8 @@
 // Freedman-Diaconis rule, at least 5 and at most 50; the count on the y axis) or a scatter of two.
 // Axes are named with the feature and its unit ("voxel_volume_mm3 (mm3)"), ticks at round values
 // (1, 2 or 5 x 10^n), and the number of rows plotted in the title. Rows without a finite value for
-// a plotted feature are left out and counted in the title ("48 rows, 2 without a value").
+// a plotted feature are left out and counted in the title ("48 rows, 2 without a value": 48
+// plotted, 2 more left out). The numbers (bins, ticks, title, the data area) are plot_scales.h's.
 //
 // Errors   INVALID_ARGUMENT for other than 1 or 2 axes, axes of different lengths, a size outside
 //          200..kMaxPictureSide; those of draw_picture. No finite value at all is drawn as empty axes

@@ -1,19 +1,21 @@
 #pragma once
 // How one plane of a grid is shown on a screen, the way radiology viewers show it: axial with the
 // patient's anterior up and right on the screen's left, coronal with superior up and right on the
-// left, sagittal with superior up and anterior on the left. The grid's voxel axis nearest each
-// screen direction is found from the direction cosines (never assumed axis-aligned), flipped when
-// it runs the other way, and the letters at the four edges name where the screen's directions
-// point in the patient, from the same cosines: one letter when the direction is within 1e-3 of an
-// axis, else the two or three largest components in order ("LA", "SLP" for an oblique grid).
+// left, sagittal with superior up and anterior on the left. The grid's voxel axes are matched one
+// to one with the patient's axes from the direction cosines (never assumed axis-aligned): of the
+// six matchings, the one with the largest sum of |cosine|, since matching each voxel axis to its
+// own largest component can give two axes one patient axis even on an orthonormal grid. An axis is
+// flipped when it runs against the screen's direction. The letters at the four edges name where the
+// screen's directions point in the patient, from the same cosines: the components over 1e-3 in
+// magnitude, largest first (one letter for an axis-aligned grid, "LA", "SLP" for an oblique one).
 //
 // Slices are numbered along the plane's normal voxel axis as the grid stores them (k = 0..n-1 for
 // an axial plane of an axial series), so a slice number means the same as in the grid.
 //
-// Errors   INVALID_ARGUMENT for an unknown plane name or a slice out of range; FAILED_PRECONDITION
-//          when the grid's axes cannot be matched one to one with the plane (two voxel axes
-//          nearest the same patient axis cannot happen for an orthonormal direction, so only an
-//          invalid geometry gets there).
+// Errors   INVALID_ARGUMENT for an unknown plane name, a slice out of range, or an image or volume
+//          not on the grid `axes` was made from (naming both sizes); FAILED_PRECONDITION from
+//          slice_axes when the geometry is invalid (validate_geometry: a direction that is not
+//          orthonormal, a spacing <= 0), as no matching of its axes then means anything.
 // Cost     slice_axes O(1); image_slice and mask_slice O(width x height) and O(runs on the slice).
 
 #include <cstdint>

@@ -1,7 +1,9 @@
 #pragma once
 // How intensities become grey levels or colours: a window (centre, width) as DICOM's VOI LUT
-// defines it (PS3.3 C.11.2.1.2, linear: values at or below centre - width/2 are black, at or above
-// centre + width/2 white), and a colour map per modality.
+// defines it (PS3.3 C.11.2.1.3.2, LINEAR_EXACT: values at or below centre - width/2 are black, at
+// or above centre + width/2 white, linear between; plain LINEAR's "- 0.5" and "width - 1" assume
+// integer values and a width of at least 1, which a PET window in SUV does not have), and a
+// colour map per modality.
 //
 // When a series carries no Window Center/Width (an uploaded image, a PET series), the default is
 // robust: the 1st to 99th percentile of the finite values given (CT, MR, any image), or, for PET and
@@ -35,7 +37,7 @@ ColourMap colour_map_for_modality(const std::string& modality);
 // The robust default above for `values` (NaNs and infinities ignored; empty: centre 0, width 1).
 Window default_window(const std::vector<float>& values, const std::string& modality);
 
-// 0..255 for `value` through the window (DICOM's linear function, rounded).
+// 0..255 for `value` through the window (LINEAR_EXACT above, rounded half away from zero); NaN is 0.
 uint8_t window_level(const Window& window, double value);
 
 struct Rgb {

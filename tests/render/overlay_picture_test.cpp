@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tests/render/decoded_picture.h"
@@ -190,6 +191,64 @@ TEST(OverlayPicture, AMontageLaysTilesOutInRowsOfCeilSqrt) {
   expect_colour(p, 520 + 130, 260 + 130, Rgb{0, 0, 0}, 0, "the empty cell");
   // At a given width the tiles share it: 3 x 100 px.
   EXPECT_EQ(overlay_size(axes, 5, 300)->height, 200);
+}
+
+// A CT-like slice through the whole path a server takes: a volume, its axes, the slices, the scene.
+TEST(OverlayPicture, ACtSliceThroughSliceAxesShowsAirBlackBoneWhiteAndTheStructureTinted) {
+  ImageGeometry g;
+  g.dims = {160, 128, 3};
+  g.spacing_mm = {0.8, 0.8, 3};
+  Image ct{g, std::vector<float>(static_cast<size_t>(g.voxel_count()))};
+  Mask tumour{g, std::vector<uint8_t>(static_cast<size_t>(g.voxel_count()), 0)};
+  const auto in_ellipse = [](double x, double y, double cx, double cy, double rx, double ry) {
+    return (x - cx) * (x - cx) / (rx * rx) + (y - cy) * (y - cy) / (ry * ry) <= 1;
+  };
+  for (int64_t k = 0; k < 3; ++k) {
+    for (int64_t j = 0; j < 128; ++j) {
+      for (int64_t i = 0; i < 160; ++i) {
+        const size_t n = static_cast<size_t>(i + 160 * (j + 128 * k));
+        float hu = -1000;                                                                      // air
+        if (in_ellipse(i, j, 80, 64, 70, 50)) hu = 40 + (i * 7 + j * 13) % 21 - 10;            // soft tissue
+        if (in_ellipse(i, j, 52, 58, 20, 30) || in_ellipse(i, j, 108, 58, 20, 30)) hu = -850;  // lungs
+        if (in_ellipse(i, j, 80, 100, 9, 9)) hu = 700;                                         // a vertebra
+        const bool lesion = k == 1 && in_ellipse(i, j, 108, 50, 7, 7);  // in the patient's left lung
+        if (lesion) hu = 30;
+        ct.voxels[n] = hu;
+        tumour.voxels[n] = lesion;
+      }
+    }
+  }
+  const SliceAxes axes = *slice_axes(g, Plane::kAxial);
+  const std::vector<int64_t> per_slice = inside_per_slice(from_mask(tumour), axes);
+  const int64_t largest = std::max_element(per_slice.begin(), per_slice.end()) - per_slice.begin();
+  ASSERT_EQ(largest, 1);
+  OverlayScene s;
+  s.image = *image_slice(ct, axes, largest);
+  s.mask = *mask_slice(from_mask(tumour), axes, largest);
+  s.window = Window{40, 400};
+  s.pixel_width_mm = axes.pixel_width_mm;
+  s.pixel_height_mm = axes.pixel_height_mm;
+  s.left = axes.left;
+  s.right = axes.right;
+  s.top = axes.top;
+  s.bottom = axes.bottom;
+  s.label = "k " + std::to_string(largest);
+  s.caption = "lesion_L  CT  W 400 C 40";
+  const testing::DecodedPicture p = draw({s}, 0, "overlay_ct.png");
+  ASSERT_TRUE(p.ok);
+  // 128 mm across the 160 voxels: 4 px per voxel reaches 512 (3.2 would not be whole), 640 x 512.
+  ASSERT_EQ(p.width, 640);
+  ASSERT_EQ(p.height, 512);
+  const auto centre = [](int i, int j) { return std::pair<int, int>(i * 4 + 2, j * 4 + 2); };
+  const auto [air_x, air_y] = centre(5, 30);
+  expect_colour(p, air_x, air_y, Rgb{0, 0, 0}, 0, "air");
+  const auto [bone_x, bone_y] = centre(80, 100);
+  expect_colour(p, bone_x, bone_y, Rgb{255, 255, 255}, 0, "bone");
+  const auto [lesion_x, lesion_y] = centre(108, 50);
+  expect_colour(p, lesion_x, lesion_y, tinted(window_level(s.window, 30)), kBlend, "the lesion");
+  // The lesion is in the patient's left: on the screen's right half, with "L" at the right edge.
+  EXPECT_EQ(s.right, "L");
+  EXPECT_GT(lesion_x, p.width / 2);
 }
 
 TEST(ScaleBar, IsTheLargestRoundLengthWithinAFifthOfTheWidth) {
