@@ -108,26 +108,40 @@ void set_rgb(cairo_t* cr, const Rgb& c, double alpha) {
   cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
 }
 
-// The slice at one pixel per voxel, opaque, drawn scaled by the caller.
-void paint_image(cairo_t* cr, const OverlayScene& scene) {
+// The slice, opaque, at the tile's own pixels: each pixel takes the voxel under its centre. Scaled
+// here rather than by cairo's pattern filter because cairo's SVG surface drops the filter, and a
+// browser would then smooth the voxels into each other.
+void paint_image(cairo_t* cr, const OverlayScene& scene, double voxel_width, double voxel_height,
+                 const Layout& layout) {
   const SliceImage& image = *scene.image;
-  cairo_surface_t* surface =
-      cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(image.width), static_cast<int>(image.height));
+  std::vector<uint32_t> voxel_colours(image.values.size());
+  for (size_t n = 0; n < image.values.size(); ++n) {
+    const Rgb c = colour_of(scene.colours, window_level(scene.window, image.values[n]));
+    voxel_colours[n] = 0xff000000u | (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | c.b;
+  }
+  const int width = static_cast<int>(std::ceil(layout.tile_width));
+  const int height = static_cast<int>(std::ceil(layout.tile_height));
+  std::vector<int64_t> column_voxel(static_cast<size_t>(width));
+  for (int x = 0; x < width; ++x) {
+    column_voxel[static_cast<size_t>(x)] =
+        std::min<int64_t>(image.width - 1, static_cast<int64_t>((x + 0.5) / voxel_width));
+  }
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
   if (cairo_surface_status(surface) == CAIRO_STATUS_SUCCESS) {
     cairo_surface_flush(surface);
     unsigned char* data = cairo_image_surface_get_data(surface);
     const int stride = cairo_image_surface_get_stride(surface);
-    for (int64_t y = 0; y < image.height; ++y) {
-      auto* row = reinterpret_cast<uint32_t*>(data + y * stride);
-      for (int64_t x = 0; x < image.width; ++x) {
-        const Rgb c = colour_of(scene.colours, window_level(scene.window, image.values[y * image.width + x]));
-        row[x] = 0xff000000u | (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | c.b;
+    for (int y = 0; y < height; ++y) {
+      const int64_t row_voxel = std::min<int64_t>(image.height - 1, static_cast<int64_t>((y + 0.5) / voxel_height));
+      auto* row = reinterpret_cast<uint32_t*>(data + static_cast<size_t>(y) * static_cast<size_t>(stride));
+      for (int x = 0; x < width; ++x) {
+        row[x] = voxel_colours[static_cast<size_t>(row_voxel * image.width + column_voxel[static_cast<size_t>(x)])];
       }
     }
     cairo_surface_mark_dirty(surface);
   }
   cairo_set_source_surface(cr, surface, 0, 0);  // an error surface puts cr in error: draw_picture reports it
-  // Nearest: a voxel is a square of one grey, as a radiologist counts them, never blurred into its neighbours.
+  // A montage's tiles may start between pixels: nearest keeps each pixel one voxel's grey there too.
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
   cairo_paint(cr);
   cairo_surface_destroy(surface);
@@ -231,9 +245,9 @@ void draw_tile(cairo_t* cr, const OverlayScene& scene, const Layout& layout) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_paint(cr);
 
+  if (scene.image) paint_image(cr, scene, voxel_width, voxel_height, layout);
   cairo_save(cr);
   cairo_scale(cr, voxel_width, voxel_height);
-  if (scene.image) paint_image(cr, scene);
   cairo_new_path(cr);
   fill_path(cr, scene.mask);
   cairo_restore(cr);  // the path stays, in device pixels

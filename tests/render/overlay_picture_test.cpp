@@ -267,6 +267,9 @@ TEST(OverlayPicture, SvgAndJpegToo) {
   EXPECT_EQ(svg->rfind("<?xml", 0), 0u);
   EXPECT_NE(svg->find("<svg"), std::string::npos);
   EXPECT_NE(svg->find("width=\"520"), std::string::npos);
+  // The slice goes in at the picture's own pixels, so a browser has nothing to smooth.
+  EXPECT_NE(svg->find("<image id=\"image"), std::string::npos);
+  EXPECT_NE(svg->find("width=\"520\" height=\"520\" xlink:href=\"data:image/png"), std::string::npos);
   const Result<std::string> jpeg = overlay_picture({s}, 0, PictureOptions{PictureFormat::kJpeg, 90});
   ASSERT_TRUE(jpeg.ok()) << jpeg.status().to_string();
   const testing::DecodedPicture p = testing::decode_jpeg(*jpeg);
