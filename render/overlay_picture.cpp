@@ -199,6 +199,15 @@ std::string millimetres(double mm) {
   return text;
 }
 
+// Drops the last UTF-8 character of `s` (its continuation bytes, then its lead byte).
+void drop_last_character(std::string& s) {
+  while (!s.empty()) {
+    const unsigned char c = static_cast<unsigned char>(s.back());
+    s.pop_back();
+    if ((c & 0xC0) != 0x80) return;
+  }
+}
+
 // Scale bar, letters, label and caption, inside the tile, light on a dark halo.
 void draw_annotations(cairo_t* cr, const OverlayScene& scene, const Layout& layout, double tile_width_mm) {
   const double w = layout.tile_width, h = layout.tile_height;
@@ -214,15 +223,23 @@ void draw_annotations(cairo_t* cr, const OverlayScene& scene, const Layout& layo
   draw_text(cr, scene.left, margin, h / 2, Anchor::kStart, Anchor::kCentre, letter);
   draw_text(cr, scene.right, w - margin, h / 2, Anchor::kEnd, Anchor::kCentre, letter);
 
-  // The caption keeps the bottom line; what it would run into moves up a line.
-  const double caption_end = margin + text_width(cr, scene.caption, text);
+  // The caption keeps the bottom line, cut with an ellipsis where the tile ends; what it would run
+  // into moves up a line.
+  const auto fits = [&](const std::string& t) { return margin + text_width(cr, t, text) <= w - margin; };
+  std::string caption = scene.caption;
+  if (!fits(caption)) {
+    const std::string ellipsis = "\u2026";
+    while (!caption.empty() && !fits(caption + ellipsis)) drop_last_character(caption);
+    caption += ellipsis;
+  }
+  const double caption_end = margin + text_width(cr, caption, text);
   const double bar_mm = scale_bar_mm(tile_width_mm);
   const double bar_px = bar_mm * layout.px_per_mm;
   const double bar_left = w - margin - bar_px;
   const double letter_half = text_width(cr, scene.bottom, letter) / 2;
   const double letter_bottom = caption_end + margin > w / 2 - letter_half ? h - margin - line : h - margin;
   const double bar_bottom = caption_end + margin > bar_left ? h - margin - line : h - margin;
-  draw_text(cr, scene.caption, margin, h - margin, Anchor::kStart, Anchor::kEnd, text);
+  draw_text(cr, caption, margin, h - margin, Anchor::kStart, Anchor::kEnd, text);
   draw_text(cr, scene.bottom, w / 2, letter_bottom, Anchor::kCentre, Anchor::kEnd, letter);
 
   const double thickness = std::max(2.0, std::round(text.size / 5));
@@ -263,7 +280,8 @@ void draw_tile(cairo_t* cr, const OverlayScene& scene, const Layout& layout) {
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_SQUARE);  // closes the corners where two segments meet
   cairo_stroke(cr);
 
-  draw_annotations(cr, scene, layout, static_cast<double>(scene.mask.width) * scene.pixel_width_mm);
+  if (scene.annotations)
+    draw_annotations(cr, scene, layout, static_cast<double>(scene.mask.width) * scene.pixel_width_mm);
 }
 
 }  // namespace

@@ -37,6 +37,9 @@ struct OverlayScene {
   std::string left, right, top, bottom;  // orientation letters
   std::string caption;                   // bottom left; "" none
   std::string label;                     // top left, e.g. "k 42"; "" none
+  // Letters, scale bar, label and caption; off for thumbnails, where at 128 pixels they would
+  // cover what the thumbnail is for.
+  bool annotations = true;
   Rgb structure_colour{255, 64, 64};
 };
 

@@ -100,6 +100,37 @@ Result<int> picture_width(const RenderAsk& ask, const render::SliceAxes& axes, s
   return width;
 }
 
+// The pixels [x0, x1) x [y0, y1) of a slice, or all of them.
+struct Crop {
+  int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// Around the structure's pixels on every tile, with a margin of half its size (at least 8 pixels);
+// the whole slice when it has none.
+Crop crop_around(const std::vector<render::SliceMask>& masks, int64_t width, int64_t height) {
+  int64_t x0 = width, y0 = height, x1 = 0, y1 = 0;
+  for (const render::SliceMask& m : masks)
+    for (int64_t y = 0; y < m.height; ++y)
+      for (int64_t x = 0; x < m.width; ++x)
+        if (m.inside[size_t(y * m.width + x)]) {
+          x0 = std::min(x0, x), x1 = std::max(x1, x + 1);
+          y0 = std::min(y0, y), y1 = std::max(y1, y + 1);
+        }
+  if (x1 <= x0) return {0, 0, width, height};
+  const int64_t mx = std::max<int64_t>(8, (x1 - x0) / 2), my = std::max<int64_t>(8, (y1 - y0) / 2);
+  return {std::max<int64_t>(0, x0 - mx), std::max<int64_t>(0, y0 - my), std::min(width, x1 + mx),
+          std::min(height, y1 + my)};
+}
+
+template <typename T>
+std::vector<T> cropped(const std::vector<T>& values, int64_t width, const Crop& c) {
+  std::vector<T> out;
+  out.reserve(size_t((c.x1 - c.x0) * (c.y1 - c.y0)));
+  for (int64_t y = c.y0; y < c.y1; ++y)
+    out.insert(out.end(), values.begin() + y * width + c.x0, values.begin() + y * width + c.x1);
+  return out;
+}
+
 struct Drawn {
   const db::StructureRecord* structure = nullptr;  // nullptr: an image slice alone
   const RunLengthVolume* volume = nullptr;
@@ -163,10 +194,29 @@ Result<RenderedPicture> draw(const RenderAsk& ask, const Drawn& drawn, const ren
     if (slices.size() > 1) scene.label = std::to_string(k);
     tiles.push_back(std::move(scene));
   }
-  // One caption under the whole picture: on the last tile of a montage, which draws it at its foot.
-  if (!tiles.empty()) tiles.back().caption = caption;
-  SOIQ_ASSIGN_OR_RETURN(const int width, picture_width(ask, axes, tiles.size()));
-  SOIQ_ASSIGN_OR_RETURN(out.size, render::overlay_size(axes, tiles.size(), width));
+  // One caption for the whole picture: on the first tile.
+  if (!tiles.empty()) tiles.front().caption = caption;
+  render::SliceAxes shown = axes;
+  if (ask.thumbnail) {
+    std::vector<render::SliceMask> masks;
+    for (const render::OverlayScene& t : tiles) masks.push_back(t.mask);
+    const Crop c = crop_around(masks, axes.width, axes.height);
+    for (render::OverlayScene& t : tiles) {
+      t.annotations = false;
+      t.mask.inside = cropped(t.mask.inside, t.mask.width, c);
+      t.mask.width = c.x1 - c.x0;
+      t.mask.height = c.y1 - c.y0;
+      if (t.image) {
+        t.image->values = cropped(t.image->values, t.image->width, c);
+        t.image->width = c.x1 - c.x0;
+        t.image->height = c.y1 - c.y0;
+      }
+    }
+    shown.width = c.x1 - c.x0;
+    shown.height = c.y1 - c.y0;
+  }
+  SOIQ_ASSIGN_OR_RETURN(const int width, picture_width(ask, shown, tiles.size()));
+  SOIQ_ASSIGN_OR_RETURN(out.size, render::overlay_size(shown, tiles.size(), width));
   if (out.size.width > render::kMaxPictureSide || out.size.height > render::kMaxPictureSide)
     return invalid_argument("the picture would be " + std::to_string(out.size.width) + "x" +
                             std::to_string(out.size.height) + " pixels, over " +

@@ -61,6 +61,9 @@ struct RenderAsk {
   int width = 0;                           // of the picture; 0: overlay_picture's default
   std::optional<render::PictureSize> fit;  // instead of width: the largest picture inside this box
   bool patient_caption = false;
+  // A thumbnail: no letters, scale bar or caption, and the slice cut to the structure with a margin
+  // of half its size (at least 8 pixels), so that a small lesion fills the picture.
+  bool thumbnail = false;
   render::PictureOptions picture;
 };
 

@@ -107,6 +107,7 @@ Result<HttpReply> wado_rendered(const HandlerContext& c, bool thumbnail, const s
   SOIQ_ASSIGN_OR_RETURN(
       RenderAsk ask, rendered_ask(req, RenderedParams::kWado, thumbnail ? std::optional(kThumbnailBox) : std::nullopt));
   ask.picture.format = *format;
+  ask.thumbnail = thumbnail;
   std::optional<int64_t> frame;
   if (!frames.empty()) {
     SOIQ_ASSIGN_OR_RETURN(frame, frame_number(frames));

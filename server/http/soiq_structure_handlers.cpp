@@ -45,6 +45,7 @@ Result<HttpReply> picture(const HandlerContext& c, int64_t id, bool thumbnail, c
   SOIQ_ASSIGN_OR_RETURN(
       RenderAsk ask, rendered_ask(req, RenderedParams::kSoiq, thumbnail ? std::optional(kThumbnailBox) : std::nullopt));
   ask.picture.format = *format;
+  ask.thumbnail = thumbnail;
   const AppEngines& e = c.engines;
   SOIQ_ASSIGN_OR_RETURN(RenderedPicture p, render_structure(e.store, e.features, e.pool, id, ask, stop_when_gone(req)));
   HttpReply r;

@@ -212,7 +212,9 @@ TEST_F(RenderTest, BadRequestsAreRefusedWithTheirFieldAndNothingIsWritten) {
     Result<v1::RenderInfo> info = client_->render(request, out);
     ASSERT_FALSE(info.ok()) << c.what;
     EXPECT_EQ(info.status().code(), c.code) << c.what << ": " << info.status().to_string();
-    if (!c.field.empty()) EXPECT_EQ(info.status().field(), c.field) << c.what << ": " << info.status().to_string();
+    if (!c.field.empty()) {
+      EXPECT_EQ(info.status().field(), c.field) << c.what << ": " << info.status().to_string();
+    }
     EXPECT_NE(info.status().message().find(c.text), std::string::npos) << c.what << ": " << info.status().message();
     EXPECT_FALSE(fs::exists(out)) << c.what;
   }
