@@ -65,6 +65,46 @@ test('WADO-RS gives the SEG of a structure with the voxels soiq export-seg write
   assert.match(metadata[0]['7FE00010'].BulkDataURI, /\/bulkdata$/);
 });
 
+// The size of a PNG from its IHDR, or of a JPEG from its first start-of-frame marker. dicomweb-client
+// hands a rendered answer over as a list of one ArrayBuffer.
+function pictureSize(answer) {
+  assert.ok(Array.isArray(answer) && answer.length === 1, 'not one picture');
+  const b = Buffer.from(answer[0]);
+  if (b.subarray(0, 8).equals(Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a])))
+    return { type: 'png', width: b.readUInt32BE(16), height: b.readUInt32BE(20) };
+  assert.ok(b[0] === 0xff && b[1] === 0xd8, 'neither PNG nor JPEG');
+  for (let at = 2; at + 9 < b.length;) {
+    const marker = b[at + 1];
+    if (marker >= 0xc0 && marker <= 0xc2) return { type: 'jpeg', height: b.readUInt16BE(at + 5), width: b.readUInt16BE(at + 7) };
+    at += 2 + b.readUInt16BE(at + 2);
+  }
+  assert.fail('a JPEG without a frame header');
+}
+
+test('WADO-RS renders the SEG over its CT slice and gives thumbnails in the viewport asked', async () => {
+  const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
+  const studyInstanceUID = value(study, '0020000D');
+  const series = await client.searchForSeries({ studyInstanceUID });
+  const seriesInstanceUID = value(series.find((s) => value(s, '00080060') === 'SEG'), '0020000E');
+  const [instance] = await client.searchForInstances({ studyInstanceUID, seriesInstanceUID });
+  const sopInstanceUID = value(instance, '00080018');
+  const ids = { studyInstanceUID, seriesInstanceUID, sopInstanceUID };
+  const png = await client.retrieveInstanceRendered({ ...ids, mediaTypes: [{ mediaType: 'image/png' }] });
+  assert.equal(pictureSize(png).type, 'png');
+  const frame = await client.retrieveInstanceFramesRendered({
+    ...ids, frameNumbers: [1], mediaTypes: [{ mediaType: 'image/jpeg' }], queryParams: { window: '40,400' },
+  });
+  assert.equal(pictureSize(frame).type, 'jpeg');
+  const thumbnail = await client.retrieveInstanceThumbnail({
+    ...ids, mediaTypes: [{ mediaType: 'image/jpeg' }], queryParams: { viewport: '96,64' },
+  });
+  const size = pictureSize(thumbnail);
+  assert.ok(size.width <= 96 && size.height <= 64 && (size.width === 96 || size.height === 64), JSON.stringify(size));
+  await assert.rejects(client.retrieveInstanceRendered({ ...ids, mediaTypes: [{ mediaType: 'image/png' }],
+                                                          queryParams: { annotation: 'patient' } }),
+                       (e) => e.status === 400);
+});
+
 test('STOW-RS stores a series that QIDO-RS then lists', async () => {
   const datasets = files(path.join(data, 'sts/STS_002/dicom/PET'))
     .map((f) => { const b = fs.readFileSync(f); return b.buffer.slice(b.byteOffset, b.byteOffset + b.length); });

@@ -154,7 +154,7 @@ expect_file 200 model/stl "" "$root/soiq/v1/structures/$gtv/surface"
 disposition=$(curl -s -D - -o /dev/null "$root/soiq/v1/structures/$gtv/mask" | tr -d '\r' | grep -i '^Content-Disposition:' || true)
 [ "$disposition" = "Content-Disposition: attachment; filename=\"structure-$gtv-mask.nii.gz\"" ] ||
   { echo "FAIL: the mask's file name: '$disposition'"; failures=$((failures + 1)); }
-expect 404 "structure '999999' not found" "$root/soiq/v1/structures/999999/thumbnail"
+expect 404 "structure 999999 not found" "$root/soiq/v1/structures/999999/thumbnail"
 expect 404 "structure 'abc' not found" "$root/soiq/v1/structures/abc/seg"
 expect 400 "slice 100000 is outside 0.." "$root/soiq/v1/structures/$gtv/rendered?slice=100000"
 expect 400 "unsupported parameter 'x'" "$root/soiq/v1/structures/$gtv/mask?x=1"
