@@ -24,6 +24,7 @@
 #include "bench/import_bench.h"
 #include "bench/pacs_bench.h"
 #include "bench/query_bench.h"
+#include "bench/render_bench.h"
 #include "bench/replicas_bench.h"
 #include "bench/scaling.h"
 #include "bench/simgen.h"
@@ -49,6 +50,7 @@ int usage() {
       "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
       "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
       "       soiq-bench dicomweb [--patients N] [--batch B] [--runs R] [--soiqd PATH]\n"
+      "       soiq-bench render [--runs R] [--patients N] [--soiqd PATH]\n"
       "                  [--patients N] [--matched N]\n");
   return 2;
 }
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
   if (command == "import") return run_import_bench(*args);
   if (command == "pacs") return run_pacs_bench(*args);
   if (command == "dicomweb") return run_dicomweb_bench(*args);
+  if (command == "render") return run_render_bench(*args);
   if (command == "codec") return run_surface_codec_bench(*args);
   return usage();
 }
