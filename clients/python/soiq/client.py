@@ -149,6 +149,52 @@ class Client:
 
         return _call(self._stub.ImportDicom, requests(), timeout=self.timeout, metadata=self._metadata)
 
+    # --- pictures ------------------------------------------------------------------------------
+
+    _FORMATS = {".png": soiq_pb2.PNG, ".svg": soiq_pb2.SVG, ".jpg": soiq_pb2.JPEG, ".jpeg": soiq_pb2.JPEG}
+
+    def render(self, structure_id, path=None, image="", plane="axial", slice=None, through="largest",
+               window=None, montage=False, width=0, patient_caption=False, format="png", jpeg_quality=0):
+        """A picture of a structure over a slice of its image, as `soiq render` draws it: its bytes,
+        also written to `path` when given (whose extension then chooses the format). window:
+        (centre, width) or None for the image's own. Returns (bytes, soiq_pb2.RenderInfo);
+        IPython.display.Image(data=bytes) shows it in a notebook."""
+        if path is not None:
+            format = os.path.splitext(path)[1].lower()
+        else:
+            format = "." + format.lower().lstrip(".")
+        if format not in self._FORMATS:
+            raise errors.InvalidArgument("a picture is .png, .svg or .jpg, not '%s'" % format)
+        if plane not in ("axial", "coronal", "sagittal"):
+            raise errors.InvalidArgument("plane must be axial, coronal or sagittal, not '%s'" % plane)
+        if through not in ("largest", "centroid"):
+            raise errors.InvalidArgument("through must be largest or centroid, not '%s'" % through)
+        request = soiq_pb2.RenderRequest(
+            structure_id=structure_id, image=image, plane=soiq_pb2.Plane.Value(plane.upper()),
+            through=soiq_pb2.SliceChoice.Value(through.upper()), montage=montage, width=width,
+            format=self._FORMATS[format], jpeg_quality=jpeg_quality, patient_caption=patient_caption)
+        if slice is not None:
+            request.slice = slice
+        if window is not None:
+            request.window_center, request.window_width = window
+        info, chunks = None, []
+        try:
+            for part in self._stub.Render(request, timeout=self.timeout, metadata=self._metadata):
+                if part.HasField("info"):
+                    info = part.info
+                else:
+                    chunks.append(part.chunk)
+        except grpc.RpcError as e:
+            raise errors.from_rpc_error(e) from None
+        data = b"".join(chunks)
+        if info is None or len(data) != info.size_bytes:
+            raise errors.DataLoss("soiqd sent a picture of %d bytes, announced %s" %
+                                  (len(data), info.size_bytes if info else "nothing"))
+        if path is not None:
+            with open(path, "wb") as f:
+                f.write(data)
+        return data, info
+
     # --- the two-stage query -------------------------------------------------------------------
 
     def query_rows(self, where=(), select=(), order_by=None, desc=False, limit=0, spacing=None, margin=None,

@@ -160,3 +160,20 @@ def test_tls_with_a_verified_certificate(tmp_path):
                 c.info()
     finally:
         s.stop()
+
+
+def test_render_gives_the_picture_soiq_render_writes(demo_soiqd, tmp_path):
+    c = soiq.Client(demo_soiqd.address)
+    data, info = c.render(1)
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) == info.size_bytes
+    assert info.media_type == "image/png" and len(info.slices) == 1
+    out = tmp_path / "ct.png"
+    demo_soiqd.cli("render", "1", "-o", str(out))
+    assert out.read_bytes() == data  # the same drawing, byte for byte
+    svg, info = c.render(1, str(tmp_path / "all.svg"), montage=True)
+    assert b"<svg" in svg[:400] and len(info.slices) > 1
+    with pytest.raises(soiq.errors.InvalidArgument) as refused:
+        c.render(1, slice=100000)
+    assert refused.value.field == "slice" and "outside 0.." in refused.value.message
+    with pytest.raises(soiq.errors.NotFound):
+        c.render(999999)
