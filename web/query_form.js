@@ -115,7 +115,7 @@ export class QueryForm {
 
   #input(option, id, helpId) {
     if (kindOf(option) === 'choice') {
-      const select = element('select', { id, name: option.name, 'aria-describedby': helpId });
+      const select = element('select', { id, name: option.name, title: option.help, 'aria-describedby': helpId });
       select.append(element('option', { value: '', text: option.default ? `default (${option.default})` : 'any' }));
       for (const c of option.placeholder.split('|')) select.append(element('option', { value: c, text: c }));
       return select;
@@ -129,6 +129,7 @@ export class QueryForm {
       spellcheck: 'false',
       inputmode: /^[NY]$/.test(option.placeholder) ? 'numeric' : false,
       list: takesFeature(option) ? this.datalist.id : false,
+      title: option.help,
       'aria-describedby': helpId,
     });
   }

@@ -41,12 +41,29 @@ function showError(error) {
   }
   const input = field && queryForm ? queryForm.markInvalid(field) : null;
   if (input) {
+    const actions = document.createElement('p');
+    actions.className = 'error-actions';
+    // soiqd's "did you mean" as one click: the misspelt name replaced in its input, the query rerun.
+    const unknown = /unknown feature '([^']+)'/.exec(error.message)?.[1];
+    const suggested = /did you mean '([^']+)'\?/.exec(error.message)?.[1];
+    if (unknown && suggested && input.value.includes(unknown)) {
+      const use = document.createElement('button');
+      use.type = 'button';
+      use.className = 'suggestion';
+      use.textContent = `Use ${suggested}`;
+      use.addEventListener('click', () => {
+        input.value = input.value.replace(unknown, suggested);
+        input.form.requestSubmit();
+      });
+      actions.append(use);
+    }
     const go = document.createElement('button');
     go.type = 'button';
     go.className = 'link';
     go.textContent = `Go to ${input.name}`;
     go.addEventListener('click', () => input.focus());
-    box.append(go);
+    actions.append(go);
+    box.append(actions);
   }
   box.hidden = false;
 }
@@ -64,7 +81,11 @@ function askToken(message) {
   const input = $('#token-input');
   $('#token-message').textContent = message;
   // A refused token is said in the error box too, where it stays after the dialog closes.
-  if (/refused/.test(message)) showError(new ApiError(message, { status: 401, code: 'UNAUTHENTICATED' }));
+  if (/refused/.test(message)) {
+    const error = new ApiError(message, { status: 401, code: 'UNAUTHENTICATED' });
+    error.context = 'Wrong token';
+    showError(error);
+  }
   input.value = '';
   return new Promise((resolve) => {
     dialog.addEventListener(
@@ -88,20 +109,26 @@ function setStatus(text) {
 
 const ms = (v) => `${Number(v).toFixed(1)} ms`;
 
-function summaryText(s, firstRowMs, browserMs) {
-  const parts = [
+// The summary in two parts: soiqd's counts, and the times (soiqd's stages, then this page's own:
+// the first row and the whole answer, from the click).
+function summaryParts(s, firstRowMs, browserMs) {
+  const counts = [
     `${s.stage1_candidates} candidates`,
     `${s.computed} computed`,
     `${s.cache_hits} cache hits`,
     `${s.matched} matched`,
     `${s.returned} returned`,
   ];
-  if (s.failed) parts.push(`${s.failed} failed`);
+  if (s.failed) counts.push(`${s.failed} failed`);
   const skipped = (s.skipped || []).reduce((n, k) => n + (k.count || 0), 0);
-  if (skipped) parts.push(`${skipped} skipped (${s.skipped.map((k) => `${k.count}: ${k.reason}`).join('; ')})`);
-  const times = `stage 1 ${ms(s.stage1_ms)}, stage 2 ${ms(s.stage2_ms)}, total ${ms(s.total_ms)}`;
-  const here = firstRowMs === null ? '' : ` · first row here after ${ms(firstRowMs)}`;
-  return `${parts.join(', ')}; ${times}${here}; page ${ms(browserMs)}`;
+  if (skipped) counts.push(`${skipped} skipped (${s.skipped.map((k) => `${k.count}: ${k.reason}`).join('; ')})`);
+  const first = firstRowMs === null ? '' : `first row ${ms(firstRowMs)}, `;
+  const times = `stage 1 ${ms(s.stage1_ms)}, stage 2 ${ms(s.stage2_ms)}, total ${ms(s.total_ms)} · here: ${first}all ${ms(browserMs)}`;
+  return [counts.join(', '), times].map((text) => {
+    const span = document.createElement('span');
+    span.textContent = text;
+    return span;
+  });
 }
 
 async function runQuery(args, table) {
@@ -153,7 +180,7 @@ async function runQuery(args, table) {
         code: 'UNAVAILABLE',
       });
     const summaryBox = $('#summary');
-    summaryBox.textContent = summaryText(summary, firstRowMs, performance.now() - started);
+    summaryBox.replaceChildren(...summaryParts(summary, firstRowMs, performance.now() - started));
     summaryBox.dataset.firstRowMs = firstRowMs ?? '';
     summaryBox.hidden = false;
     setStatus(table.rowCount ? `${table.rowCount} row${table.rowCount === 1 ? '' : 's'}` : 'No structure matched.');

@@ -300,9 +300,15 @@ describe('the query page', () => {
     assert.equal(await page.getAttribute('#error', 'role'), 'alert');
     await page.evaluate(() => window.scrollTo(0, 0));
     await page.screenshot({ path: path.join(shots, 'did-you-mean.png') });
+    // The suggestion, taken with one click, runs the query again with the name corrected.
+    await page.click('#error button.suggestion');
+    await page.waitForSelector('#summary:not([hidden])', { timeout: 30_000 });
+    assert.equal(await page.inputValue('#opt-select'), 'voxel_volume_mm3');
+    assert.equal(await page.isVisible('#error'), false, 'the error box stays after the corrected query');
+    assert.ok((await tableRows()).length > 0, 'no row after the corrected query');
   });
 
-  test('an error after the rows began is shown, the rows so far kept', async () => {
+  test('an error in the stream, after its first line, is shown in words', async () => {
     await typeQuery([['name', 'hippocampus'], ['where', 'mean[inside,XX]>1']]);
     await runQuery();
     const text = await errorText();
@@ -342,8 +348,9 @@ describe('the query page', () => {
     await checkThumbnails(expected.rows.map((r) => r.id));
     await page.waitForSelector('#plot:not([hidden]) .plot-body img', { timeout: 30_000 });
     await page.evaluate(() => window.scrollTo(0, 0));
-    // The README's picture: the form, the rows with their thumbnails, the summary and the plot.
-    await page.screenshot({ path: path.join(shots, 'query-page.png') });
+    // The README's picture: the form, the rows with their thumbnails, the summary and the plot
+    // (the whole page: 1280 wide, a little over the window's 900 high).
+    await page.screenshot({ path: path.join(shots, 'query-page.png'), fullPage: true });
   });
 
   test('no script error on the page', () => {
