@@ -2,6 +2,7 @@
 
 #include "server/http/http_handlers.h"
 #include "server/http/http_server.h"
+#include "server/http/web_files.h"
 
 namespace soiq::server::http {
 namespace {
@@ -99,6 +100,21 @@ struct DicomwebServer::Impl {
     }
     r.add("GET", "/soiq/v1/query",
           handler([](const HandlerContext& c, const HttpRequest& req) { return soiq_query(c, req); }));
+    // The query page: the files built into soiqd (web/), the only answers without the token.
+    const auto page_file = [](const std::string& path) -> Result<HttpReply> {
+      const WebFile* f = find_web_file(path);
+      if (f == nullptr) return not_found("no such file of the query page: " + path);
+      HttpReply reply{200, std::string(f->media_type), std::string(f->bytes), {}};
+      reply.headers.emplace("Cache-Control", "no-cache");
+      reply.headers.emplace("X-Content-Type-Options", "nosniff");
+      reply.headers.emplace("Content-Security-Policy",
+                            "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; frame-ancestors 'none'");
+      return reply;
+    };
+    r.add_open("/", [page_file](const HttpRequest&) { return page_file("index.html"); });
+    r.add_open("/ui/{}", [page_file](const HttpRequest& req) {
+      return page_file(req.matches.size() > 1 ? req.matches[1] : std::string());
+    });
     r.add("GET", "/soiq/v1/query/plot",
           handler([](const HandlerContext& c, const HttpRequest& req) { return soiq_query_plot(c, req); }));
     const std::pair<const char*, StructureResource> structure_resources[] = {
