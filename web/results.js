@@ -149,7 +149,8 @@ export class ResultsTable {
       const value = row[column];
       td.dataset.column = column;
       td.textContent = formatValue(value);
-      if (typeof value === 'number' || Array.isArray(value) || value === null) td.className = 'num';
+      if (typeof value === 'number' || value === null) td.className = 'num';
+      if (Array.isArray(value)) td.className = 'num vector';
       if (value === null) td.title = 'no value (see the summary for why)';
       if (column === 'study_uid') {
         td.className = 'uid';
@@ -164,6 +165,9 @@ export class ResultsTable {
   #files(row) {
     const td = document.createElement('td');
     td.className = 'col-files';
+    const buttons = document.createElement('div');
+    buttons.className = 'files';
+    td.append(buttons);
     for (const [what, label, title] of DOWNLOADS) {
       const button = document.createElement('button');
       button.type = 'button';
@@ -173,7 +177,7 @@ export class ResultsTable {
       button.title = `download ${title}`;
       button.setAttribute('aria-label', `download structure ${row.id} ${label}`);
       button.addEventListener('click', () => this.#download(row.id, what, button));
-      td.append(button);
+      buttons.append(button);
     }
     if (this.viewerUrl && row.study_uid) {
       const a = document.createElement('a');
@@ -181,7 +185,8 @@ export class ResultsTable {
       a.href = this.viewerUrl.replaceAll('{study}', encodeURIComponent(row.study_uid));
       a.target = '_blank';
       a.rel = 'noopener';
-      a.textContent = 'open in viewer';
+      a.textContent = 'open in viewer ↗';
+      a.title = `study ${row.study_uid} in the viewer (a new tab)`;
       td.append(a);
     }
     return td;

@@ -184,7 +184,7 @@ async function runQuery(args, table) {
     summaryBox.dataset.firstRowMs = firstRowMs ?? '';
     summaryBox.hidden = false;
     setStatus(table.rowCount ? `${table.rowCount} row${table.rowCount === 1 ? '' : 's'}` : 'No structure matched.');
-    if (args.getAll('select').length) await showPlot(args, signal);
+    if (args.getAll('select').length) await showPlot(args, signal, queryForm.features);
   } catch (error) {
     if (signal.aborted) {
       setStatus(`Stopped after ${table.rowCount} rows.`);
@@ -202,9 +202,24 @@ async function runQuery(args, table) {
 
 // The plot of the query's first selected feature (histogram) or first two (scatter), as soiqd
 // draws it; shown as an <img> of the SVG, so its styles and ids cannot touch the page's.
-async function showPlot(args, signal) {
+async function showPlot(args, signal, features) {
   const figure = $('#plot');
   const selected = args.getAll('select');
+  // soiqd plots features of one value per structure; a centroid or a box is said, not asked for.
+  const components = (expression) => {
+    const name = /^(?:asym\()?\s*([A-Za-z][A-Za-z0-9_]*)/.exec(expression)?.[1];
+    return features.find((f) => f.name === name)?.components ?? 1;
+  };
+  const several = selected.slice(0, 2).find((e) => components(e) > 1);
+  if (several) {
+    $('#plot-caption').textContent = 'No plot';
+    const note = document.createElement('p');
+    note.className = 'plot-note';
+    note.textContent = `${several} has ${components(several)} values per structure; soiqd plots features of one value (select one first for a histogram, two for a scatter).`;
+    figure.querySelector('.plot-body').replaceChildren(note);
+    figure.hidden = false;
+    return;
+  }
   try {
     const response = await apiFetch(`soiq/v1/query/plot?${args}`, { accept: 'image/svg+xml', signal });
     if (!response.ok) {

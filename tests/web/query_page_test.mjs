@@ -261,6 +261,12 @@ describe('the query page', () => {
       assert.match(summary, new RegExp(`\\b${expected.summary.matched} matched\\b`), summary);
       assert.match(summary, /total [\d.]+ ms/, summary);
       await checkThumbnails(expected.rows.map((r) => r.id));
+      // run_test.sh gives soiqd a viewer: each row links its study there, the UID URL-encoded.
+      assert.ok(info.viewer_url.includes('{study}'), `soiqd's viewer_url: '${info.viewer_url}'`);
+      for (const want of expected.rows) {
+        const href = await page.getAttribute(`#results tbody tr[data-id="${want.id}"] a.viewer`, 'href');
+        assert.equal(href, info.viewer_url.replaceAll('{study}', encodeURIComponent(want.study_uid)));
+      }
       if (search.has('select')) {
         await page.waitForSelector('#plot:not([hidden]) .plot-body img', { timeout: 30_000 });
         const plot = await page.$eval('#plot .plot-body img', (img) => ({

@@ -22,7 +22,9 @@ if [ ! -x "$chromium" ]; then
 fi
 # A random token, as soiqd asks (at least 16 characters).
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
-start_soiqd web --http 127.0.0.1:0 --http-port-file "$tmp/web.http-port" --token-file "$tmp/token"
+# A viewer link, so that the page shows "open in viewer" (the host is never contacted).
+start_soiqd web --http 127.0.0.1:0 --http-port-file "$tmp/web.http-port" --token-file "$tmp/token" \
+  --viewer-url 'http://viewer.invalid:3000/viewer?StudyInstanceUIDs={study}'
 # README's demo cohort (20 patients, 2 s); its "try:" lines are the queries the test types.
 "$soiq" --server "$server" --token-file "$tmp/token" demo-load >"$tmp/demo-load.txt"
 SOIQ_HTTP="http://127.0.0.1:$(tr -d '[:space:]' <"$tmp/web.http-port")" \
