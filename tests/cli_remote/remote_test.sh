@@ -143,6 +143,35 @@ expect 3 "it holds CT, MR, PT; did you mean 'MR'?" -- "$soiq" query --select 'me
 grep -q "^  4 skipped: NOT_FOUND: no image series 'PT' in their study" "$tmp/partial.err" ||
   fail "partial answer without its reason: $(cat "$tmp/partial.err")"
 
+# Pictures: soiq render writes the file its extension names and says what it drew; each bad
+# request is one line and exit 2 (usage) or 3 (not found), and leaves no file; --plot writes the
+# query's plot beside its rows.
+gtv=$("$soiq" query --patient STS_002 --name 'GTV_Mass_CT' --format csv 2>/dev/null | awk -F, 'NR == 2 { print $1 }')
+"$soiq" render "$gtv" -o "$tmp/pics/gtv.png" >"$tmp/render.out" || fail "render: $(cat "$tmp/render.out")"
+grep -q "^axial slice [0-9]* of 0\.\.47 over series .*: [0-9]*x[0-9]* image/png, [0-9]* bytes -> $tmp/pics/gtv.png$" "$tmp/render.out" ||
+  fail "render's line: $(cat "$tmp/render.out")"
+[ "$(head -c 4 "$tmp/pics/gtv.png" | od -An -tx1 | tr -d ' \n')" = 89504e47 ] || fail "render did not write a PNG"
+"$soiq" render "$gtv" --image PT --through centroid --window 2.5,5 -o "$tmp/pics/gtv.svg" >/dev/null || fail "render svg"
+grep -q "<svg" "$tmp/pics/gtv.svg" || fail "render did not write an SVG"
+alone=$("$soiq" upload "$tmp/phantom.stl" --patient P9 --study 9.9.9 --name alone -q) || fail "upload alone: $alone"
+"$soiq" render "$alone" -o "$tmp/pics/alone.jpg" --quality 80 >"$tmp/render.out" || fail "render of an upload"
+grep -q "over the mask alone" "$tmp/render.out" || fail "a mesh without images: $(cat "$tmp/render.out")"
+expect 2 "missing -o" -- "$soiq" render "$gtv"
+expect 2 "does not name a picture format" -- "$soiq" render "$gtv" -o "$tmp/pics/gtv.gif"
+expect 2 "--plane" -- "$soiq" render "$gtv" --plane oblique -o "$tmp/pics/x.png"
+expect 2 "--window" -- "$soiq" render "$gtv" --window 40 -o "$tmp/pics/x.png"
+expect 2 "without --through or --montage" -- "$soiq" render "$gtv" --slice 3 --montage -o "$tmp/pics/x.png"
+expect 2 "--quality is for JPEG" -- "$soiq" render "$gtv" --quality 50 -o "$tmp/pics/x.png"
+expect 2 "outside 0..47" -- "$soiq" render "$gtv" --slice 99 -o "$tmp/pics/x.png"
+expect 3 "999999" -- "$soiq" render 999999 -o "$tmp/pics/x.png"
+[ -e "$tmp/pics/x.png" ] && fail "a refused render left a file"
+"$soiq" query --name 'GTV*' --select voxel_volume_mm3 --select 'mean[inside,PT]' --plot "$tmp/pics/plot.svg" --format csv \
+  >"$tmp/plot.csv" 2>"$tmp/plot.err" || fail "query --plot: $(cat "$tmp/plot.err")"
+grep -q "^plot of 2 rows -> $tmp/pics/plot.svg$" "$tmp/plot.err" || fail "query --plot's line: $(cat "$tmp/plot.err")"
+grep -q "voxel_volume_mm3 (mm3)" "$tmp/pics/plot.svg" 2>/dev/null || grep -q "<svg" "$tmp/pics/plot.svg" || fail "no plot"
+expect 2 "--plot needs a feature" -- "$soiq" query --name 'GTV*' --plot "$tmp/pics/p.png"
+expect 2 "written as .png or .svg" -- "$soiq" query --select sphericity --plot "$tmp/pics/p.jpg"
+
 # Authentication: a server with a token refuses a client without it.
 echo "0123456789abcdef0123456789abcdef" >"$tmp/token"
 start_soiqd auth --token-file "$tmp/token"
