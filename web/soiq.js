@@ -278,7 +278,16 @@ async function start() {
       showError(
         new ApiError(`The link has arguments soiqd's query does not know: ${unknown.join(', ')}; they were left out.`),
       );
-    if ([...args.keys()].some((k) => !unknown.includes(k))) runQuery(queryForm.args(), table);
+    if ([...args.keys()].some((k) => !unknown.includes(k))) {
+      runQuery(queryForm.args(), table);
+    } else {
+      // Back to the bare page: no query, so no rows of an earlier one either.
+      running?.abort();
+      table.reset();
+      $('#summary').hidden = true;
+      $('#plot').hidden = true;
+      setStatus('Fill in the form and run a query.');
+    }
   };
   form.addEventListener('submit', (event) => {
     event.preventDefault();

@@ -359,6 +359,23 @@ describe('the query page', () => {
     await page.screenshot({ path: path.join(shots, 'query-page.png'), fullPage: true });
   });
 
+  test("the browser's back button returns to the previous query, its form and its rows", async () => {
+    await typeQuery([['name', 'caudate'], ['laterality', 'R']]);
+    await runQuery();
+    // Without an order-by, rows come as the workers finish them: compare the sets of ids.
+    const ids = async () => (await tableRows()).map((r) => r.id).sort((a, b) => a - b);
+    const caudates = await ids();
+    await typeQuery([['name', 'amygdala'], ['limit', '3']]);
+    await runQuery();
+    assert.equal((await tableRows()).length, 3);
+    await page.goBack();
+    await page.waitForFunction(() => document.querySelector('#opt-name').value === 'caudate');
+    await page.waitForSelector('#summary:not([hidden])', { timeout: 30_000 });
+    assert.equal(await page.inputValue('#opt-laterality'), 'R');
+    assert.equal(await page.inputValue('#opt-limit'), '');
+    assert.deepEqual(await ids(), caudates);
+  });
+
   test('no script error on the page', () => {
     assert.deepEqual(pageErrors, []);
   });
