@@ -43,7 +43,7 @@ Result<std::vector<PlotColumn>> query_plot_columns(
       if (!again && chosen.size() < 2) chosen.push_back(other);
     }
   }
-  if (chosen.empty()) return invalid_argument("the plot needs a feature: add --select FEATURE (two for a scatter)");
+  if (chosen.empty()) return invalid_argument("the plot needs a feature: select one (two for a scatter)");
   std::vector<PlotColumn> columns;
   for (const auto& [feature, k] : chosen) {
     const FeatureDef* d = definition(feature);

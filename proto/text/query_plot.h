@@ -7,7 +7,7 @@
 // where the files allow it, dicom/pet_suv.h; none for other modalities, whose intensities have no
 // common unit), none for an asymmetry index (a ratio).
 //
-// Errors   INVALID_ARGUMENT when the query names no feature ("add --select FEATURE") or a plotted
+// Errors   INVALID_ARGUMENT when the query names no feature ("select one") or a plotted
 //          feature has several values per row (a point: plot one of its components' features).
 // Cost     O(rows). Pure.
 

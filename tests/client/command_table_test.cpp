@@ -31,6 +31,7 @@ const std::map<std::string, std::vector<std::string>> kParserSources = {
     {"upload-image", {"upload_image_command.cpp", "record_args.cpp"}},
     {"import", {"import_command.cpp"}},
     {"export-seg", {"export_seg_command.cpp"}},
+    {"render", {"render_command.cpp"}},
     {"pacs echo", {"pacs_command.cpp"}},
     {"pacs find", {"pacs_command.cpp"}},
     {"pacs pull", {"pacs_command.cpp"}},
@@ -127,6 +128,7 @@ TEST(CommandTable, QueryRowIsTheQueryTable) {
   std::vector<std::string> want;
   for (const proto_text::QueryOption& o : proto_text::query_options()) want.push_back("--" + std::string(o.name));
   want.push_back("--format");
+  want.push_back("--plot");
   std::vector<std::string> listed;
   for (const OptionSpec& o : find_command("query")->options) listed.push_back(std::string(o.name));
   EXPECT_EQ(listed, want);

@@ -7,7 +7,8 @@
 // Each: `location` (what soiqd's --db takes), open() (migrated, or read only: as it is), run(sql,
 // bytes, texts) with ?1 bound to `bytes` as a blob and ?2, ?3, … to `texts` (an error fails the
 // test), and set_schema_version(v), with kBeforeChecksums its schema version before every stored
-// byte had a checksum.
+// byte had a checksum. Going back before kWindows also drops the columns that version added (the
+// series' DICOM window), so that migrating forward again adds them as it did.
 
 #include <gtest/gtest.h>
 #include <sqlite3.h>
@@ -25,9 +26,16 @@
 
 namespace soiq::db::testing {
 
+template <typename Raw>
+void drop_windows(const Raw& raw) {
+  raw.run("ALTER TABLE series DROP COLUMN window_center");
+  raw.run("ALTER TABLE series DROP COLUMN window_width");
+}
+
 struct RawSqlite {
   static constexpr const char* kName = "SQLite";
   static constexpr int kBeforeChecksums = 8;
+  static constexpr int kWindows = 10;
   explicit RawSqlite(const TempDir& dir) : location(dir.file("store.db")) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -54,7 +62,10 @@ struct RawSqlite {
     sqlite3_close(db);
   }
 
-  void set_schema_version(int v) const { run("PRAGMA user_version = " + std::to_string(v)); }
+  void set_schema_version(int v) const {
+    if (v < kWindows) drop_windows(*this);
+    run("PRAGMA user_version = " + std::to_string(v));
+  }
 
   std::string location;
 };
@@ -62,6 +73,7 @@ struct RawSqlite {
 struct RawPostgres {
   static constexpr const char* kName = "PostgreSQL";
   static constexpr int kBeforeChecksums = 4;
+  static constexpr int kWindows = 6;
   explicit RawPostgres(const TempDir&) : location(fresh_postgres_database()) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -86,7 +98,10 @@ struct RawPostgres {
     EXPECT_TRUE(done.ok()) << done.status().to_string() << " in " << sql;
   }
 
-  void set_schema_version(int v) const { run("UPDATE soiq_schema SET version = " + std::to_string(v)); }
+  void set_schema_version(int v) const {
+    if (v < kWindows) drop_windows(*this);
+    run("UPDATE soiq_schema SET version = " + std::to_string(v));
+  }
 
   std::string location;
 };

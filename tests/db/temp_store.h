@@ -40,10 +40,10 @@ inline TriangleMesh tetrahedron(double offset) {
 #define SOIQ_BACK_TO_SCHEMA_V9 \
   "ALTER TABLE series DROP COLUMN window_center; ALTER TABLE series DROP COLUMN window_width; "
 inline constexpr char kBackToSchemaV9[] = SOIQ_BACK_TO_SCHEMA_V9;
-#define SOIQ_BACK_TO_SCHEMA_V7                                                          \
-  SOIQ_BACK_TO_SCHEMA_V9                                                                \
-      "DROP INDEX patients_name_lower; ALTER TABLE patients DROP COLUMN patient_name; " \
-      "ALTER TABLE series DROP COLUMN series_number; ALTER TABLE series DROP COLUMN description; "
+#define SOIQ_BACK_TO_SCHEMA_V7                                                      \
+  SOIQ_BACK_TO_SCHEMA_V9                                                            \
+  "DROP INDEX patients_name_lower; ALTER TABLE patients DROP COLUMN patient_name; " \
+  "ALTER TABLE series DROP COLUMN series_number; ALTER TABLE series DROP COLUMN description; "
 inline constexpr char kBackToSchemaV7[] = SOIQ_BACK_TO_SCHEMA_V7;
 #define SOIQ_BACK_TO_SCHEMA_V6 SOIQ_BACK_TO_SCHEMA_V7 "DROP TABLE stage2_work; DROP TABLE replicas; "
 inline constexpr char kBackToSchemaV6[] = SOIQ_BACK_TO_SCHEMA_V6;

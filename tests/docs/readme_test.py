@@ -10,7 +10,9 @@ exit 0 and print what the README shows (stdout, then stderr), except:
   - a line "..." in the README, which stands for any number of lines;
   - runs of spaces (table columns are as wide as their values).
 A command's own 127.0.0.1:50080 (a DICOMweb URL given to curl) is the test's soiqd's HTTP port.
-So an example that drifts from what soiq prints fails here, not in a reader's terminal.
+So an example that drifts from what soiq prints fails here, not in a reader's terminal. And every
+picture the README shows (`![..](docs/pictures/NAME)`) must be one its commands just made, of the
+same size as the committed one: a picture cannot drift from the command beside it either.
 
 Usage: readme_test.py SOURCE_DIR BUILD_DIR
 """
@@ -154,6 +156,32 @@ def check_make_demo(root, env, readme):
     return failures
 
 
+def png_size(path):
+    """(width, height) from a PNG's IHDR, or None when the file is not a PNG."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+def check_pictures(root, text):
+    """Each picture the README shows was made by its commands in `root`, the size of the committed one."""
+    failures = 0
+    for name in sorted(set(re.findall(r"\]\((docs/pictures/[^)\s]+)\)", text))):
+        made, committed = os.path.join(root, name), os.path.join(SOURCE, name)
+        if not os.path.exists(made):
+            failures += 1
+            print(f"FAIL: README shows {name}, but none of its commands made it")
+        elif not os.path.exists(committed) or png_size(made) != png_size(committed):
+            failures += 1
+            print(f"FAIL: {name}: the commands made {png_size(made)}, the committed one is "
+                  f"{png_size(committed) if os.path.exists(committed) else 'missing'}")
+        else:
+            print(f"ok: {name} {png_size(made)}")
+    return failures
+
+
 def main():
     root = tempfile.mkdtemp(prefix="soiq-readme-")
     for name, target in (("tests", os.path.join(SOURCE, "tests")), ("scripts", os.path.join(SOURCE, "scripts")),
@@ -166,7 +194,8 @@ def main():
              f"127.0.0.1:{services.http_port}": "127.0.0.1:50080",
              f"127.0.0.1:{services.pacs_port}": "127.0.0.1:11112"}
     failures = 0
-    readme = examples(open(os.path.join(SOURCE, "README.md"), encoding="utf-8").read())
+    readme_text = open(os.path.join(SOURCE, "README.md"), encoding="utf-8").read()
+    readme = examples(readme_text)
     try:
         services.start_soiqd()
         for command, expected in readme:
@@ -187,6 +216,7 @@ def main():
                 print("\n".join("    " + l for l in actual))
             else:
                 print(f"ok: $ {command}")
+        failures += check_pictures(root, readme_text)
         failures += check_make_demo(root, env, dict(readme))
     finally:
         services.close()

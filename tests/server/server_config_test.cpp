@@ -68,6 +68,13 @@ TEST(ServerConfig, APacsFlagGivesAPeerWithTheCallingAeAndTimeout) {
   EXPECT_EQ(p.config->pacs_peer->timeout_seconds, 5);
 }
 
+TEST(ServerConfig, AViewerUrlWithTheStudyIsKept) {
+  Parsed p = parse({"--viewer-url", "http://127.0.0.1:3000/viewer?StudyInstanceUIDs={study}"});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_EQ(p.config->viewer_url, "http://127.0.0.1:3000/viewer?StudyInstanceUIDs={study}");
+  EXPECT_EQ(parse({}).config->viewer_url, "");
+}
+
 TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
   const std::vector<std::pair<Parsed, std::string>> cases = {
       {parse({"--workers", "0"}), "--workers"},
@@ -81,6 +88,8 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
       {parse({"--keep-patient-names", "yes"}), "--keep-patient-names"},
       {parse({"--http-timeout", "0"}), "--http-timeout"},
       {parse({"--http-max-connections", "none"}), "--http-max-connections"},
+      {parse({"--viewer-url", "ftp://viewer/{study}"}), "--viewer-url"},
+      {parse({"--viewer-url", "http://viewer/without-the-study"}), "--viewer-url"},
   };
   for (const auto& [p, name] : cases) {
     EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
@@ -94,7 +103,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 24u);
+  EXPECT_EQ(flags.size(), 25u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
