@@ -21,10 +21,10 @@ std::string url_host(const HttpRequest& req, const std::string& fallback) {
 
 }  // namespace
 
-bool accepts(const HttpRequest& req, const std::string& type) {
-  if (!req.has_header("Accept")) return true;
+std::vector<std::string> accepted_types(const HttpRequest& req) {
+  std::vector<std::string> types;
+  if (!req.has_header("Accept")) return types;
   const std::string accept = req.header("Accept");
-  const std::string major = type.substr(0, type.find('/'));
   size_t from = 0;
   while (from <= accept.size()) {
     size_t comma = accept.find(',', from);
@@ -33,10 +33,36 @@ bool accepts(const HttpRequest& req, const std::string& type) {
     item = item.substr(0, item.find(';'));
     item.erase(0, item.find_first_not_of(' '));
     item.erase(item.find_last_not_of(' ') + 1);
-    if (item == "*/*" || item == type || item == major + "/*") return true;
+    if (!item.empty()) types.push_back(item);
     from = comma + 1;
   }
+  return types;
+}
+
+bool accepts(const HttpRequest& req, const std::string& type) {
+  if (!req.has_header("Accept")) return true;
+  const std::string major = type.substr(0, type.find('/'));
+  for (const std::string& item : accepted_types(req))
+    if (item == "*/*" || item == type || item == major + "/*") return true;
   return false;
+}
+
+std::function<Status()> stop_when_client_gone(const HttpRequest& req) {
+  return [&req]() -> Status {
+    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
+  };
+}
+
+Result<QueryAnswer> run_query(const AppEngines& engines, const Query& query, const HttpRequest& req) {
+  QueryAnswer answer;
+  QueryOutput out;
+  out.progress = [](const QueryProgress&) { return ok_status(); };
+  out.row = [&](QueryRow&& r) {
+    answer.rows.push_back(std::move(r));
+    return ok_status();
+  };
+  SOIQ_ASSIGN_OR_RETURN(answer.summary, engines.queries.run(query, stop_when_client_gone(req), out));
+  return answer;
 }
 
 struct DicomwebServer::Impl {

@@ -3,8 +3,10 @@
 // (qido_handlers.cpp, …). Each turns a request into calls on the shared engines and returns the
 // reply or a Status, which the server maps to HTTP once (http_status.h); none writes to the socket.
 
+#include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/base/status.h"
 #include "server/app/app_engines.h"
@@ -24,6 +26,21 @@ struct HandlerContext {
 // Whether the request's Accept header admits `type` (absent, */*, type/* and the type itself do;
 // q-values are not weighed). NOT_ACCEPTABLE is not a Status code: the caller replies 406.
 bool accepts(const HttpRequest& req, const std::string& type);
+// The media types of the Accept header in the client's order, parameters and spaces dropped
+// ("image/png", "*/*"); empty without the header.
+std::vector<std::string> accepted_types(const HttpRequest& req);
+
+// What a long handler checks between steps: CANCELLED once the client has closed its connection
+// (its work is not worth finishing).
+std::function<Status()> stop_when_client_gone(const HttpRequest& req);
+
+// The rows of `query` as the engine gives them, whole (the answers that need every row: JSON, CSV,
+// the plot); the summary too.
+struct QueryAnswer {
+  std::vector<QueryRow> rows;
+  QuerySummary summary;
+};
+Result<QueryAnswer> run_query(const AppEngines& engines, const Query& query, const HttpRequest& req);
 
 // QIDO-RS: GET /dicom-web/studies, /series, /instances and below a study or series.
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,

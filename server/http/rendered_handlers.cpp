@@ -58,10 +58,7 @@ Result<RenderedPicture> draw_series(const AppEngines& e, const std::string& stud
       ask.plane = stacking_plane(source.geometry);
     }
     ask.seg_frame = frame;
-    const auto stop = [&req]() -> Status {
-      return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
-    };
-    return render_structure(e.store, e.features, e.pool, seg->id, ask, stop);
+    return render_structure(e.store, e.features, e.pool, seg->id, ask, stop_when_client_gone(req));
   }
   Result<db::SeriesRecord> series = e.store.get_series(series_uid);
   if (!series.ok() && series.status().code() != StatusCode::kNotFound) return series.status();

@@ -7,6 +7,7 @@
 #include "render/picture.h"
 #include "render/slice_view.h"
 #include "render/window.h"
+#include "server/http/http_handlers.h"
 
 namespace soiq::server::http {
 namespace {
@@ -119,19 +120,10 @@ Result<RenderAsk> rendered_ask(const HttpRequest& req, RenderedParams which,
 
 std::optional<render::PictureFormat> rendered_format(const HttpRequest& req, bool svg) {
   if (!req.has_header("Accept")) return render::PictureFormat::kJpeg;
-  const std::string accept = req.header("Accept");
-  size_t from = 0;
-  while (from <= accept.size()) {
-    size_t comma = accept.find(',', from);
-    if (comma == std::string::npos) comma = accept.size();
-    std::string item = accept.substr(from, comma - from);
-    item = item.substr(0, item.find(';'));
-    item.erase(0, item.find_first_not_of(' '));
-    item.erase(item.find_last_not_of(' ') + 1);
-    if (item == "image/png") return render::PictureFormat::kPng;
-    if (item == "image/jpeg" || item == "image/*" || item == "*/*") return render::PictureFormat::kJpeg;
-    if (svg && item == "image/svg+xml") return render::PictureFormat::kSvg;
-    from = comma + 1;
+  for (const std::string& type : accepted_types(req)) {
+    if (type == "image/png") return render::PictureFormat::kPng;
+    if (type == "image/jpeg" || type == "image/*" || type == "*/*") return render::PictureFormat::kJpeg;
+    if (svg && type == "image/svg+xml") return render::PictureFormat::kSvg;
   }
   return std::nullopt;
 }

@@ -11,26 +11,20 @@
 namespace soiq::server::http {
 
 Result<HttpReply> soiq_query_plot(const HandlerContext& c, const HttpRequest& req) {
+  // SVG unless PNG is asked for by name before it.
   render::PictureOptions picture;
   picture.format = render::PictureFormat::kSvg;
-  if (req.has_header("Accept") && req.header("Accept").find("image/png") != std::string::npos &&
-      req.header("Accept").find("image/svg+xml") == std::string::npos)
-    picture.format = render::PictureFormat::kPng;
-  else if (!accepts(req, "image/svg+xml"))
-    return HttpReply{406, "image/svg+xml or image/png", "", {}};
+  bool acceptable = !req.has_header("Accept");
+  for (const std::string& type : accepted_types(req)) {
+    if (type == "image/png") picture.format = render::PictureFormat::kPng;
+    acceptable = type == "image/png" || type == "image/svg+xml" || type == "image/*" || type == "*/*";
+    if (acceptable) break;
+  }
+  if (!acceptable) return HttpReply{406, "image/svg+xml or image/png", "", {}};
   SOIQ_ASSIGN_OR_RETURN(const v1::QueryRequest request, parse_soiq_query_args(req.params));
   SOIQ_ASSIGN_OR_RETURN(const Query query, parse_query(request, c.engines.config.query_result_cap));
-  std::vector<QueryRow> rows;
-  QueryOutput out;
-  out.progress = [](const QueryProgress&) { return ok_status(); };
-  out.row = [&](QueryRow&& r) {
-    rows.push_back(std::move(r));
-    return ok_status();
-  };
-  const auto stop = [&req]() -> Status {
-    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
-  };
-  SOIQ_RETURN_IF_ERROR(c.engines.queries.run(query, stop, out).status());
+  SOIQ_ASSIGN_OR_RETURN(const QueryAnswer answer, run_query(c.engines, query, req));
+  const std::vector<QueryRow>& rows = answer.rows;
   SOIQ_ASSIGN_OR_RETURN(
       const std::vector<proto_text::PlotColumn> columns,
       proto_text::query_plot_columns(request, rows.size(), [&](size_t r, size_t k) -> std::optional<double> {

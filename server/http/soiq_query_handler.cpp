@@ -98,7 +98,7 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
   // text/csv and NDJSON only when asked for by name; JSON otherwise.
   const std::string accept = req.header("Accept");
   const bool csv = accept.find("text/csv") != std::string::npos;
-  const bool ndjson = accept.find("application/x-ndjson") != std::string::npos && req.start_chunks != nullptr;
+  const bool ndjson = accept.find("application/x-ndjson") != std::string::npos;
   if (!csv && !ndjson && !accepts(req, "application/json"))
     return HttpReply{406, "application/json, application/x-ndjson or text/csv", "", {}};
   const std::vector<std::pair<std::string, std::string>>& args = req.params;
@@ -106,18 +106,10 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
   SOIQ_ASSIGN_OR_RETURN(const Query query, parse_query(request, c.engines.config.query_result_cap));
   const proto_text::QueryColumns columns = proto_text::query_columns(request);
   // A client that has gone stops the query: its conversions are not worth finishing.
-  const auto stop = [&req]() -> Status {
-    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
-  };
-  if (ndjson) return stream_query(req, c.engines, query, columns, stop);
-  std::vector<QueryRow> rows;
-  QueryOutput out;
-  out.progress = [](const QueryProgress&) { return ok_status(); };
-  out.row = [&](QueryRow&& r) {
-    rows.push_back(std::move(r));
-    return ok_status();
-  };
-  SOIQ_ASSIGN_OR_RETURN(const QuerySummary summary, c.engines.queries.run(query, stop, out));
+  if (ndjson && req.start_chunks) return stream_query(req, c.engines, query, columns, stop_when_client_gone(req));
+  SOIQ_ASSIGN_OR_RETURN(QueryAnswer answer, run_query(c.engines, query, req));
+  std::vector<QueryRow>& rows = answer.rows;
+  const QuerySummary& summary = answer.summary;
   // The engine streams rows as their features are ready; a whole answer has one order: the query's,
   // else by structure id.
   if (!query.order_by)
@@ -137,6 +129,13 @@ Result<HttpReply> soiq_query(const HandlerContext& c, const HttpRequest& req) {
     }
     reply.content_type = "text/csv; charset=utf-8";
     reply.body = std::move(body);
+    return reply;
+  }
+  if (ndjson) {  // HEAD: the lines a GET would stream, as one body
+    std::string body = json_text({{"columns", header}}) + "\n";
+    for (const QueryRow& r : rows) body += json_text({{"row", row_json(r, columns)}}) + "\n";
+    reply.content_type = "application/x-ndjson";
+    reply.body = body + json_text({{"summary", summary_json(summary)}}) + "\n";
     return reply;
   }
   ordered_json out_rows = ordered_json::array();

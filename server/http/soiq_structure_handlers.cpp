@@ -25,12 +25,6 @@ Result<int64_t> structure_id(const std::string& text) {
   return id;
 }
 
-std::function<Status()> stop_when_gone(const HttpRequest& req) {
-  return [&req]() -> Status {
-    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
-  };
-}
-
 HttpReply download(std::string bytes, const std::string& content_type, const std::string& file_name) {
   HttpReply r;
   r.content_type = content_type;
@@ -47,7 +41,8 @@ Result<HttpReply> picture(const HandlerContext& c, int64_t id, bool thumbnail, c
   ask.picture.format = *format;
   ask.thumbnail = thumbnail;
   const AppEngines& e = c.engines;
-  SOIQ_ASSIGN_OR_RETURN(RenderedPicture p, render_structure(e.store, e.features, e.pool, id, ask, stop_when_gone(req)));
+  SOIQ_ASSIGN_OR_RETURN(RenderedPicture p,
+                        render_structure(e.store, e.features, e.pool, id, ask, stop_when_client_gone(req)));
   HttpReply r;
   r.content_type = render::media_type(p.format);
   r.body = std::move(p.bytes);
@@ -61,8 +56,9 @@ Result<HttpReply> seg(const HandlerContext& c, int64_t id, const HttpRequest& re
   const StructureSegUids uids = structure_seg_uids(s);
   std::optional<BudgetedSeg> written;
   auto work = [&]() -> Status {
-    SOIQ_ASSIGN_OR_RETURN(BudgetedSeg w, structure_seg(e.store, e.features, e.budget, {id},
-                                                       seg_series_description(s.name), &uids, stop_when_gone(req)));
+    SOIQ_ASSIGN_OR_RETURN(BudgetedSeg w,
+                          structure_seg(e.store, e.features, e.budget, {id}, seg_series_description(s.name), &uids,
+                                        stop_when_client_gone(req)));
     written.emplace(std::move(w));
     return ok_status();
   };
@@ -83,7 +79,7 @@ Result<HttpReply> mask(const HandlerContext& c, int64_t id, const HttpRequest& r
   }
   SOIQ_ASSIGN_OR_RETURN(
       StructureConversion conversion,
-      convert_structure(e.store, e.features, e.pool, id, choice, FillRule::kNonZero, true, stop_when_gone(req)));
+      convert_structure(e.store, e.features, e.pool, id, choice, FillRule::kNonZero, true, stop_when_client_gone(req)));
   SOIQ_ASSIGN_OR_RETURN(std::string bytes, mask_nifti_bytes(conversion.voxelization.volume, e.config.max_grid_voxels));
   return download(std::move(bytes), "application/gzip", "structure-" + std::to_string(id) + "-mask.nii.gz");
 }

@@ -61,9 +61,7 @@ Result<db::StructureRecord> seg_structure(const AppEngines& e, const std::string
 // gives up after 30 s (memory_budget.h); a client that has gone stops it.
 Result<std::vector<std::string>> segs_of(const AppEngines& e, const std::vector<db::StructureRecord>& structures,
                                          const HttpRequest& req, HttpReply& reply) {
-  const auto client_here = [&req] {
-    return req.client_gone() ? Status(StatusCode::kCancelled, "the HTTP client closed its connection") : ok_status();
-  };
+  const std::function<Status()> client_here = stop_when_client_gone(req);
   std::vector<std::string> files;
   auto work = [&]() -> Status {
     for (const db::StructureRecord& s : structures) {

@@ -1,6 +1,7 @@
 // What HTTP connections cost soiqd over time: a slow client holds a connection, never a thread, so
 // real clients are served while many dawdle; a head that stalls past --http-timeout is answered
-// 408; connections past --http-max-connections get 503; a client that goes away stops its query.
+// 408; connections past --http-max-connections get 503; a client that goes away stops its query;
+// rows streamed as chunks end cleanly and leave the connection serving the next request.
 
 #include <gtest/gtest.h>
 
@@ -33,6 +34,17 @@ class HttpConnectionsTest : public ServiceTest {
     RawConnection c(port());
     c.send("GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
     return c.read_response();
+  }
+
+  // The log line of the first /soiq/v1/query answered, once soiqd has written it (60 s at most).
+  std::string query_log_entry() {
+    std::string log;
+    for (int i = 0; i < 600 && log.find("path=/soiq/v1/query") == std::string::npos; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      log = server_->log();
+    }
+    const size_t line = log.find("path=/soiq/v1/query");
+    return line == std::string::npos ? "" : log.substr(line, log.find('\n', line) - line);
   }
 };
 
@@ -97,19 +109,68 @@ TEST_F(HttpConnectionsTest, AClientThatGoesAwayStopsItsQuery) {
     c.close();
   }
   // The query stops at its next look at the client (CANCELLED: 503, to nobody).
-  std::string log;
-  for (int i = 0; i < 600 && log.find("path=/soiq/v1/query") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    log = server_->log();
-  }
-  const size_t line = log.find("path=/soiq/v1/query");
-  ASSERT_NE(line, std::string::npos) << log;
-  const std::string entry = log.substr(line, log.find('\n', line) - line);
+  const std::string entry = query_log_entry();
+  ASSERT_FALSE(entry.empty()) << server_->log();
   EXPECT_NE(entry.find("status=503"), std::string::npos) << entry;
   // A client that stays is answered in full.
   const RawResponse whole = get("/soiq/v1/query?select=sphericity");
   EXPECT_EQ(whole.status, 200) << whole.body.substr(0, 300);
   EXPECT_NE(whole.body.find("\"rows\""), std::string::npos);
+}
+
+TEST_F(HttpConnectionsTest, RowsStreamAsChunksAndTheConnectionServesTheNextRequest) {
+  start_http({"--workers", "2"});
+  client_ = std::make_unique<client::Client>(connect());
+  load_cohort(*this, *client_, dir_, 5);  // 20 structures
+  RawConnection c(port());
+  ASSERT_TRUE(
+      c.send("GET /soiq/v1/query?select=sphericity HTTP/1.1\r\nHost: x\r\nAccept: application/x-ndjson\r\n\r\n"));
+  const RawResponse streamed = c.read_response();
+  ASSERT_EQ(streamed.status, 200) << streamed.head;
+  EXPECT_EQ(streamed.header("Content-Type"), "application/x-ndjson");
+  EXPECT_EQ(streamed.header("Content-Length"), "");
+  // One chunk per line: the columns, a row per structure, the summary.
+  ASSERT_EQ(streamed.chunks.size(), 22u) << streamed.body;
+  EXPECT_EQ(streamed.chunks.front().rfind("{\"columns\":", 0), 0u) << streamed.chunks.front();
+  for (size_t i = 1; i + 1 < streamed.chunks.size(); ++i)
+    EXPECT_EQ(streamed.chunks[i].rfind("{\"row\":", 0), 0u) << streamed.chunks[i];
+  EXPECT_EQ(streamed.chunks.back().rfind("{\"summary\":", 0), 0u) << streamed.chunks.back();
+  EXPECT_FALSE(streamed.closed);
+  // The same connection, the next request: the whole answer.
+  ASSERT_TRUE(c.send("GET /soiq/v1/query?select=sphericity HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+  const RawResponse whole = c.read_response();
+  EXPECT_EQ(whole.status, 200) << whole.head;
+  EXPECT_NE(whole.body.find("\"rows\""), std::string::npos);
+  // HEAD of a streamed resource: the whole answer's head, no chunks.
+  const RawResponse head = [&] {
+    RawConnection h(port());
+    h.send(
+        "HEAD /soiq/v1/query?select=sphericity HTTP/1.1\r\nHost: x\r\nAccept: application/x-ndjson\r\nConnection: "
+        "close\r\n\r\n");
+    return h.read_response(10);
+  }();
+  EXPECT_EQ(head.status, 200) << head.head;
+  EXPECT_EQ(head.header("Transfer-Encoding"), "");
+}
+
+TEST_F(HttpConnectionsTest, AClientGoneMidStreamIsCutShortAndSoiqdServesOn) {
+  start_http({"--workers", "1"});
+  client_ = std::make_unique<client::Client>(connect());
+  load_cohort(*this, *client_, dir_, 30);  // 120 structures, none computed yet
+  {
+    RawConnection c(port());
+    ASSERT_TRUE(
+        c.send("GET /soiq/v1/query?select=sphericity&select=mean%5Binside%2CMR%5D HTTP/1.1\r\nHost: x\r\n"
+               "Accept: application/x-ndjson\r\n\r\n"));
+    // Gone once the answer has started: its columns have come, its rows are being computed.
+    ASSERT_TRUE(c.received("{\"columns\":", 30));
+    c.close();
+  }
+  const std::string entry = query_log_entry();
+  ASSERT_FALSE(entry.empty()) << server_->log();
+  EXPECT_EQ(entry.find("status=200"), std::string::npos) << "a query cut short is logged as such: " << entry;
+  const RawResponse whole = get("/soiq/v1/query?select=sphericity");
+  EXPECT_EQ(whole.status, 200) << whole.body.substr(0, 300);
 }
 
 }  // namespace

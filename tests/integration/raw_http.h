@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace soiq::testing {
 
@@ -20,7 +21,8 @@ struct RawResponse {
   int status = 0;    // 0: no status line arrived
   std::string head;  // status line and headers
   std::string body;
-  bool closed = false;  // the server closed the connection after it
+  std::vector<std::string> chunks;  // a chunked answer's pieces, as sent (body is them joined)
+  bool closed = false;              // the server closed the connection after it
   std::string header(const std::string& name) const {
     std::string lower_head = head, lower_name = name + ":";
     for (char& c : lower_head) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -101,6 +103,25 @@ class RawConnection {
     const std::string length = r.header("Content-Length");
     if (r.status / 100 == 1) {
       // An interim answer (100 Continue) has no body.
+    } else if (r.header("Transfer-Encoding") == "chunked") {
+      // size in hex CRLF, bytes CRLF, ..., then 0 CRLF CRLF (no trailers from soiqd).
+      while (true) {
+        size_t line_end;
+        while ((line_end = buffer_.find("\r\n")) == std::string::npos)
+          if (!receive(timeout_s)) break;
+        if (line_end == std::string::npos) break;
+        const size_t n = std::stoul(buffer_.substr(0, line_end), nullptr, 16);
+        while (buffer_.size() < line_end + 2 + n + 2)
+          if (!receive(timeout_s)) break;
+        if (buffer_.size() < line_end + 2 + n + 2) break;
+        if (n == 0) {
+          buffer_.erase(0, line_end + 4);
+          break;
+        }
+        r.chunks.push_back(buffer_.substr(line_end + 2, n));
+        r.body += r.chunks.back();
+        buffer_.erase(0, line_end + 2 + n + 2);
+      }
     } else if (!length.empty()) {
       const size_t n = std::stoul(length);
       while (buffer_.size() < n)
@@ -125,6 +146,14 @@ class RawConnection {
       if (!receive(1) && eof_) return true;
     }
     return false;
+  }
+
+  // True once the server has sent `text` (kept for read_response), within `timeout_s`.
+  bool received(const std::string& text, int timeout_s) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_s);
+    while (buffer_.find(text) == std::string::npos && std::chrono::steady_clock::now() < deadline)
+      if (!receive(1) && eof_) return false;
+    return buffer_.find(text) != std::string::npos;
   }
 
   // True when nothing arrived and the connection is still open after `ms` milliseconds.
