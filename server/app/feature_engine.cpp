@@ -204,6 +204,7 @@ Result<FeatureEngine::Admission> FeatureEngine::reserve_for(const db::StructureR
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
   if (extras.mask_export) add(mask_export_extra_bytes(geometry));
+  add(std::max<int64_t>(0, extras.other_bytes));
   const auto& d = geometry.dims;
   SOIQ_ASSIGN_OR_RETURN(
       MemoryBudget::Reservation held,

@@ -130,6 +130,7 @@ class FeatureEngine {
     bool mask_export = false;  // a dense mask written as NIfTI
     int64_t image_voxels = 0;  // images decoded for intensities
     int regions = 0;           // regions with intensities
+    int64_t other_bytes = 0;   // anything else the work holds (a picture's surface and file)
   };
   // Reserves the estimated peak bytes of converting `structure` on `geometry` plus `extras` in the
   // memory budget; RESOURCE_EXHAUSTED naming the structure, the grid, the estimate and the limit

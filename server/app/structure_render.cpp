@@ -261,10 +261,16 @@ Result<RenderedPicture> render_structure(db::Store& store, FeatureEngine& featur
   const std::string patient = ask.patient_caption ? patient_text(store, structure) : "";
 
   std::optional<RenderedPicture> out;
-  // Admitted on the worker, as every conversion is (structure_conversion.cpp says why).
+  // Admitted on the worker, as every conversion is (structure_conversion.cpp says why), with the
+  // picture it may draw: at most its tiles' pixels, 4 bytes each on cairo's surface and about as
+  // many again for the slices' copies and the encoded file.
+  const size_t tiles = ask.montage ? size_t(std::max<int64_t>(1, axes.slice_count)) : 1;
+  const Result<render::PictureSize> size = render::overlay_size(axes, tiles, ask.fit ? 0 : ask.width);
+  const int64_t side = render::kMaxPictureSide;
+  const int64_t pixels = size.ok() ? std::min(int64_t(size->width) * size->height, side * side) : side * side;
   auto work = [&]() -> Status {
     FeatureEngine::WorkExtras extras;
-    extras.image_voxels = series ? series->geometry.voxel_count() : 0;
+    extras.other_bytes = pixels * 8;
     SOIQ_ASSIGN_OR_RETURN(FeatureEngine::Admission held, features.admit(structure, grid.geometry, extras, stop));
     SOIQ_ASSIGN_OR_RETURN(const Voxelization v, features.convert(held, structure, grid.geometry, FillRule::kNonZero));
     std::shared_ptr<const Image> image;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -158,6 +159,24 @@ TEST_F(RenderTest, TheWindowComesFromTheDicomWhenItHasOne) {
   ASSERT_TRUE(info.ok()) << info.status().to_string();
   EXPECT_EQ(info->window_center(), -600);  // asked for wins
   EXPECT_EQ(info->window_width(), 1600);
+}
+
+TEST_F(RenderTest, APictureThatCanNeverFitTheMemoryBudgetIsRefusedBeforeItIsDrawn) {
+  start({"--memory-budget", "128M"});
+  client_ = std::make_unique<client::Client>(connect());
+  const auto [id, ct] = import_sts_ct(test_data("sts/STS_002/dicom/CT"));
+  ASSERT_GT(id, 0);
+  v1::RenderRequest request;
+  request.set_structure_id(id);
+  request.set_montage(true);
+  request.set_width(8192);  // 16 tiles of ~2000 pixels: ~0.4 GB of surface and copies
+  Result<v1::RenderInfo> info = client_->render(request, dir_.file("huge.png"));
+  ASSERT_FALSE(info.ok());
+  EXPECT_EQ(info.status().code(), StatusCode::kResourceExhausted) << info.status().to_string();
+  EXPECT_FALSE(fs::exists(dir_.file("huge.png")));
+  request.set_width(1024);  // the same montage, smaller, fits
+  info = client_->render(request, dir_.file("small.png"));
+  ASSERT_TRUE(info.ok()) << info.status().to_string();
 }
 
 TEST_F(RenderTest, AMeshWithoutImagesIsDrawnAsItsMaskAlone) {
