@@ -37,7 +37,7 @@ SANITIZE_CONFIG = -C $(CURDIR)/cmake/sanitize.cmake
 
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer.
 test-sanitize:
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test BUILD=$(SANITIZE_BUILD) CMAKE_CONFIG="$(SANITIZE_CONFIG)"
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(MAKE) test BUILD=$(SANITIZE_BUILD) CMAKE_CONFIG="$(SANITIZE_CONFIG)"
 
 # The container end to end (docker/test-container; not part of `make test`): podman, podman-compose
 # and debootstrap installed, the debian:12 base image made from Debian's archive, soiq's and
