@@ -10,13 +10,14 @@
 //     [SOIQ_SCREENSHOTS=DIR] [SOIQ_CHROMIUM=/usr/bin/chromium] node --test query_page_test.mjs
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { chromium } from 'playwright-core';
 
 const base = process.env.SOIQ_HTTP;
 const token = fs.readFileSync(process.env.SOIQ_TOKEN_FILE, 'utf8').trim();
-const tmp = process.env.SOIQ_TMP || fs.mkdtempSync('/tmp/soiq-web-');
+const tmp = process.env.SOIQ_TMP || fs.mkdtempSync(path.join(os.tmpdir(), 'soiq-web-'));
 const shots = process.env.SOIQ_SCREENSHOTS || path.join(tmp, 'screenshots');
 fs.mkdirSync(shots, { recursive: true });
 
