@@ -51,11 +51,22 @@ struct AddedStructure {
   bool recognised = false;  // same_content_is_same_structure found it stored: nothing written
 };
 
+// One original DICOM file of a new series (InstanceRecord): record.series_uid is the series'.
+struct NewInstance {
+  InstanceRecord record;  // file_sha256 and file_bytes filled by the caller from `file`
+  std::string file;       // the Part 10 bytes as received
+};
+
 struct NewSeries {
   PatientRecord patient;
   StudyRecord study;
   SeriesRecord series;     // sha256 filled by the caller from the blob
   std::string image_blob;  // encoded (db/image_blob.h)
+  // Its original instances, or none (soiqd --keep-instances off, an upload). Each SOP Instance UID
+  // must be one of series.slice_instance_uids. Stored with the series; a replaced series' instances
+  // are replaced; when the series is stored with the same content already, the instances it lacks
+  // are added (so importing again fills a series stored before instances were kept).
+  std::vector<NewInstance> instances;
   // False for DICOM: a series stored under this uid with other voxels or other slice SOP
   // Instance UIDs is ALREADY_EXISTS naming what differs, unless the caller asks to replace; the
   // same content is a no-op.
@@ -151,13 +162,18 @@ struct Candidate {
 
 struct Counts {
   int64_t patients = 0, studies = 0, series = 0, structures = 0, surfaces = 0, cached_features = 0;
+  int64_t instances = 0;                       // original DICOM instances kept (InstanceRecord)
+  int64_t instance_files = 0;                  // distinct files they hold (by sha256)
+  int64_t instance_bytes = 0;                  // those files' bytes
   int64_t precompute_queued = 0;               // structures waiting for their default features
   int64_t precompute_failed = 0;               // structures whose precompute failed (queries compute them)
   std::vector<std::string> series_modalities;  // every modality a stored series has, sorted
 };
 
-// Which blob get_blob reads: an image series' pixels (by series uid) or a surface (by sha256).
-enum class BlobKind { kImage, kSurface };
+// Which blob get_blob reads: an image series' pixels (by series uid), a surface (by sha256) or an
+// original DICOM instance's Part 10 file (by sha256; its sha256 is checked on every read, DATA_LOSS
+// when the bytes differ).
+enum class BlobKind { kImage, kSurface, kInstanceFile };
 
 // DICOMweb's view of the store (QIDO-RS, server/http/). Its DICOM series are the image series
 // imported from DICOM (those with a SOP class; an image uploaded as a file has no DICOM identity)
@@ -215,7 +231,7 @@ struct Removal {
   std::string patient_id;
 };
 
-// The records' role: 15 methods, each one transaction; below them, conveniences written on them
+// The records' role: 16 methods, each one transaction; below them, conveniences written on them
 // for the common single-record cases.
 class RecordStore {
  public:
@@ -243,8 +259,12 @@ class RecordStore {
   // 1..kMaxSearchLimit, a malformed date or an over-long value.
   virtual Result<std::vector<StudyHit>> search_studies(const StudySearch& s) = 0;
   virtual Result<std::vector<SeriesHit>> search_series(const SeriesSearch& s) = 0;
-  // An image series' blob by series uid, or a surface's by sha256 (db/image_blob.h, surface_blob.h).
+  // An image series' blob by series uid, a surface's by sha256 (db/image_blob.h, surface_blob.h),
+  // an instance file by sha256 (BlobKind).
   virtual Result<std::string> get_blob(BlobKind kind, const std::string& key) = 0;
+  // The original instances kept of an image series, by slice then SOP Instance UID; empty when
+  // none were kept. NOT_FOUND for an unknown series; DATA_LOSS when a metadata's checksum fails.
+  virtual Result<std::vector<InstanceRecord>> list_instances(const std::string& series_uid) = 0;
   // Stage 1, ordered by structure id. More than `limit` candidates is RESOURCE_EXHAUSTED
   // (the message gives the count and says to narrow the filter).
   virtual Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) = 0;
@@ -266,6 +286,7 @@ class RecordStore {
   }
   Result<std::string> get_image_blob(const std::string& series_uid) { return get_blob(BlobKind::kImage, series_uid); }
   Result<std::string> get_surface_blob(const std::string& sha256) { return get_blob(BlobKind::kSurface, sha256); }
+  Result<std::string> get_instance_file(const std::string& sha256) { return get_blob(BlobKind::kInstanceFile, sha256); }
   Result<int64_t> delete_structure(int64_t id) { return remove({Removal::Kind::kStructure, id, ""}); }
   Result<int64_t> delete_patient(const std::string& patient_id) {
     return remove({Removal::Kind::kPatient, 0, patient_id});

@@ -60,6 +60,19 @@ struct SeriesRecord {
   double window_width = 0;
 };
 
+// An original DICOM instance of an image series, kept as it was received (soiqd --keep-instances,
+// on by default): what WADO-RS serves, so that a viewer opens the series from soiq alone and the
+// SEGs soiq writes resolve against the SOP Instance UIDs they reference. The file is stored once
+// per sha256 however many instances (a re-sent file) name it.
+struct InstanceRecord {
+  std::string sop_instance_uid;
+  std::string series_uid;
+  int64_t slice = 0;        // the slice k of the series it holds (its first frame's, for multi-frame)
+  std::string file_sha256;  // of the Part 10 file as received, lower-case hex: its key
+  int64_t file_bytes = 0;   // the file's size
+  std::string metadata;     // the DICOM JSON Model (PS3.18 F.2) of its attributes, bulk data left out
+};
+
 struct SurfaceInfo {
   std::string sha256;  // of the canonical (uncompressed) encoding
   int64_t vertex_count = 0;

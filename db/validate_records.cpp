@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "core/base/field_rules.h"
 #include "db/age_years.h"
+#include "db/surface_blob.h"
 
 namespace soiq::db {
 
@@ -100,6 +102,48 @@ Status validate_cache_entries(const std::string& surface_sha256, const std::vect
   return ok_status();
 }
 
+namespace {
+
+// One kept instance of the series `s` (NewInstance): refusals name the instance.
+Status validate_instance(const NewSeries& s, const NewInstance& i, const std::set<std::string>& slice_uids) {
+  const InstanceRecord& r = i.record;
+  const std::string what = "instance '" + r.sop_instance_uid + "' of series '" + s.series.series_uid + "'";
+  if (r.sop_instance_uid.empty())
+    return invalid_argument("an instance of series '" + s.series.series_uid + "' has no SOP Instance UID");
+  if (slice_uids.count(r.sop_instance_uid) == 0)
+    return invalid_argument(what + " is not one of the series' slice instance uids");
+  if (r.series_uid != s.series.series_uid) return invalid_argument(what + " names series '" + r.series_uid + "'");
+  if (r.slice < 0 || r.slice >= s.series.geometry.dims[2])
+    return invalid_argument(what + " has slice " + std::to_string(r.slice) + ", outside 0.." +
+                            std::to_string(s.series.geometry.dims[2] - 1));
+  if (i.file.empty()) return invalid_argument(what + " has an empty file");
+  if (r.file_bytes != int64_t(i.file.size()))
+    return invalid_argument(what + " says its file has " + std::to_string(r.file_bytes) + " bytes, not " +
+                            std::to_string(i.file.size()));
+  // The store keys the file by this sha256 and checks the bytes against it on every read.
+  if (r.file_sha256 != sha256_hex(i.file.data(), i.file.size()))
+    return invalid_argument(what + " has a file_sha256 that is not its file's sha256");
+  if (r.metadata.empty() || r.metadata.front() != '{')
+    return invalid_argument(what + " has metadata that is not a JSON object");
+  return ok_status();
+}
+
+// The series' instances, each once.
+Status validate_instances(const NewSeries& s) {
+  if (s.instances.empty()) return ok_status();
+  const std::set<std::string> slice_uids(s.series.slice_instance_uids.begin(), s.series.slice_instance_uids.end());
+  std::set<std::string> seen;
+  for (const NewInstance& i : s.instances) {
+    SOIQ_RETURN_IF_ERROR(validate_instance(s, i, slice_uids));
+    if (!seen.insert(i.record.sop_instance_uid).second)
+      return invalid_argument("instance '" + i.record.sop_instance_uid + "' of series '" + s.series.series_uid +
+                              "' is sent twice");
+  }
+  return ok_status();
+}
+
+}  // namespace
+
 Status validate_new_series(const NewSeries& s) {
   SOIQ_RETURN_IF_ERROR(validate_patient(s.patient));
   SOIQ_RETURN_IF_ERROR(validate_study(s.study, s.patient.patient_id));
@@ -128,7 +172,7 @@ Status validate_new_series(const NewSeries& s) {
                             std::to_string(s.series.geometry.dims[2]) + " slices");
   }
   if (s.image_blob.empty()) return invalid_argument("image blob is empty");
-  return ok_status();
+  return validate_instances(s);
 }
 
 Status validate_new_structure(const NewStructure& s) {

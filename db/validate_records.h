@@ -37,7 +37,9 @@ Status validate_structure_filter(const StructureFilter& f);
 // A surface's feature-cache entries: the surface's sha256, and a key and an entry name for each.
 Status validate_cache_entries(const std::string& surface_sha256, const std::vector<CachedFeature>& entries);
 // What import_batch takes: the patient and study as above, the series' uid, modality, geometry,
-// image sha256 and DICOM references (slice uids one per slice), a non-empty blob; the structure's
+// image sha256 and DICOM references (slice uids one per slice), a non-empty blob, each instance
+// (NewInstance: one of the slice uids, once, of this series, a slice of it, a non-empty file of the
+// given size and sha256, metadata a JSON object); the structure's
 // name, laterality, surface sha256, source series and a non-empty blob.
 Status validate_new_series(const NewSeries& s);
 Status validate_new_structure(const NewStructure& s);

@@ -214,6 +214,26 @@ ALTER TABLE series ADD COLUMN window_center double precision NOT NULL DEFAULT 0;
 ALTER TABLE series ADD COLUMN window_width double precision NOT NULL DEFAULT 0;
 )sql";
 
+// Version 7: SQLite's version 11, the original DICOM instances of image series (see there).
+constexpr char kSchemaV7[] = R"sql(
+CREATE TABLE instance_files (
+  sha256 text COLLATE "C" PRIMARY KEY,
+  blob bytea NOT NULL
+);
+
+CREATE TABLE instances (
+  sop_instance_uid text COLLATE "C" PRIMARY KEY,
+  series_pk bigint NOT NULL REFERENCES series(pk) ON DELETE CASCADE,
+  slice bigint NOT NULL,
+  file_sha256 text COLLATE "C" NOT NULL REFERENCES instance_files(sha256),
+  file_bytes bigint NOT NULL,
+  metadata text COLLATE "C" NOT NULL,
+  metadata_crc32 bigint NOT NULL
+);
+CREATE INDEX instances_series ON instances(series_pk, slice);
+CREATE INDEX instances_file ON instances(file_sha256);
+)sql";
+
 // Version 5: SQLite's version 9, no stored byte unchecked: surface blobs in version 3 and cached
 // values with their checksum (db/sql/checksum_stored_bytes.h, the same step). No table changes.
 Status checksum_stored_bytes_step(PgConnection& c) {
@@ -230,7 +250,7 @@ struct Step {
 // Append new steps here; never edit a released one.
 const std::vector<Step>& steps() {
   static const std::vector<Step> kSteps = {
-      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step}, {kSchemaV6},
+      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step}, {kSchemaV6}, {kSchemaV7},
   };
   return kSteps;
 }

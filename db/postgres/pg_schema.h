@@ -4,7 +4,8 @@
 // PostgreSQL's version 1 is SQLite's version 6: no PostgreSQL database existed before it, so
 // SQLite's history before it (its re-encodings of blobs) has nothing to migrate here. Version 2
 // makes every text column compare in byte order (collation "C"), as SQLite's do; version 5 is
-// SQLite's version 9, every stored byte checked (db/sql/checksum_stored_bytes.h).
+// SQLite's version 9, every stored byte checked (db/sql/checksum_stored_bytes.h); version 7 is
+// SQLite's version 11, the kept DICOM instances.
 //
 // pg_migrate runs each missing step in one transaction holding a transaction-level advisory lock,
 // so replicas starting together on one database migrate it once: the others wait on the lock,

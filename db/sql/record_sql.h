@@ -50,7 +50,8 @@ inline constexpr char kSeriesColumns[] = R"sql(
   se.slice_instance_uids, se.series_number, se.description, se.window_center, se.window_width)sql";
 inline constexpr int kSeriesColumnCount = 29;
 
-// The row count of each table, in the order of Counts' fields.
+// The row count of each table, in the order of Counts' fields; the instances' apart (a store of an
+// older schema, opened read only, has no instance tables).
 inline constexpr char kCountsSql[] = R"sql(
   SELECT (SELECT count(*) FROM patients),
          (SELECT count(*) FROM studies),
@@ -60,6 +61,13 @@ inline constexpr char kCountsSql[] = R"sql(
          (SELECT count(*) FROM feature_cache),
          (SELECT count(*) FROM precompute_queue WHERE failure = ''),
          (SELECT count(*) FROM precompute_queue WHERE failure <> ''))sql";
+
+// Counts::instances, instance_files and instance_bytes. length() of a blob reads its size, not its
+// bytes, in both engines.
+inline constexpr char kInstanceCountsSql[] = R"sql(
+  SELECT (SELECT count(*) FROM instances),
+         (SELECT count(*) FROM instance_files),
+         (SELECT coalesce(sum(length(blob)), 0) FROM instance_files))sql";
 
 // The distinct modalities of the series, by a skip-scan over the series_modality index: one index
 // seek per distinct value, not a pass over every series (neither engine skips by itself).

@@ -35,18 +35,29 @@ struct TableDigest {
   std::string sha256;
 };
 
-// One stored blob or cached value as it is stored, for soiq-admin verify (SqlStore::scan_stored).
-enum class StoredKind { kSurface, kImage, kCachedValue };
+// One stored blob, cached value or kept instance as it is stored, for soiq-admin verify
+// (SqlStore::scan_stored).
+enum class StoredKind { kSurface, kImage, kCachedValue, kInstanceFile, kInstance };
 struct StoredItem {
   StoredKind kind = StoredKind::kSurface;
-  std::string key;                     // a surface's or an image's sha256; a cached value's cache key
+  std::string key;                     // a surface's, image's or instance file's sha256; a cached
+                                       // value's cache key; an instance's SOP Instance UID
   std::string entry;                   // a cached value's entry
   std::string surface_sha256;          // a cached value's surface
-  std::string bytes;                   // the blob or the value
+  std::string bytes;                   // the blob, the value or the file
   std::vector<int64_t> structure_ids;  // a surface's structures
-  std::string series_uid;              // an image: the first series that holds it ("" for none),
-  ImageGeometry geometry;              // and its grid, which the blob needs to be decoded
+  std::string series_uid;              // an image or instance file: the first series that holds
+                                       // it ("" for none); an instance's series
+  ImageGeometry geometry;              // an image's grid, which the blob needs to be decoded
+  InstanceRecord instance;             // an instance's row, and its metadata_crc32 column: sound when
+  int64_t instance_crc32 = 0;          // instance_row_crc32(instance) is that
 };
+
+// What an instance's metadata_crc32 column holds: the CRC-32 (db/crc32.h) of its whole row, the
+// SOP Instance UID, series uid, slice, file sha256 and size and the metadata, so that a flipped
+// bit in any of them, or a row read under another instance, fails the check
+// (sql_store_instances.cpp).
+uint32_t instance_row_crc32(const InstanceRecord& r);
 
 class SqlStore : public Store {
  public:
@@ -62,10 +73,11 @@ class SqlStore : public Store {
   // records (soiq-admin migrate compares them after a copy).
   Result<std::vector<TableDigest>> table_digests();
   // Every stored item of `kind` to `visit`, in key order, each read in a read transaction of its
-  // own (cached values a page at a time), so that a scrub of a large store beside a running soiqd
-  // holds no snapshot for long; `visit` runs outside them. An item removed meanwhile is not
-  // visited. Stops at, and returns, the first error of `visit`. Reads only columns every schema
-  // version has, so a store opened read only and not migrated can be scanned.
+  // own (cached values and instances a page at a time), so that a scrub of a large store beside a
+  // running soiqd holds no snapshot for long; `visit` runs outside them. An item removed meanwhile
+  // is not visited. Stops at, and returns, the first error of `visit`. Reads only columns every schema
+  // version has, and a table a later version added (the instances') as empty when it is missing,
+  // so a store opened read only and not migrated can be scanned.
   Status scan_stored(StoredKind kind, const std::function<Status(const StoredItem&)>& visit);
 
   Result<ImportedBatch> import_batch(const ImportBatch& b) override;
@@ -86,6 +98,7 @@ class SqlStore : public Store {
   Result<std::vector<StudyHit>> search_studies(const StudySearch& s) override;
   Result<std::vector<SeriesHit>> search_series(const SeriesSearch& s) override;
   Result<std::string> get_blob(BlobKind kind, const std::string& key) override;
+  Result<std::vector<InstanceRecord>> list_instances(const std::string& series_uid) override;
   Result<std::vector<Candidate>> stage1(const Stage1Filter& f, int64_t limit) override;
   Result<std::vector<CachedFeature>> cached_features(const std::vector<std::string>& keys,
                                                      const std::vector<std::string>& entries) override;
@@ -124,6 +137,7 @@ class SqlStore : public Store {
   Result<int64_t> remove_patient(const std::string& patient_id);
   Result<std::string> image_blob(const std::string& series_uid);
   Result<std::string> surface_blob(const std::string& sha256);
+  Result<std::string> instance_file(const std::string& sha256);
 
   // The one row `sql` finds with `key` bound as ?1, made into a T by `make(SqlStatement&)`;
   // NOT_FOUND with `missing` as the message when there is none (sql_store_reads.cpp).

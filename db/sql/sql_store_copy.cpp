@@ -8,6 +8,7 @@
 
 #include "db/sha256.h"
 #include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 
 namespace soiq::db {
 namespace {
@@ -22,7 +23,9 @@ constexpr Table kTables[] = {
     {"patients", "pk"},
     {"studies", "pk"},
     {"image_blobs", "sha256"},
+    {"instance_files", "sha256"},
     {"series", "pk"},
+    {"instances", "sop_instance_uid"},
     {"surfaces", "sha256"},
     {"structures", "id"},
     {"stored_features", "structure_id"},
@@ -101,6 +104,8 @@ Status insert_rows(SqlSession& to, const std::string& table, const std::vector<s
 
 Status copy_table(SqlSession& from, SqlSession& to, const Table& t,
                   const std::function<void(const std::string&, int64_t)>& progress) {
+  SOIQ_ASSIGN_OR_RETURN(const bool exists, table_exists(from, t.name));
+  if (!exists) return ok_status();  // a source of an older schema: the table's rows are none
   SOIQ_ASSIGN_OR_RETURN(SqlStatement q, from.prepare(std::string("SELECT * FROM ") + t.name + " ORDER BY " + t.key));
   std::vector<std::string> columns;
   std::vector<std::vector<Cell>> batch;
@@ -154,7 +159,20 @@ void digest_row(const SqlStatement& q, const std::vector<int>& by_name, Sha256& 
   }
 }
 
+constexpr char kSqliteTableExistsSql[] = R"sql(
+  SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?1)sql";
+constexpr char kPostgresTableExistsSql[] = R"sql(
+  SELECT count(*) FROM pg_catalog.pg_tables WHERE schemaname = current_schema() AND tablename = ?1)sql";
+
 }  // namespace
+
+Result<bool> table_exists(SqlSession& c, const std::string& table) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(c.dialect() == SqlDialect::kPostgres ? kPostgresTableExistsSql
+                                                                                       : kSqliteTableExistsSql));
+  q.bind(1, table);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+  return row && q.int64(0) > 0;
+}
 
 Status SqlStore::copy_to(SqlStore& to, const std::function<void(const std::string&, int64_t)>& progress) {
   SOIQ_ASSIGN_OR_RETURN(const Counts target, to.counts());
@@ -181,26 +199,40 @@ Status SqlStore::copy_to(SqlStore& to, const std::function<void(const std::strin
   });
 }
 
+namespace {
+
+// One table's rows and digest (SqlStore::table_digests). A store of an older schema (opened read
+// only) lacks the later tables: each is read as an empty one.
+Result<TableDigest> digest_table(SqlSession& c, const Table& t) {
+  Sha256 h;
+  TableDigest d{t.name, 0, ""};
+  SOIQ_ASSIGN_OR_RETURN(const bool exists, table_exists(c, t.name));
+  if (exists) {
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(std::string("SELECT * FROM ") + t.name + " ORDER BY " + t.key));
+    std::vector<int> by_name;
+    while (true) {
+      SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+      if (!row) break;
+      if (by_name.empty()) {
+        for (int i = 0; i < q.column_count(); ++i) by_name.push_back(i);
+        std::sort(by_name.begin(), by_name.end(), [&](int a, int b) { return q.column_name(a) < q.column_name(b); });
+      }
+      ++d.rows;
+      digest_row(q, by_name, h);
+    }
+  }
+  d.sha256 = h.hex_digest();
+  return d;
+}
+
+}  // namespace
+
 Result<std::vector<TableDigest>> SqlStore::table_digests() {
   std::vector<TableDigest> out;
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     out.clear();
     for (const Table& t : kTables) {
-      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(std::string("SELECT * FROM ") + t.name + " ORDER BY " + t.key));
-      Sha256 h;
-      TableDigest d{t.name, 0, ""};
-      std::vector<int> by_name;
-      while (true) {
-        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-        if (!row) break;
-        if (by_name.empty()) {
-          for (int i = 0; i < q.column_count(); ++i) by_name.push_back(i);
-          std::sort(by_name.begin(), by_name.end(), [&](int a, int b) { return q.column_name(a) < q.column_name(b); });
-        }
-        ++d.rows;
-        digest_row(q, by_name, h);
-      }
-      d.sha256 = h.hex_digest();
+      SOIQ_ASSIGN_OR_RETURN(TableDigest d, digest_table(c, t));
       out.push_back(std::move(d));
     }
     return ok_status();

@@ -40,6 +40,20 @@ Status delete_image_if_orphan(SqlSession& c, const std::string& sha256) {
 
 namespace {
 
+constexpr char kDeleteOrphanInstanceFileSql[] = R"sql(
+  DELETE FROM instance_files
+  WHERE sha256 = ?1 AND NOT EXISTS (SELECT 1 FROM instances WHERE file_sha256 = ?1))sql";
+
+}  // namespace
+
+Status delete_instance_file_if_orphan(SqlSession& c, const std::string& sha256) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanInstanceFileSql));
+  del.bind(1, sha256);
+  return del.run();
+}
+
+namespace {
+
 constexpr char kDeleteStructureSql[] = R"sql(
   DELETE FROM structures WHERE id = ?1
   RETURNING surface_sha256)sql";
@@ -75,44 +89,55 @@ constexpr char kImagesOfPatientSql[] = R"sql(
   JOIN patients p ON p.pk = st.patient_pk
   WHERE p.patient_id = ?1)sql";
 
-// ON DELETE CASCADE takes the studies, their series and structures.
+constexpr char kInstanceFilesOfPatientSql[] = R"sql(
+  SELECT i.file_sha256
+  FROM instances i
+  JOIN series se ON se.pk = i.series_pk
+  JOIN studies st ON st.pk = se.study_pk
+  JOIN patients p ON p.pk = st.patient_pk
+  WHERE p.patient_id = ?1)sql";
+
+// ON DELETE CASCADE takes the studies, their series (and their instances) and structures.
 constexpr char kDeletePatientSql[] = R"sql(
   DELETE FROM patients WHERE patient_id = ?1)sql";
+
+// The blobs a patient refers to, by sha256, collected before the cascade removes the references;
+// `rows`: how many rows referred to them.
+struct Collected {
+  std::set<std::string> shas;
+  int64_t rows = 0;
+};
+
+Result<Collected> collect_of_patient(SqlSession& c, const char* sql, const std::string& patient_id) {
+  Collected out;
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql));
+  q.bind(1, patient_id);
+  while (true) {
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    if (!row) return out;
+    ++out.rows;
+    out.shas.insert(q.text(0));
+  }
+}
 
 }  // namespace
 
 Result<int64_t> SqlStore::remove_patient(const std::string& patient_id) {
   int64_t deleted = 0;
   SOIQ_RETURN_IF_ERROR(write([&](SqlSession& c) -> Status {
-    // The blobs the patient refers to, collected before the cascade removes the references.
-    std::set<std::string> surfaces, images;
-    {
-      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kSurfacesOfPatientSql));
-      q.bind(1, patient_id);
-      while (true) {
-        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-        if (!row) break;
-        ++deleted;
-        surfaces.insert(q.text(0));
-      }
-    }
-    {
-      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kImagesOfPatientSql));
-      q.bind(1, patient_id);
-      while (true) {
-        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-        if (!row) break;
-        images.insert(q.text(0));
-      }
-    }
+    SOIQ_ASSIGN_OR_RETURN(const Collected surfaces, collect_of_patient(c, kSurfacesOfPatientSql, patient_id));
+    SOIQ_ASSIGN_OR_RETURN(const Collected images, collect_of_patient(c, kImagesOfPatientSql, patient_id));
+    SOIQ_ASSIGN_OR_RETURN(const Collected files, collect_of_patient(c, kInstanceFilesOfPatientSql, patient_id));
+    deleted = surfaces.rows;  // one row per structure
     {
       SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeletePatientSql));
       del.bind(1, patient_id);
       SOIQ_RETURN_IF_ERROR(del.run());
       if (del.changes() == 0) return not_found("patient '" + patient_id + "' not found");
     }
-    for (const std::string& sha : surfaces) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, sha));
-    for (const std::string& sha : images) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, sha));
+    for (const std::string& sha : surfaces.shas) SOIQ_RETURN_IF_ERROR(delete_surface_if_orphan(c, sha));
+    for (const std::string& sha : images.shas) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, sha));
+    for (const std::string& sha : files.shas) SOIQ_RETURN_IF_ERROR(delete_instance_file_if_orphan(c, sha));
     return ok_status();
   }));
   return deleted;

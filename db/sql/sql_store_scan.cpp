@@ -1,11 +1,13 @@
-// SqlStore::scan_stored: every stored surface blob, image blob or cached value handed out as it is
-// stored, for soiq-admin verify to check (server/app/store_verify.h). Each read is a short read
-// transaction of its own: one blob at a time (blobs are large), cached values a page at a time,
-// each continuing after the last key seen, so the scan never holds a snapshot for long.
+// SqlStore::scan_stored: every stored surface blob, image blob, cached value, instance file or kept
+// instance handed out as it is stored, for soiq-admin verify to check (server/app/store_verify.h).
+// Each read is a short read transaction of its own: one blob or file at a time (they are large),
+// cached values and instances a page at a time, each continuing after the last key seen, so the
+// scan never holds a snapshot for long.
 #include <string>
 #include <vector>
 
 #include "db/sql/sql_store.h"
+#include "db/sql/sql_store_writes.h"
 
 namespace soiq::db {
 namespace {
@@ -30,6 +32,23 @@ constexpr char kNextValuesSql[] = R"sql(
   SELECT key, entry, surface_sha256, value FROM feature_cache
   WHERE key > ?1 OR (key = ?1 AND entry > ?2)
   ORDER BY key, entry
+  LIMIT 1000)sql";
+
+// An instance file with the first series (by uid) whose instances hold it.
+constexpr char kNextInstanceFileSql[] = R"sql(
+  SELECT f.sha256, f.blob,
+         coalesce((SELECT min(se.series_uid) FROM instances i JOIN series se ON se.pk = i.series_pk
+                   WHERE i.file_sha256 = f.sha256), '')
+  FROM instance_files f
+  WHERE f.sha256 > ?1 ORDER BY f.sha256 LIMIT 1)sql";
+
+constexpr char kNextInstancesSql[] = R"sql(
+  SELECT i.sop_instance_uid, i.slice, i.file_sha256, i.file_bytes, i.metadata, i.metadata_crc32,
+         coalesce(se.series_uid, '')
+  FROM instances i
+  LEFT JOIN series se ON se.pk = i.series_pk
+  WHERE i.sop_instance_uid > ?1
+  ORDER BY i.sop_instance_uid
   LIMIT 1000)sql";
 
 Status read_surface(SqlSession& c, const std::string& after, std::vector<StoredItem>& out) {
@@ -87,6 +106,45 @@ Status read_values(SqlSession& c, const StoredItem* last, std::vector<StoredItem
   }
 }
 
+// A store of a schema before the kept instances (opened read only, not migrated) has none.
+Status read_instance_file(SqlSession& c, const std::string& after, std::vector<StoredItem>& out) {
+  SOIQ_ASSIGN_OR_RETURN(const bool kept, table_exists(c, "instance_files"));
+  if (!kept) return ok_status();
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kNextInstanceFileSql));
+  q.bind(1, after);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+  if (!row) return ok_status();
+  StoredItem& item = out.emplace_back();
+  item.kind = StoredKind::kInstanceFile;
+  item.key = q.text(0);
+  item.bytes = q.blob(1);
+  item.series_uid = q.text(2);
+  return ok_status();
+}
+
+Status read_instances(SqlSession& c, const std::string& after, std::vector<StoredItem>& out) {
+  SOIQ_ASSIGN_OR_RETURN(const bool kept, table_exists(c, "instances"));
+  if (!kept) return ok_status();
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kNextInstancesSql));
+  q.bind(1, after);
+  while (true) {
+    SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+    if (!row) return ok_status();
+    StoredItem& item = out.emplace_back();
+    item.kind = StoredKind::kInstance;
+    InstanceRecord& r = item.instance;
+    r.sop_instance_uid = q.text(0);
+    r.slice = q.int64(1);
+    r.file_sha256 = q.text(2);
+    r.file_bytes = q.int64(3);
+    r.metadata = q.text(4);
+    item.instance_crc32 = q.int64(5);
+    r.series_uid = q.text(6);
+    item.key = r.sop_instance_uid;
+    item.series_uid = r.series_uid;
+  }
+}
+
 }  // namespace
 
 Status SqlStore::scan_stored(StoredKind kind, const std::function<Status(const StoredItem&)>& visit) {
@@ -103,6 +161,10 @@ Status SqlStore::scan_stored(StoredKind kind, const std::function<Status(const S
           return read_image(c, last ? last->key : std::string(), next);
         case StoredKind::kCachedValue:
           return read_values(c, last, next);
+        case StoredKind::kInstanceFile:
+          return read_instance_file(c, last ? last->key : std::string(), next);
+        case StoredKind::kInstance:
+          return read_instances(c, last ? last->key : std::string(), next);
       }
       return ok_status();
     }));

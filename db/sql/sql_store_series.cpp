@@ -1,6 +1,6 @@
-// The series half of SqlStore::import_batch: the image blob stored once per
-// sha256 and the series inserted or replaced in place, never moved to another patient. One write
-// transaction, so any error leaves the database as it was.
+// The series half of SqlStore::import_batch: the image blob stored once per sha256, the series
+// inserted or replaced in place, never moved to another patient, and its instances
+// (sql_store_instances.cpp). One write transaction, so any error leaves the database as it was.
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -127,13 +127,21 @@ Result<bool> insert_series(SqlSession& c, const NewSeries& s) {
   SOIQ_ASSIGN_OR_RETURN(const std::optional<StoredSeries> old, stored_series(c, s, keys.patient_pk));
   if (old && !s.replace_other_content) {
     const std::string differs = what_differs(*old, s);
-    if (differs.empty()) return true;  // the same content: nothing to write
+    if (differs.empty()) {
+      // The same content: nothing to write but the instances it lacks.
+      SOIQ_RETURN_IF_ERROR(add_instances(c, s));
+      return true;
+    }
     return Status(StatusCode::kAlreadyExists,
                   "series '" + s.series.series_uid + "' is stored with other content: " + differs +
                       "; a DICOM UID names one content: send the series as stored, or replace it (soiq import "
                       "--replace)");
   }
   SOIQ_RETURN_IF_ERROR(upsert_series_row(c, s.series, keys.study_pk));
+  // The same series sent again (an upload, or an import with instances kept where they were not)
+  // keeps the instances stored; other content's instances are other instances.
+  const bool same_content = old && what_differs(*old, s).empty();
+  SOIQ_RETURN_IF_ERROR(same_content ? add_instances(c, s) : replace_instances(c, s));
   if (old && old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(delete_image_if_orphan(c, old->image_sha256));
   // A new image, or new pixels: the study's structures have intensities to compute on it.
   if (!old || old->image_sha256 != s.series.sha256) SOIQ_RETURN_IF_ERROR(queue_precompute_of_study(c, keys.study_pk));

@@ -35,6 +35,14 @@ Result<AddedStructure> insert_structure(SqlSession& c, const NewStructure& s);
 // replaced.
 Result<bool> insert_series(SqlSession& c, const NewSeries& s);
 
+// sql_store_instances.cpp: the instances of a series (NewSeries::instances), checked before by
+// validate_new_series, written after the series' row. add_instances stores those the series lacks
+// (one it holds is kept; its file, or its row, is repaired when damaged); replace_instances first
+// deletes the series' stored ones and, after adding, the files no instance refers to any more.
+// FAILED_PRECONDITION for an instance stored in another series.
+Status add_instances(SqlSession& c, const NewSeries& s);
+Status replace_instances(SqlSession& c, const NewSeries& s);
+
 // sql_store_stage1_rows.cpp: rewrites the stage-1 rows of every structure of the patient.
 Status refresh_stage1_rows(SqlSession& c, int64_t patient_pk);
 
@@ -58,5 +66,11 @@ Result<StoredBlob> replace_differing_blob(SqlSession& c, std::string_view table,
 // its cached features with it).
 Status delete_surface_if_orphan(SqlSession& c, const std::string& sha256);
 Status delete_image_if_orphan(SqlSession& c, const std::string& sha256);
+Status delete_instance_file_if_orphan(SqlSession& c, const std::string& sha256);
+
+// sql_store_copy.cpp: whether the store has `table`. A store opened read only is not migrated, so
+// the tables of later schema versions (instances, instance_files) may be missing from it: the
+// reads that run on such a store (soiq-admin verify's scan and digests) read them as empty.
+Result<bool> table_exists(SqlSession& c, const std::string& table);
 
 }  // namespace soiq::db

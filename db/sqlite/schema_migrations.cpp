@@ -277,6 +277,32 @@ ALTER TABLE series ADD COLUMN window_center REAL NOT NULL DEFAULT 0;
 ALTER TABLE series ADD COLUMN window_width REAL NOT NULL DEFAULT 0;
 )sql";
 
+// Version 11: the original DICOM instances of image series (InstanceRecord), kept as received so
+// that DICOMweb serves them. A file is stored once per sha256 (a re-sent file, an instance of two
+// series), like the image blobs; nothing cascades to it, so the writes and deletes remove a file
+// when no instance refers to it any more. metadata_crc32 is the CRC-32 of the instance's row (its
+// uid, series uid, slice, file and metadata: instance_row_crc32 in db/sql/sql_store.h), checked on
+// every read; a file is checked by its sha256. The metadata is JSON of a few kB, so it stays in
+// the row; the file, large, in its own table.
+constexpr char kSchemaV11[] = R"sql(
+CREATE TABLE instance_files (
+  sha256 TEXT PRIMARY KEY NOT NULL,
+  blob BLOB NOT NULL
+);
+
+CREATE TABLE instances (
+  sop_instance_uid TEXT PRIMARY KEY NOT NULL,
+  series_pk INTEGER NOT NULL REFERENCES series(pk) ON DELETE CASCADE,
+  slice INTEGER NOT NULL,
+  file_sha256 TEXT NOT NULL REFERENCES instance_files(sha256),
+  file_bytes INTEGER NOT NULL,
+  metadata TEXT NOT NULL,
+  metadata_crc32 INTEGER NOT NULL
+);
+CREATE INDEX instances_series ON instances(series_pk, slice);
+CREATE INDEX instances_file ON instances(file_sha256);
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -290,6 +316,7 @@ const std::vector<Migration>& migrations() {
       {8, kSchemaV8},
       {9, kSchemaV9, sqlite_checksum_stored_bytes},
       {10, kSchemaV10},
+      {11, kSchemaV11},
   };
   return kMigrations;
 }

@@ -36,6 +36,13 @@ std::string image_damage(const db::StoredItem& item) {
   return "";
 }
 
+// A kept file is its sha256's bytes, nothing else to decode.
+std::string instance_file_damage(const db::StoredItem& item) {
+  const std::string got = db::sha256_hex(item.bytes.data(), item.bytes.size());
+  if (got == item.key) return "";
+  return "its bytes hash to " + got + ", not to the key it is stored under";
+}
+
 // One scrub: the report, and each surface's structures, which name a cached value's users.
 struct Scrub {
   VerifyReport report;
@@ -72,6 +79,23 @@ struct Scrub {
     if (found.problem.empty()) return;
     ++report.images.damaged;
     report.damaged.push_back(found);
+  }
+
+  void instance_file(const db::StoredItem& item) {
+    ++report.instance_files.checked;
+    const std::string users = item.series_uid.empty() ? "no instance" : "series " + item.series_uid;
+    const VerifyFinding found{"instance file", item.key, users, instance_file_damage(item)};
+    if (found.problem.empty()) return;
+    ++report.instance_files.damaged;
+    report.damaged.push_back(found);
+  }
+
+  void instance(const db::StoredItem& item) {
+    ++report.instances.checked;
+    if (item.instance_crc32 == int64_t(db::instance_row_crc32(item.instance))) return;
+    ++report.instances.damaged;
+    report.damaged.push_back(
+        {"instance", item.key, "series " + item.series_uid, "its stored record no longer matches its checksum"});
   }
 
   void cached_value(const db::StoredItem& item) {
@@ -114,6 +138,9 @@ Result<VerifyReport> verify_store(const StoreLocation& at,
   SOIQ_RETURN_IF_ERROR(pass(db::StoredKind::kImage, "images", scrub.report.images.checked, &Scrub::image));
   SOIQ_RETURN_IF_ERROR(
       pass(db::StoredKind::kCachedValue, "cached values", scrub.report.cached_values.checked, &Scrub::cached_value));
+  SOIQ_RETURN_IF_ERROR(pass(db::StoredKind::kInstanceFile, "instance files", scrub.report.instance_files.checked,
+                            &Scrub::instance_file));
+  SOIQ_RETURN_IF_ERROR(pass(db::StoredKind::kInstance, "instances", scrub.report.instances.checked, &Scrub::instance));
   return std::move(scrub.report);
 }
 
@@ -121,7 +148,8 @@ std::vector<std::string> format_verify_report(const VerifyReport& r) {
   std::vector<std::string> lines;
   char line[160];
   for (const auto& [name, c] : {std::pair{"surfaces", &r.surfaces}, std::pair{"images", &r.images},
-                                std::pair{"cached values", &r.cached_values}}) {
+                                std::pair{"cached values", &r.cached_values},
+                                std::pair{"instance files", &r.instance_files}, std::pair{"instances", &r.instances}}) {
     std::snprintf(line, sizeof line,
                   "%-14s %10" PRId64 " checked  %6" PRId64 " damaged  %10" PRId64 " without a checksum", name,
                   c->checked, c->damaged, c->without_checksum);
@@ -134,9 +162,11 @@ std::vector<std::string> format_verify_report(const VerifyReport& r) {
   if (r.sound()) {
     lines.emplace_back("the store is sound");
   } else {
-    lines.push_back(std::to_string(r.damaged.size()) +
-                    " damaged: restore the store from a backup, or upload each damaged surface again (an upload "
-                    "of the same mesh replaces its blob) and import each damaged image's series again");
+    lines.push_back(
+        std::to_string(r.damaged.size()) +
+        " damaged: restore the store from a backup, or upload each damaged surface again (an upload "
+        "of the same mesh replaces its blob) and import each damaged image's, instance file's or instance's "
+        "series again");
   }
   return lines;
 }

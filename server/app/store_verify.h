@@ -5,7 +5,9 @@
 //                  is the key it is stored under (which checks a blob without a checksum too);
 //   images         that each blob decodes on its series' grid (checked by its Adler-32: version
 //                  2's own, version 1's zlib stream's), and that the image's sha256 is its key;
-//   cached values  each value's checksum (db/cached_value.h).
+//   cached values  each value's checksum (db/cached_value.h);
+//   instance files that each kept DICOM file's sha256 is its key;
+//   instances      each kept instance's record by its checksum (db::instance_row_crc32).
 // The store is opened read only: not migrated (a store of an older schema is scrubbed as it is),
 // and nothing is written.
 //
@@ -35,20 +37,21 @@ struct VerifyCounts {
 };
 
 struct VerifyFinding {
-  std::string kind;     // "surface", "image" or "cached value"
+  std::string kind;     // "surface", "image", "cached value", "instance file" or "instance"
   std::string id;       // a blob's sha256; a cached value's "'<entry>' under key '<key>'"
   std::string users;    // "structures 4, 7", "series 1.2.3", "surface <sha256>, structures 4"
   std::string problem;  // what is wrong
 };
 
 struct VerifyReport {
-  VerifyCounts surfaces, images, cached_values;
+  VerifyCounts surfaces, images, cached_values, instance_files, instances;
   std::vector<VerifyFinding> damaged;
   std::vector<VerifyFinding> without_checksum;  // blobs only: cached values are counted
   bool sound() const { return damaged.empty(); }
 };
 
-// `progress(kind, items done)` as it goes (kind "surfaces", "images", "cached values").
+// `progress(kind, items done)` as it goes (kind "surfaces", "images", "cached values", "instance
+// files", "instances").
 Result<VerifyReport> verify_store(const StoreLocation& at,
                                   const std::function<void(const std::string&, int64_t)>& progress);
 

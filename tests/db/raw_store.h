@@ -7,8 +7,9 @@
 // Each: `location` (what soiqd's --db takes), open() (migrated, or read only: as it is), run(sql,
 // bytes, texts) with ?1 bound to `bytes` as a blob and ?2, ?3, … to `texts` (an error fails the
 // test), and set_schema_version(v), with kBeforeChecksums its schema version before every stored
-// byte had a checksum. Going back before kWindows also drops the columns that version added (the
-// series' DICOM window), so that migrating forward again adds them as it did.
+// byte had a checksum. Going back before kInstances drops the tables that version added (the kept
+// DICOM instances), and before kWindows the columns that version added (the series' DICOM window),
+// so that migrating forward again adds them as it did.
 
 #include <gtest/gtest.h>
 #include <sqlite3.h>
@@ -27,6 +28,12 @@
 namespace soiq::db::testing {
 
 template <typename Raw>
+void drop_instances(const Raw& raw) {
+  raw.run("DROP TABLE instances");
+  raw.run("DROP TABLE instance_files");
+}
+
+template <typename Raw>
 void drop_windows(const Raw& raw) {
   raw.run("ALTER TABLE series DROP COLUMN window_center");
   raw.run("ALTER TABLE series DROP COLUMN window_width");
@@ -36,6 +43,7 @@ struct RawSqlite {
   static constexpr const char* kName = "SQLite";
   static constexpr int kBeforeChecksums = 8;
   static constexpr int kWindows = 10;
+  static constexpr int kInstances = 11;
   explicit RawSqlite(const TempDir& dir) : location(dir.file("store.db")) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -63,6 +71,7 @@ struct RawSqlite {
   }
 
   void set_schema_version(int v) const {
+    if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);
     run("PRAGMA user_version = " + std::to_string(v));
   }
@@ -74,6 +83,7 @@ struct RawPostgres {
   static constexpr const char* kName = "PostgreSQL";
   static constexpr int kBeforeChecksums = 4;
   static constexpr int kWindows = 6;
+  static constexpr int kInstances = 7;
   explicit RawPostgres(const TempDir&) : location(fresh_postgres_database()) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -99,6 +109,7 @@ struct RawPostgres {
   }
 
   void set_schema_version(int v) const {
+    if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);
     run("UPDATE soiq_schema SET version = " + std::to_string(v));
   }

@@ -34,10 +34,13 @@ inline TriangleMesh tetrahedron(double offset) {
   return m;
 }
 
-// The SQL that takes a store of the latest schema back to version 9's tables, to version 7's, 6's,
-// 4's and 3's, for the tests of older files' migration (each test then drops what its own older
-// version lacked too).
+// The SQL that takes a store of the latest schema back to version 10's tables, to version 9's, 7's,
+// 6's, 4's and 3's, for the tests of older files' migration (each test then drops what its own
+// older version lacked too).
+#define SOIQ_BACK_TO_SCHEMA_V10 "DROP TABLE instances; DROP TABLE instance_files; "
+inline constexpr char kBackToSchemaV10[] = SOIQ_BACK_TO_SCHEMA_V10;
 #define SOIQ_BACK_TO_SCHEMA_V9 \
+  SOIQ_BACK_TO_SCHEMA_V10      \
   "ALTER TABLE series DROP COLUMN window_center; ALTER TABLE series DROP COLUMN window_width; "
 inline constexpr char kBackToSchemaV9[] = SOIQ_BACK_TO_SCHEMA_V9;
 #define SOIQ_BACK_TO_SCHEMA_V7                                                      \
@@ -66,6 +69,7 @@ inline constexpr char kBackToSchemaV3[] = SOIQ_BACK_TO_SCHEMA_V4
 #undef SOIQ_BACK_TO_SCHEMA_V6
 #undef SOIQ_BACK_TO_SCHEMA_V7
 #undef SOIQ_BACK_TO_SCHEMA_V9
+#undef SOIQ_BACK_TO_SCHEMA_V10
 
 inline NewStructure new_structure(const std::string& patient_id, const std::string& study_uid, const std::string& name,
                                   double surface_offset = 0) {

@@ -1,8 +1,9 @@
 // soiq-admin verify's scrub (server/app/store_verify.h) on each real engine (tests/db/raw_store.h):
 // a sound store is reported sound with the count of each kind (the store's own counts); a surface,
 // an image and a cached value damaged in place with SQL, and a surface blob stored under another
-// mesh's key, are each named with what is wrong and who uses it; blobs an older soiqd stored
-// without a checksum are listed, and the store is left as it was (read only, not migrated).
+// mesh's key, and a kept DICOM file and instance damaged in place, are each named with what is
+// wrong and who uses it; blobs an older soiqd stored without a checksum are listed, and the store
+// is left as it was (read only, not migrated).
 #include "server/app/store_verify.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 
 #include "db/surface_blob.h"
 #include "tests/db/raw_store.h"
+#include "tests/db/store_inputs.h"
 #include "tests/db/temp_store.h"
 
 namespace soiq::server {
@@ -80,7 +82,7 @@ TYPED_TEST(StoreVerify, ASoundStoreIsReportedSoundWithTheCountOfEachKind) {
   EXPECT_EQ(r.surfaces.damaged + r.images.damaged + r.cached_values.damaged, 0);
   EXPECT_EQ(r.surfaces.without_checksum + r.images.without_checksum + r.cached_values.without_checksum, 0);
   const std::vector<std::string> lines = format_verify_report(r);
-  ASSERT_EQ(lines.size(), 4u);
+  ASSERT_EQ(lines.size(), 6u);  // a line per kind, then the verdict
   EXPECT_TRUE(contains(lines[0], "surfaces")) << lines[0];
   EXPECT_TRUE(contains(lines[0], std::to_string(counts.surfaces) + " checked")) << lines[0];
   EXPECT_EQ(lines.back(), "the store is sound");
@@ -168,6 +170,31 @@ TYPED_TEST(StoreVerify, BytesWithoutAChecksumAreListedAndTheStoreIsLeftAsItIs) {
   ASSERT_EQ(before.size(), after.size());
   for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(before[i].sha256, after[i].sha256) << before[i].table;
   EXPECT_EQ(db::surface_blob_version(*this->store_->get_surface_blob(this->shas_[0])), 2);
+}
+
+// The kept DICOM instances (db::InstanceRecord): a file whose bytes no longer hash to its key, and
+// a record whose checksum fails, are each named with the series that holds it.
+TYPED_TEST(StoreVerify, ADamagedInstanceFileAndADamagedInstanceAreNamed) {
+  const db::NewSeries s = db::testing::series_with_instances("P2", "2.1.1", 3.0f);
+  ASSERT_TRUE(this->store_->put_series(s).ok());
+  std::string file = s.instances[0].file;
+  file.back() = char(file.back() ^ 0x40);
+  this->raw_.run("UPDATE instance_files SET blob = ?1 WHERE sha256 = ?2", file, {s.instances[0].record.file_sha256});
+  this->raw_.run("UPDATE instances SET slice = 2 WHERE sop_instance_uid = ?2", {}, {"2.1.1.2"});
+
+  const VerifyReport r = this->verify();
+  EXPECT_EQ(r.instance_files.checked, 3);
+  EXPECT_EQ(r.instances.checked, 3);
+  EXPECT_EQ(r.instance_files.damaged, 1);
+  EXPECT_EQ(r.instances.damaged, 1);
+  const VerifyFinding* damaged_file = find(r.damaged, "instance file");
+  ASSERT_NE(damaged_file, nullptr);
+  EXPECT_EQ(damaged_file->id, s.instances[0].record.file_sha256);
+  EXPECT_EQ(damaged_file->users, "series 2.1.1");
+  const VerifyFinding* instance = find(r.damaged, "instance");
+  ASSERT_NE(instance, nullptr);
+  EXPECT_EQ(instance->id, "2.1.1.2");
+  EXPECT_TRUE(contains(instance->problem, "checksum")) << instance->problem;
 }
 
 TYPED_TEST(StoreVerify, AStoreOfANewerSchemaIsRefused) {
