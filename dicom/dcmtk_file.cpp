@@ -1,5 +1,6 @@
 #include "dicom/dcmtk_file.h"
 
+#include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dcostrmb.h>
 
 #include <cstdint>
@@ -98,6 +99,18 @@ std::optional<std::vector<double>> get_numbers(DcmItem& item, const DcmTagKey& t
     out.push_back(*v);
   }
   return out;
+}
+
+Result<std::unique_ptr<DcmFileFormat>> parse_part10(const std::string& part10) {
+  DcmInputBufferStream in;
+  in.setBuffer(part10.data(), offile_off_t(part10.size()));
+  in.setEos();
+  auto file = std::make_unique<DcmFileFormat>();
+  file->transferInit();
+  const OFCondition c = file->read(in, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
+  file->transferEnd();
+  if (c.bad()) return invalid_argument(std::string("not a DICOM file: ") + c.text());
+  return file;
 }
 
 Result<std::string> part10_bytes(DcmFileFormat& file) {

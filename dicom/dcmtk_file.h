@@ -27,6 +27,10 @@ bool looks_like_dicom(const std::string& path);
 // message names the file and gives DCMTK's reason).
 Result<std::unique_ptr<DcmFileFormat>> load_dicom_file(const std::string& path, bool until_pixel_data);
 
+// A Part 10 file held in memory (an instance soiqd kept, a SEG it wrote), parsed whole.
+// Errors: INVALID_ARGUMENT with DCMTK's reason when the bytes are not DICOM.
+Result<std::unique_ptr<DcmFileFormat>> parse_part10(const std::string& part10);
+
 // The value at `pos` with padding trimmed; "" when absent or empty.
 std::string get_string(DcmItem& item, const DcmTagKey& tag, unsigned long pos = 0);
 // All values joined by '\\'; "" when absent.

@@ -1,12 +1,13 @@
 #include "dicom/dicom_json_metadata.h"
 
 #include <dcmtk/config/osconfig.h>  // must come first for DCMTK
-#include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dcjson.h>
 #include <dcmtk/dcmdata/dctk.h>
 
 #include <memory>
 #include <sstream>
+
+#include "dicom/dcmtk_file.h"
 
 namespace soiq::dicom {
 namespace {
@@ -25,22 +26,10 @@ class MetadataFormat : public DcmJsonFormatCompact {
   std::string uri_;
 };
 
-Result<std::unique_ptr<DcmFileFormat>> parse(const std::string& part10) {
-  DcmInputBufferStream in;
-  in.setBuffer(part10.data(), offile_off_t(part10.size()));
-  in.setEos();
-  auto file = std::make_unique<DcmFileFormat>();
-  file->transferInit();
-  const OFCondition c = file->read(in, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
-  file->transferEnd();
-  if (c.bad()) return invalid_argument(std::string("not a DICOM file: ") + c.text());
-  return file;
-}
-
 }  // namespace
 
 Result<std::string> dicom_json_metadata(const std::string& part10, const std::string& bulk_data_uri) {
-  SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<DcmFileFormat> file, parse(part10));
+  SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<DcmFileFormat> file, parse_part10(part10));
   MetadataFormat format(bulk_data_uri);
   std::ostringstream out;
   const OFCondition c = file->getDataset()->writeJson(out, format);
@@ -49,8 +38,17 @@ Result<std::string> dicom_json_metadata(const std::string& part10, const std::st
   return "{" + out.str() + "}";
 }
 
+std::string with_bulk_data_uri(std::string metadata, const std::string& bulk_data_uri) {
+  // The placeholder is written by DCMTK as a JSON string value; no attribute value can hold it
+  // quoted this way, since DCMTK escapes the quotes inside values.
+  const std::string token = std::string("\"BulkDataURI\":\"") + kBulkDataUriPlaceholder + "\"";
+  const size_t at = metadata.find(token);
+  if (at != std::string::npos) metadata.replace(at, token.size(), "\"BulkDataURI\":\"" + bulk_data_uri + "\"");
+  return metadata;
+}
+
 Result<std::string> pixel_data_of(const std::string& part10) {
-  SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<DcmFileFormat> file, parse(part10));
+  SOIQ_ASSIGN_OR_RETURN(const std::unique_ptr<DcmFileFormat> file, parse_part10(part10));
   const Uint8* bytes = nullptr;
   unsigned long count = 0;
   if (file->getDataset()->findAndGetUint8Array(DCM_PixelData, bytes, &count).bad() || bytes == nullptr)

@@ -16,6 +16,12 @@ namespace soiq::dicom {
 
 Result<std::string> dicom_json_metadata(const std::string& part10, const std::string& bulk_data_uri);
 
+// Metadata kept with an instance (soiqd keeps the original instances of image series) is written
+// once, at import, with this in place of the Pixel Data's BulkDataURI; with_bulk_data_uri puts the
+// address the answer is served from in its place (it depends on the Host the client asked).
+inline constexpr char kBulkDataUriPlaceholder[] = "soiq:bulkdata";
+std::string with_bulk_data_uri(std::string metadata, const std::string& bulk_data_uri);
+
 // The Pixel Data of a Part 10 file in memory, as it is stored (native bytes for soiq's SEGs).
 Result<std::string> pixel_data_of(const std::string& part10);
 

@@ -182,7 +182,10 @@ export class ResultsTable {
     if (this.viewerUrl && row.study_uid) {
       const a = document.createElement('a');
       a.className = 'viewer';
-      a.href = this.viewerUrl.replaceAll('{study}', encodeURIComponent(row.study_uid));
+      // {seg_series}: the structure's SEG, which a viewer such as OHIF opens over its images.
+      a.href = this.viewerUrl
+        .replaceAll('{study}', encodeURIComponent(row.study_uid))
+        .replaceAll('{seg_series}', encodeURIComponent(row.seg_series_uid || ''));
       a.target = '_blank';
       a.rel = 'noopener';
       a.textContent = 'open in viewer ↗';

@@ -86,6 +86,9 @@ void print_server_info(const soiq::v1::ServerInfo& i) {
   line("structures", std::to_string(i.structures()));
   line("surfaces", std::to_string(i.surfaces()));
   line("cached_features", std::to_string(i.cached_features()));
+  line("dicom_instances", std::to_string(i.instances()) + " in " + std::to_string(i.instance_files()) + " files, " +
+                              std::to_string(i.instance_bytes()) + " bytes" +
+                              (i.keep_instances() ? "" : " (imports keep none: soiqd --keep-instances off)"));
   line("precompute", !i.precompute_enabled() ? "off (soiqd --precompute on)"
                                              : std::to_string(i.precompute_queued()) + " queued, " +
                                                    std::to_string(i.precompute_failed()) + " failed");

@@ -77,6 +77,10 @@ grpc::Status SoiqService::GetServerInfo(grpc::ServerContext* ctx, const v1::GetS
     response->set_precompute_queued(c.precompute_queued);
     response->set_precompute_failed(c.precompute_failed);
     response->set_precompute_enabled(config_.precompute);
+    response->set_instances(c.instances);
+    response->set_instance_files(c.instance_files);
+    response->set_instance_bytes(c.instance_bytes);
+    response->set_keep_instances(config_.keep_instances);
     if (config_.pacs_peer) response->set_pacs(dicom::describe_pacs_peer(*config_.pacs_peer));
     return ok_status();
   });

@@ -104,7 +104,8 @@ grpc::Status SoiqService::PacsPull(grpc::ServerContext* ctx, const v1::PacsPullR
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult result, on_pool<DicomImportResult>([&] {
                             return import_dicom_folder(
                                 store_, dir.path(), pulled->paths, config_.max_grid_voxels, budget_,
-                                [&] { return stop_status(*ctx); }, config_.keep_patient_names, request->replace());
+                                [&] { return stop_status(*ctx); },
+                                {config_.keep_patient_names, request->replace(), config_.keep_instances});
                           }));
     queued_work();
     v1::ImportDicomResponse imported = to_proto(result);

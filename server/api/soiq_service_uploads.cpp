@@ -136,7 +136,8 @@ grpc::Status SoiqService::ImportDicom(grpc::ServerContext* ctx, grpc::ServerRead
     SOIQ_ASSIGN_OR_RETURN(const DicomImportResult imported, on_pool<DicomImportResult>([&] {
                             return import_dicom_folder(
                                 store_, dir.path(), files.paths, config_.max_grid_voxels, budget_,
-                                [&] { return stop_status(*ctx); }, config_.keep_patient_names, files.replace);
+                                [&] { return stop_status(*ctx); },
+                                {config_.keep_patient_names, files.replace, config_.keep_instances});
                           }));
     *response = to_proto(imported);
     response->set_bytes_received(files.bytes);

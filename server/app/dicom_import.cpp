@@ -12,6 +12,7 @@
 #include "db/validate_records.h"
 #include "dicom/import_dicom.h"
 #include "server/app/dicom_import_bytes.h"
+#include "server/app/kept_instances.h"
 #include "server/util/log.h"
 
 namespace soiq::server {
@@ -105,8 +106,10 @@ struct Planned {
   std::vector<int64_t> voxel_counts;           // by structure
 };
 
-Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const Relative& rel, bool keep_names,
-                     bool replace, DicomImportResult& r) {
+Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const Relative& rel,
+                     const DicomImportOptions& options, DicomImportResult& r) {
+  const bool keep_names = options.keep_patient_names;
+  const bool replace = options.replace;
   Planned out;
   for (const dicom::SeriesImage& image : in.images) {
     db::NewSeries s;
@@ -129,6 +132,11 @@ Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const
       if (image.modality != "PT" && image.modality != "NM") {
         s.series.window_center = scanned->window_center;
         s.series.window_width = scanned->window_width;
+      }
+      if (options.keep_instances) {
+        Result<std::vector<db::NewInstance>> kept = kept_instances(*scanned, image.slice_sop_instance_uids);
+        if (!kept.ok()) return Status(kept.status().code(), rel(kept.status().message()));
+        s.instances = std::move(kept).value();
       }
     }
     s.series.slice_instance_uids = image.slice_sop_instance_uids;
@@ -197,7 +205,7 @@ void list_records(const db::ImportBatch& batch, DicomImportResult& r) {
 Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
-                                              bool keep_patient_names, bool replace) {
+                                              const DicomImportOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const Relative rel{dir + "/"};
   // Held to the end: the decoded images and their blobs live until the write is done.
@@ -205,7 +213,8 @@ Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std:
   auto admit = [&](const dicom::DicomScan& scan) -> Status {
     const DicomImportBytes need = dicom_import_bytes(scan, max_voxels);
     if (need.series == 0) return ok_status();
-    SOIQ_ASSIGN_OR_RETURN(held, budget.reserve(need.bytes, need.what, stop,
+    const int64_t files = options.keep_instances ? kept_instance_bytes(scan) : 0;
+    SOIQ_ASSIGN_OR_RETURN(held, budget.reserve(need.bytes + files, need.what, stop,
                                                need.series > 1 ? "import fewer series at once, or raise the budget"
                                                                : "raise the budget"));
     return ok_status();
@@ -220,7 +229,7 @@ Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std:
     add_problem(r, "", StatusCode::kInvalidArgument,
                 std::to_string(in.scan.non_dicom_skipped) + " of the files sent are not DICOM and were skipped");
   }
-  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, keep_patient_names, replace, r));
+  SOIQ_ASSIGN_OR_RETURN(Planned planned, plan(store, in, rel, options, r));
   if (planned.batch.series.empty() && planned.batch.structures.empty()) {
     const std::string why = !r.problems.empty() && !r.problems[0].path.empty()
                                 ? r.problems[0].path + ": " + r.problems[0].message
@@ -236,7 +245,7 @@ Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std:
   SOIQ_ASSIGN_OR_RETURN(const db::ImportedBatch stored, store.import_batch(planned.batch));
   // What an import asked to replace, it may have replaced: a DICOM UID's content changed, which an
   // operator must be able to find later.
-  if (replace) {
+  if (options.replace) {
     for (size_t i = 0; i < stored.series_replaced.size(); ++i)
       if (stored.series_replaced[i])
         log_event("warning", {{"event", "dicom_replaced"}, {"series", planned.batch.series[i].series.series_uid}});

@@ -76,9 +76,17 @@ struct DicomImportResult {
   double milliseconds = 0;
 };
 
+struct DicomImportOptions {
+  bool keep_patient_names = false;  // soiqd --keep-patient-names
+  bool replace = false;             // soiq import --replace: a UID stored with other content is replaced
+  // soiqd --keep-instances: each image series' original files are stored with it
+  // (server/app/kept_instances.h), for WADO-RS.
+  bool keep_instances = true;
+};
+
 Result<DicomImportResult> import_dicom_folder(db::RecordStore& store, const std::string& dir,
                                               const std::vector<std::string>& sent, int64_t max_voxels,
                                               MemoryBudget& budget, const std::function<Status()>& stop,
-                                              bool keep_patient_names = false, bool replace = false);
+                                              const DicomImportOptions& options = {});
 
 }  // namespace soiq::server

@@ -75,10 +75,32 @@ constexpr OptionText kOptionTexts[] = {
     {"--keep-patient-names", "on|off", "off",
      "store the Patient's Name of imported DICOM (QIDO-RS answers and matches it); off: names are "
      "dropped at import"},
+    {"--keep-instances", "on|off", "on",
+     "store each imported image series' original DICOM files (deduplicated by content) so WADO-RS "
+     "serves its instances, metadata and frames and a viewer opens it from soiqd; off: a PACS keeps "
+     "them, and soiqd's WADO-RS serves only SEGs"},
+    {"--http-cors-origin", "ORIGIN|*", "none",
+     "answer DICOMweb and the JSON API with CORS headers for this origin (http(s)://HOST[:PORT]), and "
+     "their preflights, so a web viewer served from there (OHIF) reads soiqd; the token is still needed"},
     {"--viewer-url", "URL", "",
      "the query page's 'open in viewer' link: an http(s) URL with {study} where the Study Instance UID "
-     "goes (OHIF: http://HOST:3000/viewer?StudyInstanceUIDs={study}); unset: no link"},
+     "goes and optionally {seg_series}, the structure's SEG series (OHIF: "
+     "http://HOST:3000/viewer?StudyInstanceUIDs={study} and &initialSeriesInstanceUID={seg_series} to show "
+     "the SEG); unset: no link"},
 };
+
+// scheme://host[:port] as a browser's Origin header names a site: no path, no user, no query.
+bool is_web_origin(const std::string& v) {
+  const size_t scheme = v.rfind("http://", 0) == 0 ? 7 : v.rfind("https://", 0) == 0 ? 8 : 0;
+  if (scheme == 0 || v.size() == scheme || v.size() > 255) return false;
+  for (size_t i = scheme; i < v.size(); ++i) {
+    const char ch = v[i];
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == ':' || ch == '[' ||
+          ch == ']'))
+      return false;
+  }
+  return true;
+}
 
 // "--max-grid-voxels" -> "SOIQ_MAX_GRID_VOXELS".
 std::string env_of(const char* flag) {
@@ -176,6 +198,17 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--http-timeout", count(c.http_timeout_seconds, 1, 3600)},
       {"--http-max-connections", count(c.http_max_connections, 1, 100'000)},
       {"--keep-patient-names", on_off(c.keep_patient_names)},
+      {"--keep-instances", on_off(c.keep_instances)},
+      {"--http-cors-origin",
+       [&c](const std::string& v, const std::string& what) -> Status {
+         if (v != "*" && !is_web_origin(v))
+           return invalid_argument(what +
+                                   " must be an origin such as http://127.0.0.1:3000 (scheme, host and "
+                                   "port, no path) or *, got '" +
+                                   v + "'");
+         c.http_cors_origin = v;
+         return ok_status();
+       }},
       {"--viewer-url",
        [&c](const std::string& v, const std::string& what) -> Status {
          const bool web = v.rfind("http://", 0) == 0 || v.rfind("https://", 0) == 0;

@@ -42,7 +42,14 @@ struct ServerConfig {
   int http_max_connections = 256;  // more are answered 503 and closed
   // Patient names from DICOM are stored (and answered by QIDO-RS) only when true.
   bool keep_patient_names = false;
-  // The query page's link to a viewer: a URL with "{study}" for the Study Instance UID; "": none.
+  // Each imported image series' original DICOM files are stored with it, for WADO-RS
+  // (server/app/kept_instances.h); off for a store that must not duplicate a PACS.
+  bool keep_instances = true;
+  // DICOMweb answers carry CORS headers for this origin (scheme://host[:port], or "*"), and its
+  // preflights are answered, so a web viewer served from there reads soiqd; "": no CORS.
+  std::string http_cors_origin;
+  // The query page's link to a viewer: a URL with "{study}" for the Study Instance UID and
+  // optionally "{seg_series}" for the structure's SEG series; "": none.
   std::string viewer_url;
   // Replicas on a shared database (PostgreSQL; shared_stage2.h). share_stage2 is set by soiqd from
   // the store's kind, not a flag: a SQLite file has one soiqd.

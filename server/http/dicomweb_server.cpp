@@ -100,7 +100,7 @@ struct DicomwebServer::Impl {
     auto wado_at = [this](WadoWhat what) {
       return handler([what](const HandlerContext& c, const HttpRequest& req) {
         const auto group = [&](size_t g) { return g < req.matches.size() ? req.matches[g] : std::string(); };
-        return wado(c, what, group(1), group(2), group(3), req);
+        return wado(c, what, group(1), group(2), group(3), group(4), req);
       });
     };
     const std::string study = "/dicom-web/studies/{}";
@@ -113,6 +113,7 @@ struct DicomwebServer::Impl {
     r.add("GET", series + "/metadata", wado_at(WadoWhat::kMetadata));
     r.add("GET", instance + "/metadata", wado_at(WadoWhat::kMetadata));
     r.add("GET", instance + "/bulkdata", wado_at(WadoWhat::kBulkData));
+    r.add("GET", instance + "/frames/{}", wado_at(WadoWhat::kFrames));
     auto rendered_at = [this](bool thumbnail) {
       return handler([thumbnail](const HandlerContext& c, const HttpRequest& req) {
         const auto group = [&](size_t g) { return g < req.matches.size() ? req.matches[g] : std::string(); };
@@ -178,6 +179,7 @@ Status DicomwebServer::start(const std::string& listen) {
   const ServerConfig& config = impl_->engines.config;
   HttpServerOptions options;
   options.token = impl_->token;
+  options.cors_origin = config.http_cors_origin;
   options.tls_cert = config.tls_cert;
   options.tls_key = config.tls_key;
   options.handler_threads = std::max(4, config.workers + 2);

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 
+#include "server/http/cors.h"
 #include "server/http/http_range.h"
 #include "server/http/http_request_parser.h"
 #include "server/http/http_status.h"
@@ -159,6 +160,10 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
       return refuse(400, s);
     }
     route_ = shared_->router.find(request_.method, request_.path, request_.matches);
+    if (std::optional<HttpReply> preflight = cors_preflight(shared_->cors_origin, request_)) {
+      if (has_body) close_after_ = true;
+      return write(std::move(*preflight));
+    }
     if (!authorized() && !(route_ != nullptr && route_->open)) {
       HttpReply r = error_reply(
           401, Status(StatusCode::kUnauthenticated, request_.has_header("Authorization")
@@ -328,6 +333,9 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     res.result(bhttp::status::ok);
     res.set(bhttp::field::content_type, content_type);
     res.set(bhttp::field::cache_control, "no-store");
+    std::multimap<std::string, std::string> cors;
+    add_cors_headers(shared_->cors_origin, request_, cors);
+    for (const auto& [name, value] : cors) res.insert(name, value);
     keep_alive_ = !close_after_ && parser_ && parser_->keep_alive() && !stopping();
     res.keep_alive(keep_alive_);
     res.chunked(true);
@@ -410,6 +418,7 @@ class ConnectionOf : public Connection, public std::enable_shared_from_this<Conn
     res.version(parser_ && parser_->head().version == 10 ? 10 : 11);
     res.result(unsigned(reply.status));
     res.set(bhttp::field::content_type, reply.content_type.empty() ? "application/json" : reply.content_type);
+    add_cors_headers(shared_->cors_origin, request_, reply.headers);
     for (const auto& [name, value] : reply.headers) res.insert(one_line(name), one_line(value));
     if (reply.status == 200 && request_.method == "GET") res.set(bhttp::field::accept_ranges, "bytes");
     const int64_t size = reply.size();

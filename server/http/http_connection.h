@@ -27,6 +27,7 @@ class Connection {
 struct ServerShared {
   HttpLimits limits;
   std::string token;
+  std::string cors_origin;  // cors.h; "": none
   Router router;
   boost::asio::thread_pool* handlers = nullptr;
   boost::asio::ssl::context* tls = nullptr;  // nullptr: plain HTTP

@@ -46,12 +46,14 @@ Result<QueryAnswer> run_query(const AppEngines& engines, const Query& query, con
 Result<HttpReply> qido(const HandlerContext& c, QidoLevel level, const std::string& study_uid,
                        const std::string& series_uid, const HttpRequest& req);
 
-// WADO-RS: the SEG series of structures, as DICOM (multipart/related), as metadata (DICOM JSON, Pixel
-// Data as a BulkDataURI) or the Pixel Data itself (bulkdata). series_uid and instance_uid "" for a
-// whole study or series.
-enum class WadoWhat { kInstances, kMetadata, kBulkData };
+// WADO-RS: the SEG series of structures and the kept instances of image series (wado_images.h), as
+// DICOM (multipart/related), as metadata (DICOM JSON, Pixel Data as a BulkDataURI), the Pixel Data
+// itself (bulkdata) or an image instance's frames (`frames`: "1,2"). series_uid and instance_uid
+// "" for a whole study or series.
+enum class WadoWhat { kInstances, kMetadata, kBulkData, kFrames };
 Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
-                       const std::string& series_uid, const std::string& instance_uid, const HttpRequest& req);
+                       const std::string& series_uid, const std::string& instance_uid, const std::string& frames,
+                       const HttpRequest& req);
 
 // GET /soiq/v1/query: the two-stage query with soiq query's options as arguments; JSON rows, or CSV
 // with Accept: text/csv.

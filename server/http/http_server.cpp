@@ -105,6 +105,7 @@ HttpServer::HttpServer(HttpServerOptions options, Router router) : impl_(std::ma
   impl_->options = std::move(options);
   impl_->shared->limits = impl_->options.limits;
   impl_->shared->token = impl_->options.token;
+  impl_->shared->cors_origin = impl_->options.cors_origin;
   impl_->shared->router = std::move(router);
 }
 

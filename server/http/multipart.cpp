@@ -93,24 +93,39 @@ Result<ParsedMultipart> parse_multipart_related(const std::string& content_type,
   return out;
 }
 
-WrittenMultipart write_multipart_related(std::vector<std::string> parts, const std::string& part_type) {
-  WrittenMultipart out;
+std::string random_boundary() {
   std::random_device rd;
   static constexpr char kAlphabet[] = "0123456789abcdefghijklmnopqrstuvwxyz";
-  while (true) {
-    out.boundary = "soiq-";
-    for (int i = 0; i < 32; ++i) out.boundary += kAlphabet[rd() % 36];
-    // 160 random bits make a collision with the bytes all but impossible; checked anyway.
-    if (std::none_of(parts.begin(), parts.end(),
-                     [&](const std::string& p) { return p.find(out.boundary) != std::string::npos; }))
-      break;
-  }
+  std::string boundary = "soiq-";
+  for (int i = 0; i < 32; ++i) boundary += kAlphabet[rd() % 36];
+  return boundary;
+}
+
+std::string multipart_part_head(const std::string& boundary, const std::string& part_type, bool first) {
+  return (first ? "--" : "\r\n--") + boundary + "\r\nContent-Type: " + part_type + "\r\n\r\n";
+}
+
+Status check_part_against_boundary(const std::string& boundary, std::string_view part) {
+  if (part.find(boundary) == std::string_view::npos) return ok_status();
+  return internal_error("a part holds the multipart boundary chosen at random; ask again");
+}
+
+std::string multipart_close(const std::string& boundary, bool any_part) {
+  return (any_part ? "\r\n--" : "--") + boundary + "--\r\n";
+}
+
+WrittenMultipart write_multipart_related(std::vector<std::string> parts, const std::string& part_type) {
+  WrittenMultipart out;
+  do {
+    out.boundary = random_boundary();
+  } while (std::any_of(parts.begin(), parts.end(),
+                       [&](const std::string& p) { return !check_part_against_boundary(out.boundary, p).ok(); }));
   out.pieces.reserve(2 * parts.size() + 1);
   for (size_t i = 0; i < parts.size(); ++i) {
-    out.pieces.push_back((i ? "\r\n--" : "--") + out.boundary + "\r\nContent-Type: " + part_type + "\r\n\r\n");
+    out.pieces.push_back(multipart_part_head(out.boundary, part_type, i == 0));
     out.pieces.push_back(std::move(parts[i]));
   }
-  out.pieces.push_back((parts.empty() ? "--" : "\r\n--") + out.boundary + "--\r\n");
+  out.pieces.push_back(multipart_close(out.boundary, !parts.empty()));
   return out;
 }
 

@@ -48,6 +48,17 @@ struct WrittenMultipart {
 
 WrittenMultipart write_multipart_related(std::vector<std::string> parts, const std::string& part_type);
 
+// Writing as the parts come, for an answer too large to hold at once (a series' instances, sent
+// one at a time): a random boundary first (160 bits, so that no part holds it but by a chance
+// nobody will see; each part is checked against it all the same, INTERNAL then), then each part's
+// delimiter and header, its bytes, and the close delimiter.
+std::string random_boundary();
+// What goes before a part's bytes; `first` for the first part of the body.
+std::string multipart_part_head(const std::string& boundary, const std::string& part_type, bool first);
+Status check_part_against_boundary(const std::string& boundary, std::string_view part);
+// The end of the body; `any_part` false for a body of no part.
+std::string multipart_close(const std::string& boundary, bool any_part);
+
 // The value of parameter `name` of a header value such as 'multipart/related; type="a/b"' ("" when
 // absent), unquoted; names compare ignoring case.
 std::string header_parameter(const std::string& value, const std::string& name);

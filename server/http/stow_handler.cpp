@@ -203,9 +203,9 @@ Result<HttpReply> stow(const HandlerContext& c, const std::string& study_uid, co
   };
   if (!files.empty()) {
     auto work = [&]() -> Result<DicomImportResult> {
-      return import_dicom_folder(
-          c.engines.store, dir.path(), files, c.engines.config.max_grid_voxels, c.engines.budget,
-          [] { return ok_status(); }, c.engines.config.keep_patient_names);
+      return import_dicom_folder(c.engines.store, dir.path(), files, c.engines.config.max_grid_voxels, c.engines.budget,
+                                 [] { return ok_status(); },
+                                 {c.engines.config.keep_patient_names, false, c.engines.config.keep_instances});
     };
     Result<DicomImportResult> imported = c.engines.pool.call(work);
     if (!imported.ok() && imported.status().code() == StatusCode::kAlreadyExists) {

@@ -1,7 +1,7 @@
 // WADO-RS (PS3.18 10.4) for the DICOM soiq has to give: the SEG of each structure imported from
 // DICOM, written on demand (server/app/structure_seg.h) with the stable UIDs QIDO lists
-// (structure_seg_uids.h). Image series are kept as voxels, not as DICOM instances: asking for one
-// is NOT_FOUND saying so and where to get them.
+// (structure_seg_uids.h), and the original instances of image series that soiqd kept at import
+// (wado_images.h). A study's retrieval and metadata hold both.
 #include <nlohmann/json.hpp>
 
 #include "dicom/dicom_json_metadata.h"
@@ -9,44 +9,19 @@
 #include "server/app/structure_seg_uids.h"
 #include "server/http/http_handlers.h"
 #include "server/http/multipart.h"
+#include "server/http/wado_images.h"
 
 namespace soiq::server::http {
 namespace {
 
 constexpr char kExplicitVrLittleEndian[] = "1.2.840.10008.1.2.1";
 
-// Accept admits multipart/related of application/dicom in the transfer syntax soiq writes.
-bool accepts_dicom(const HttpRequest& req) {
-  if (!req.has_header("Accept")) return true;
-  const std::string accept = req.header("Accept");
-  size_t from = 0;
-  while (from <= accept.size()) {
-    size_t comma = accept.find(',', from);
-    if (comma == std::string::npos) comma = accept.size();
-    const std::string item = accept.substr(from, comma - from);
-    const std::string media = item.substr(0, item.find(';'));
-    const std::string type = header_parameter(item, "type");
-    const std::string syntax = header_parameter(item, "transfer-syntax");
-    const bool syntax_ok = syntax.empty() || syntax == "*" || syntax == kExplicitVrLittleEndian;
-    if (media.find("*/*") != std::string::npos) return true;
-    if (is_multipart_related(media) && (type.empty() || type == "application/dicom") && syntax_ok) return true;
-    from = comma + 1;
-  }
-  return false;
-}
-
 // The structure whose SEG series `series_uid` is, in study `study_uid`.
 Result<db::StructureRecord> seg_structure(const AppEngines& e, const std::string& study_uid,
                                           const std::string& series_uid) {
   const auto parsed = parse_structure_seg_uid(series_uid);
-  if (!parsed || parsed->instance) {
-    Result<db::SeriesRecord> image = e.store.get_series(series_uid);
-    if (image.ok() && image->study_uid == study_uid)
-      return not_found("series " + series_uid +
-                       " is kept by soiq as voxels for its features, not as DICOM instances: retrieve its images "
-                       "from the PACS or files they came from (soiq's DICOM are the SEG series of its structures)");
+  if (!parsed || parsed->instance)
     return not_found("series '" + series_uid + "' not found in study '" + study_uid + "'");
-  }
   Result<db::StructureRecord> s = e.store.get_structure(parsed->structure_id);
   if (!s.ok() && s.status().code() != StatusCode::kNotFound) return s.status();
   if (!s.ok() || s->study_uid != study_uid || structure_seg_uids(*s).series_uid != series_uid)
@@ -89,21 +64,56 @@ Result<std::vector<db::StructureRecord>> structures_of(const AppEngines& e, cons
       return not_found("instance '" + instance_uid + "' not found in series '" + series_uid + "'");
     return std::vector<db::StructureRecord>{s};
   }
-  SOIQ_RETURN_IF_ERROR(e.store.get_study(study_uid).status());
   db::SeriesSearch search;
   search.study_uids = {study_uid};
   search.modality = "SEG";
   search.limit = kMaxSegStructures + 1;
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesHit> hits, e.store.search_series(search));
-  if (hits.empty())
-    return not_found("study '" + study_uid +
-                     "' has no structure imported from DICOM, so no SEG to send (its images are kept as voxels)");
   if (int64_t(hits.size()) > kMaxSegStructures)
     return resource_exhausted("study '" + study_uid + "' has more than " + std::to_string(kMaxSegStructures) +
                               " SEG series; retrieve them series by series");
   std::vector<db::StructureRecord> out;
   for (const db::SeriesHit& h : hits) out.push_back(*h.structure);
   return out;
+}
+
+// True for a series uid that names an image series rather than a structure's SEG.
+bool is_image_series(const std::string& series_uid) {
+  const auto parsed = parse_structure_seg_uid(series_uid);
+  return !parsed || parsed->instance;
+}
+
+Result<HttpReply> not_acceptable_dicom() {
+  return HttpReply{
+      406,
+      std::string("multipart/related; type=\"application/dicom\"; transfer-syntax=") + kExplicitVrLittleEndian,
+      "",
+      {}};
+}
+
+// An image series of kept instances, or one instance of it.
+Result<HttpReply> wado_image(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
+                             const std::string& series_uid, const std::string& instance_uid, const std::string& frames,
+                             const HttpRequest& req) {
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::InstanceRecord> kept,
+                        kept_series_instances(c.engines, study_uid, series_uid, instance_uid));
+  switch (what) {
+    case WadoWhat::kMetadata: {
+      std::string body = "[";
+      for (size_t i = 0; i < kept.size(); ++i) body += (i ? "," : "") + kept_instance_metadata(c, study_uid, kept[i]);
+      return HttpReply{200, "application/dicom+json", body + "]", {}};
+    }
+    case WadoWhat::kInstances: {
+      const InstanceSyntax syntax = instance_syntax(req);
+      if (syntax == InstanceSyntax::kNotAcceptable) return not_acceptable_dicom();
+      return send_instances(c, kept, {}, syntax, req);
+    }
+    case WadoWhat::kBulkData:
+      return send_frames(c, kept.at(0), "", req);
+    case WadoWhat::kFrames:
+      return send_frames(c, kept.at(0), frames, req);
+  }
+  return internal_error("unknown WADO-RS resource");
 }
 
 std::string instance_url(const HandlerContext& c, const db::StructureRecord& s) {
@@ -114,45 +124,59 @@ std::string instance_url(const HandlerContext& c, const db::StructureRecord& s) 
 }  // namespace
 
 Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string& study_uid,
-                       const std::string& series_uid, const std::string& instance_uid, const HttpRequest& req) {
+                       const std::string& series_uid, const std::string& instance_uid, const std::string& frames,
+                       const HttpRequest& req) {
   const bool metadata = what == WadoWhat::kMetadata;
   const bool bulk = what == WadoWhat::kBulkData;
   if (metadata && !accepts(req, "application/dicom+json") && !accepts(req, "application/json"))
     return HttpReply{406, "application/dicom+json", "", {}};
-  if (what == WadoWhat::kInstances && !accepts_dicom(req))
-    return HttpReply{
-        406,
-        std::string("multipart/related; type=\"application/dicom\"; transfer-syntax=") + kExplicitVrLittleEndian,
-        "",
-        {}};
+  if (what == WadoWhat::kInstances && instance_syntax(req) == InstanceSyntax::kNotAcceptable)
+    return not_acceptable_dicom();
+  if (!series_uid.empty() && is_image_series(series_uid))
+    return wado_image(c, what, study_uid, series_uid, instance_uid, frames, req);
+  if (what == WadoWhat::kFrames)
+    return Status(
+        StatusCode::kUnimplemented,
+        "a SEG's frames are 1 bit per pixel and not byte-aligned: retrieve the SEG instance, or its bulkdata");
   if (bulk && !accepts(req, "multipart/related")) return HttpReply{406, "multipart/related", "", {}};
+  std::vector<db::InstanceRecord> images;
+  if (series_uid.empty()) {
+    SOIQ_RETURN_IF_ERROR(c.engines.store.get_study(study_uid).status());
+    SOIQ_ASSIGN_OR_RETURN(images, kept_study_instances(c.engines, study_uid));
+  }
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures,
                         structures_of(c.engines, study_uid, series_uid, instance_uid));
+  if (images.empty() && structures.empty())
+    return not_found("study '" + study_uid +
+                     "' has neither an image series whose DICOM instances soiqd kept nor a structure imported from "
+                     "DICOM, so no DICOM to send");
   // Each SEG's bytes stay counted in the budget until the answer holding them is written.
   HttpReply r;
   SOIQ_ASSIGN_OR_RETURN(std::vector<std::string> files, segs_of(c.engines, structures, req, r));
   if (metadata) {
     std::string body = "[";
+    for (const db::InstanceRecord& i : images)
+      body += (body.size() > 1 ? "," : "") + kept_instance_metadata(c, study_uid, i);
     for (size_t i = 0; i < files.size(); ++i) {
       SOIQ_ASSIGN_OR_RETURN(const std::string json,
                             dicom::dicom_json_metadata(files[i], instance_url(c, structures[i]) + "/bulkdata"));
-      body += (i ? "," : "") + json;
+      body += (body.size() > 1 ? "," : "") + json;
     }
     r.content_type = "application/dicom+json";
     r.body = body + "]";
     r.held.clear();  // the SEGs go with this function; their JSON is small
     return r;
   }
-  std::vector<std::string> parts;
-  if (bulk) {
-    SOIQ_ASSIGN_OR_RETURN(std::string p, dicom::pixel_data_of(files.at(0)));
-    parts.push_back(std::move(p));
-  } else {
-    parts = std::move(files);
+  if (what == WadoWhat::kInstances) {
+    SOIQ_ASSIGN_OR_RETURN(HttpReply sent, send_instances(c, images, std::move(files), instance_syntax(req), req));
+    for (MemoryBudget::Reservation& h : r.held) sent.held.push_back(std::move(h));
+    return sent;
   }
-  const std::string part_type = bulk ? "application/octet-stream" : "application/dicom";
-  WrittenMultipart body = write_multipart_related(std::move(parts), part_type);
-  r.content_type = "multipart/related; type=\"" + part_type + "\"; boundary=" + body.boundary;
+  std::vector<std::string> parts;
+  SOIQ_ASSIGN_OR_RETURN(std::string p, dicom::pixel_data_of(files.at(0)));
+  parts.push_back(std::move(p));
+  WrittenMultipart body = write_multipart_related(std::move(parts), "application/octet-stream");
+  r.content_type = "multipart/related; type=\"application/octet-stream\"; boundary=" + body.boundary;
   r.pieces = std::move(body.pieces);
   return r;
 }

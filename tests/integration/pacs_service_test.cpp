@@ -153,14 +153,15 @@ TEST_F(PacsServiceTest, PullOfUnknownStudyIsNotFoundAndStoresNothing) {
 }
 
 // The pulled CT (161x143x48) and PET (30x27x48) are admitted together, before either is decoded:
-// 12 bytes per voxel plus one slice at 4 bytes per pixel each, 13,823,140 bytes.
+// 12 bytes per voxel plus one slice at 4 bytes per pixel each, 13,823,140 bytes, and their 96
+// original files kept (twice their 2,580,864 bytes and 16 KiB each for metadata): 20,557,732 bytes.
 TEST_F(PacsServiceTest, PullThatCanNeverFitTheMemoryBudgetIsRefusedAndStoresNothing) {
   start_with_pacs(pacs_address(), {"--memory-budget", "4M"});
   Result<v1::ImportDicomResponse> pulled = pull_sts();
   ASSERT_FALSE(pulled.ok());
   EXPECT_EQ(pulled.status().code(), StatusCode::kResourceExhausted) << pulled.status().to_string();
   const std::string& message = pulled.status().message();
-  for (const char* part : {"importing 2 series (", " 161x143x48", " 30x27x48", "needs an estimated 13.8 MB",
+  for (const char* part : {"importing 2 series (", " 161x143x48", " 30x27x48", "needs an estimated 20.6 MB",
                            "memory budget of 4.19 MB", "import fewer series at once, or raise the budget"})
     EXPECT_TRUE(contains(message, part)) << part << " not in: " << message;
   std::printf("refused: %s\n", message.c_str());

@@ -43,7 +43,7 @@ class DicomImport : public ::testing::Test {
     store = db::testing::open_store(tmp.file("soiq.db"));
   }
   Result<DicomImportResult> import(MemoryBudget& budget, bool keep_patient_names = false) {
-    return import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {}, keep_patient_names);
+    return import_dicom_folder(*store, dir, sent, int64_t(1) << 26, budget, {}, {keep_patient_names});
   }
 
   TempDir tmp;

@@ -75,6 +75,17 @@ TEST(ServerConfig, AViewerUrlWithTheStudyIsKept) {
   EXPECT_EQ(parse({}).config->viewer_url, "");
 }
 
+TEST(ServerConfig, InstancesAreKeptAndNoOriginIsAllowedUnlessSaidOtherwise) {
+  const Parsed defaults = parse({});
+  EXPECT_TRUE(defaults.config->keep_instances);
+  EXPECT_EQ(defaults.config->http_cors_origin, "");
+  Parsed p = parse({"--keep-instances", "off", "--http-cors-origin", "http://127.0.0.1:3000"});
+  ASSERT_TRUE(p.config.ok()) << p.config.status().to_string();
+  EXPECT_FALSE(p.config->keep_instances);
+  EXPECT_EQ(p.config->http_cors_origin, "http://127.0.0.1:3000");
+  EXPECT_EQ(parse({}, {{"SOIQ_HTTP_CORS_ORIGIN", "*"}}).config->http_cors_origin, "*");
+}
+
 TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
   const std::vector<std::pair<Parsed, std::string>> cases = {
       {parse({"--workers", "0"}), "--workers"},
@@ -90,6 +101,10 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
       {parse({"--http-max-connections", "none"}), "--http-max-connections"},
       {parse({"--viewer-url", "ftp://viewer/{study}"}), "--viewer-url"},
       {parse({"--viewer-url", "http://viewer/without-the-study"}), "--viewer-url"},
+      {parse({"--keep-instances", "sometimes"}), "--keep-instances"},
+      {parse({"--http-cors-origin", "127.0.0.1:3000"}), "--http-cors-origin"},
+      {parse({"--http-cors-origin", "http://127.0.0.1:3000/ohif"}), "--http-cors-origin"},
+      {parse({"--http-cors-origin", "https://"}), "--http-cors-origin"},
   };
   for (const auto& [p, name] : cases) {
     EXPECT_EQ(p.config.status().code(), StatusCode::kInvalidArgument) << name;
@@ -103,7 +118,7 @@ TEST(ServerConfig, EveryBadValueIsInvalidArgumentNamingWhereItCameFrom) {
 TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   const std::string usage = server_usage();
   const std::vector<std::string> flags = server_option_flags();
-  EXPECT_EQ(flags.size(), 25u);
+  EXPECT_EQ(flags.size(), 27u);
   for (const std::string& flag : flags) {
     const Parsed p = parse({flag, ""});
     ASSERT_FALSE(p.config.ok()) << flag << " with an empty value";
