@@ -70,6 +70,11 @@ fi
 studies=$(curl -s "$base/studies" | /usr/bin/python3 -c 'import json,sys; print(len(json.load(sys.stdin)))')
 [ "$studies" = 1 ] || { echo "FAIL: $studies studies after the refused requests, not 1"; failures=$((failures + 1)); }
 
+# An image uploaded as a file has no DICOM instances to send: a 404 that says so.
+"$soiq" --server "$server" upload-image "$data/sts/STS_002/PET_image.nii.gz" --patient UP1 --study 2.25.77 \
+  --series 2.25.78 --modality PT >/dev/null
+expect 404 "stored without its DICOM instances" "$base/studies/2.25.77/series/2.25.78/metadata"
+
 # /soiq/v1/query: the rows `soiq query --format csv` prints, header and numbers alike (the CLI prints
 # rows as they are computed, the HTTP answer by structure id: compared sorted).
 "$soiq" --server "$server" import "$data/sts/STS_002/dicom/CT" >/dev/null
