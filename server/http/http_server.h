@@ -29,7 +29,7 @@ struct HttpServerOptions {
   HttpLimits limits;
   std::string token;        // "": no authentication
   std::string cors_origin;  // the origin answered with CORS headers (cors.h), "*" any, "": none
-  std::string tls_cert;  // PEM files of soiqd's own configuration; "": plain HTTP
+  std::string tls_cert;     // PEM files of soiqd's own configuration; "": plain HTTP
   std::string tls_key;
   int handler_threads = 4;
 };
