@@ -2,6 +2,7 @@
 
 #include "server/http/http_handlers.h"
 #include "server/http/http_server.h"
+#include "server/http/multipart.h"
 #include "server/http/web_files.h"
 
 namespace soiq::server::http {
@@ -21,21 +22,29 @@ std::string url_host(const HttpRequest& req, const std::string& fallback) {
 
 }  // namespace
 
-std::vector<std::string> accepted_types(const HttpRequest& req) {
-  std::vector<std::string> types;
-  if (!req.has_header("Accept")) return types;
+std::vector<AcceptItem> accept_items(const HttpRequest& req) {
+  std::vector<AcceptItem> items;
+  if (!req.has_header("Accept")) return items;
   const std::string accept = req.header("Accept");
   size_t from = 0;
   while (from <= accept.size()) {
     size_t comma = accept.find(',', from);
     if (comma == std::string::npos) comma = accept.size();
-    std::string item = accept.substr(from, comma - from);
-    item = item.substr(0, item.find(';'));
-    item.erase(0, item.find_first_not_of(' '));
-    item.erase(item.find_last_not_of(' ') + 1);
-    if (!item.empty()) types.push_back(item);
+    const std::string item = accept.substr(from, comma - from);
     from = comma + 1;
+    std::string media = item.substr(0, item.find(';'));
+    media.erase(0, media.find_first_not_of(' '));
+    media.erase(media.find_last_not_of(' ') + 1);
+    for (char& ch : media) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    if (media.empty()) continue;
+    items.push_back({media, header_parameter(item, "type"), header_parameter(item, "transfer-syntax")});
   }
+  return items;
+}
+
+std::vector<std::string> accepted_types(const HttpRequest& req) {
+  std::vector<std::string> types;
+  for (AcceptItem& item : accept_items(req)) types.push_back(std::move(item.media));
   return types;
 }
 

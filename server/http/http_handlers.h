@@ -30,6 +30,14 @@ bool accepts(const HttpRequest& req, const std::string& type);
 // ("image/png", "*/*"); empty without the header.
 std::vector<std::string> accepted_types(const HttpRequest& req);
 
+// Each item of the Accept header, in the client's order: its media type (lower-case, spaces
+// trimmed) and the `type` and `transfer-syntax` parameters DICOMweb's multipart types carry ("" when
+// absent), unquoted. Empty without the header.
+struct AcceptItem {
+  std::string media, type, transfer_syntax;
+};
+std::vector<AcceptItem> accept_items(const HttpRequest& req);
+
 // What a long handler checks between steps: CANCELLED once the client has closed its connection
 // (its work is not worth finishing).
 std::function<Status()> stop_when_client_gone(const HttpRequest& req);

@@ -65,22 +65,13 @@ Result<std::vector<int64_t>> parse_frame_list(const std::string& text) {
 // VR Little Endian (PS3.18's default for it) or any syntax.
 bool accepts_native_frames(const HttpRequest& req) {
   if (!req.has_header("Accept")) return true;
-  const std::string accept = req.header("Accept");
-  size_t from = 0;
-  while (from <= accept.size()) {
-    size_t comma = accept.find(',', from);
-    if (comma == std::string::npos) comma = accept.size();
-    const std::string item = accept.substr(from, comma - from);
-    std::string media = item.substr(0, item.find(';'));
-    media.erase(0, media.find_first_not_of(' '));
-    media.erase(media.find_last_not_of(' ') + 1);
-    const std::string type = header_parameter(item, "type");
-    const std::string syntax = header_parameter(item, "transfer-syntax");
+  for (const AcceptItem& a : accept_items(req)) {
+    const std::string& syntax = a.transfer_syntax;
     const bool syntax_ok = syntax.empty() || syntax == "*" || syntax == dicom::kExplicitVrLittleEndianUid;
-    if (media == "*/*" || media == "multipart/*") return true;
-    if (is_multipart_related(media) && (type.empty() || type == "application/octet-stream") && syntax_ok) return true;
-    if (media == "application/octet-stream" && syntax_ok) return true;
-    from = comma + 1;
+    if (a.media == "*/*" || a.media == "multipart/*") return true;
+    if (is_multipart_related(a.media) && (a.type.empty() || a.type == "application/octet-stream") && syntax_ok)
+      return true;
+    if (a.media == "application/octet-stream" && syntax_ok) return true;
   }
   return false;
 }
@@ -123,24 +114,13 @@ std::string kept_instance_metadata(const HandlerContext& c, const std::string& s
 
 InstanceSyntax instance_syntax(const HttpRequest& req) {
   if (!req.has_header("Accept")) return InstanceSyntax::kAsStored;
-  const std::string accept = req.header("Accept");
   bool explicit_le = false;
-  size_t from = 0;
-  while (from <= accept.size()) {
-    size_t comma = accept.find(',', from);
-    if (comma == std::string::npos) comma = accept.size();
-    const std::string item = accept.substr(from, comma - from);
-    std::string media = item.substr(0, item.find(';'));
-    media.erase(0, media.find_first_not_of(' '));
-    media.erase(media.find_last_not_of(' ') + 1);
-    const std::string type = header_parameter(item, "type");
-    const std::string syntax = header_parameter(item, "transfer-syntax");
-    from = comma + 1;
-    if (media == "*/*" || media == "multipart/*") return InstanceSyntax::kAsStored;
-    if (!is_multipart_related(media) || !(type.empty() || type == "application/dicom")) continue;
-    if (syntax == "*") return InstanceSyntax::kAsStored;
+  for (const AcceptItem& a : accept_items(req)) {
+    if (a.media == "*/*" || a.media == "multipart/*") return InstanceSyntax::kAsStored;
+    if (!is_multipart_related(a.media) || !(a.type.empty() || a.type == "application/dicom")) continue;
+    if (a.transfer_syntax == "*") return InstanceSyntax::kAsStored;
     // No transfer-syntax parameter means Explicit VR Little Endian (PS3.18 8.7.3.5.2).
-    if (syntax.empty() || syntax == dicom::kExplicitVrLittleEndianUid) explicit_le = true;
+    if (a.transfer_syntax.empty() || a.transfer_syntax == dicom::kExplicitVrLittleEndianUid) explicit_le = true;
   }
   return explicit_le ? InstanceSyntax::kExplicitLittleEndian : InstanceSyntax::kNotAcceptable;
 }
