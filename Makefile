@@ -6,7 +6,7 @@ CMAKE_CONFIG ?= -DCMAKE_BUILD_TYPE=Release
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps build run demo test test-sanitize test-container fuzz soak bench format clean
+.PHONY: deps build run viewer demo test test-sanitize test-container fuzz soak bench format clean
 
 deps:
 	scripts/install-deps
@@ -22,6 +22,11 @@ run: deps
 	cmake -S . -B $(BUILD) $(CMAKE_CONFIG) $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS) --target soiqd soiq soiq_generated_docs
 	scripts/run-server $(BUILD)
+
+# OHIF's published build on 127.0.0.1:3000, reading `make run`'s soiqd (scripts/run-viewer); it
+# fetches OHIF once (tests/web/install_ohif.sh, pinned by hash).
+viewer:
+	scripts/run-viewer
 
 # The offline conversion demo: a real label map -> surface -> volume, voxel for voxel (scripts/demo).
 demo: build
