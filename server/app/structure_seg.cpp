@@ -1,5 +1,6 @@
 #include "server/app/structure_seg.h"
 
+#include <array>
 #include <set>
 
 #include "core/base/image_geometry.h"
@@ -103,6 +104,11 @@ Result<BudgetedSeg> structure_seg(db::Store& store, FeatureEngine& features, Mem
     dicom::SegSegment segment;
     segment.label = s.name;
     segment.volume = std::move(v.volume);
+    // A colour per segment, as soiq's pictures draw the first (render/overlay_picture.h): without
+    // one, viewers pick their own and say so over the image (OHIF).
+    static constexpr std::array<std::array<uint8_t, 3>, 6> kPalette = {
+        {{255, 64, 64}, {64, 160, 255}, {80, 200, 80}, {255, 200, 0}, {200, 80, 255}, {0, 200, 200}}};
+    segment.display_rgb = kPalette[segments.size() % kPalette.size()];
     segments.push_back(std::move(segment));
   }
   SOIQ_ASSIGN_OR_RETURN(

@@ -31,7 +31,8 @@ std::optional<HttpReply> cors_preflight(const std::string& allowed, const HttpRe
 void add_cors_headers(const std::string& allowed, const HttpRequest& req,
                       std::multimap<std::string, std::string>& headers) {
   const std::string origin = answered_origin(allowed, req);
-  if (origin.empty()) return;
+  // A preflight's answer has them already; a browser refuses an origin named twice.
+  if (origin.empty() || headers.count("Access-Control-Allow-Origin") > 0) return;
   headers.emplace("Access-Control-Allow-Origin", origin);
   // Warning carries STOW's per-part problems; Content-Range a served range.
   headers.emplace("Access-Control-Expose-Headers", "Content-Type, Content-Length, Content-Range, Warning");

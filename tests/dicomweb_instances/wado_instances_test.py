@@ -135,8 +135,9 @@ check(referenced <= set(ct_files), "the SEG's frames reference instances soiqd d
 # another origin gets none.
 status, headers, _ = get(f"{base}/studies", {"Origin": origin, "Access-Control-Request-Method": "GET",
                                              "Access-Control-Request-Headers": "authorization"}, method="OPTIONS")
-check(status == 204 and headers.get("Access-Control-Allow-Origin") == origin
-      and "Authorization" in headers.get("Access-Control-Allow-Headers", ""), f"preflight: {status} {dict(headers)}")
+# Once: Chromium refuses a preflight whose Access-Control-Allow-Origin holds two values.
+check(status == 204 and headers.get_all("Access-Control-Allow-Origin") == [origin]
+      and "Authorization" in headers.get("Access-Control-Allow-Headers", ""), f"preflight: {status} {headers.items()}")
 status, headers, _ = get(f"{base}/studies", {"Origin": origin})
 check(status == 200 and headers.get("Access-Control-Allow-Origin") == origin, "a GET from the allowed origin")
 status, headers, _ = get(f"{base}/studies", {"Origin": "http://elsewhere.example"})

@@ -29,6 +29,11 @@ TEST(Cors, TheAllowedOriginsPreflightIsAnsweredWithTheMethodsAndHeaders) {
   EXPECT_NE(header(preflight->headers, "Access-Control-Allow-Headers").find("Authorization"), std::string::npos);
   EXPECT_NE(header(preflight->headers, "Access-Control-Allow-Methods").find("GET"), std::string::npos);
   EXPECT_EQ(header(preflight->headers, "Vary"), "Origin");
+  // The connection adds every answer's CORS headers: a preflight's must still name its origin once.
+  std::multimap<std::string, std::string> written = preflight->headers;
+  add_cors_headers(origin, request("OPTIONS", {{"Origin", origin}, {"Access-Control-Request-Method", "GET"}}), written);
+  EXPECT_EQ(written.count("Access-Control-Allow-Origin"), 1u);
+  EXPECT_EQ(written.count("Vary"), 1u);
 }
 
 TEST(Cors, AnotherOriginNoOriginAndNoConfigurationGetNothing) {
