@@ -31,6 +31,7 @@
 #include "bench/surface_codec_bench.h"
 #include "bench/table5.h"
 #include "bench/table7.h"
+#include "bench/viewer_bench.h"
 
 namespace {
 
@@ -51,6 +52,7 @@ int usage() {
       "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
       "       soiq-bench dicomweb [--patients N] [--batch B] [--runs R] [--soiqd PATH]\n"
       "       soiq-bench render [--runs R] [--patients N] [--soiqd PATH]\n"
+      "       soiq-bench viewer [--runs R] [--soiqd PATH]\n"
       "                  [--patients N] [--matched N]\n");
   return 2;
 }
@@ -83,6 +85,7 @@ int main(int argc, char** argv) {
   if (command == "pacs") return run_pacs_bench(*args);
   if (command == "dicomweb") return run_dicomweb_bench(*args);
   if (command == "render") return run_render_bench(*args);
+  if (command == "viewer") return run_viewer_bench(*args);
   if (command == "codec") return run_surface_codec_bench(*args);
   return usage();
 }
