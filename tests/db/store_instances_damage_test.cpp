@@ -99,7 +99,10 @@ TYPED_TEST(StoreInstancesDamage, ADamagedRowIsDataLossNamingTheInstanceUntilTheS
 // the file's sha256 and the row's checksum to be checked again.
 TYPED_TEST(StoreInstancesDamage, TheScanHandsOutEachFileAndRowAsStored) {
   std::map<std::string, StoredItem> files, rows;
-  for (auto [kind, into] : {std::pair{StoredKind::kInstanceFile, &files}, std::pair{StoredKind::kInstance, &rows}}) {
+  for (const auto& scan : {std::pair{StoredKind::kInstanceFile, &files}, std::pair{StoredKind::kInstance, &rows}}) {
+    // Not a structured binding: clang 14 (the sanitizer build) cannot capture one in a lambda.
+    const StoredKind kind = scan.first;
+    std::map<std::string, StoredItem>* into = scan.second;
     ASSERT_TRUE(this->store_
                     ->scan_stored(kind,
                                   [&](const StoredItem& item) {
