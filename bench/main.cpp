@@ -11,6 +11,7 @@
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
 //   soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
+//   soiq-bench viewer [--runs N] [--soiqd PATH]
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
 #include <cstdio>
@@ -52,8 +53,8 @@ int usage() {
       "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
       "       soiq-bench dicomweb [--patients N] [--batch B] [--runs R] [--soiqd PATH]\n"
       "       soiq-bench render [--runs R] [--patients N] [--soiqd PATH]\n"
-      "       soiq-bench viewer [--runs R] [--soiqd PATH]\n"
-      "                  [--patients N] [--matched N]\n");
+      "                  [--patients N] [--matched N]\n"
+      "       soiq-bench viewer [--runs R] [--soiqd PATH]\n");
   return 2;
 }
 
