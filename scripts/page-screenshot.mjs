@@ -4,19 +4,15 @@ import os from 'node:os';
 import path from 'node:path';
 import { createRequire } from 'node:module';
 
+import { launchHeadlessChromium } from './headless_chromium.mjs';
+
 const require = createRequire(path.join(process.env.NODE_PATH, 'index.js'));
 const { chromium } = require('playwright-core');
 
 const [url, out] = process.argv.slice(2);
 const token = process.env.SOIQ_TOKEN_FILE ? fs.readFileSync(process.env.SOIQ_TOKEN_FILE, 'utf8').trim() : '';
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'soiq-page-'));
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: process.env.SOIQ_CHROMIUM || '/usr/bin/chromium',
-  // No network of the browser's own (updates, sync, QUIC): only the page and soiqd.
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  viewport: { width: 1280, height: 900 },
-});
+const context = await launchHeadlessChromium(chromium, profile);
 try {
   const page = context.pages()[0] || (await context.newPage());
   // The token as the page keeps it for its tab (web/api.js), so that no dialog covers the picture.

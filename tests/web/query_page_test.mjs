@@ -15,6 +15,8 @@ import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { chromium } from 'playwright-core';
 
+import { launchHeadlessChromium } from '../../scripts/headless_chromium.mjs';
+
 const base = process.env.SOIQ_HTTP;
 const token = fs.readFileSync(process.env.SOIQ_TOKEN_FILE, 'utf8').trim();
 const tmp = process.env.SOIQ_TMP || fs.mkdtempSync(path.join(os.tmpdir(), 'soiq-web-'));
@@ -169,21 +171,7 @@ async function errorText() {
 
 describe('the query page', () => {
   before(async () => {
-    // A fresh profile (playwright's persistent context is how it takes --user-data-dir), and no
-    // network of the browser's own (updates, sync, QUIC): only the page and soiqd.
-    context = await chromium.launchPersistentContext(fs.mkdtempSync(path.join(tmp, 'chromium-')), {
-      executablePath: process.env.SOIQ_CHROMIUM || '/usr/bin/chromium',
-      args: [
-        '--headless',
-        '--no-sandbox',
-        '--disable-gpu',
-        '--disable-quic',
-        '--no-first-run',
-        '--disable-background-networking',
-        '--disable-component-update',
-        '--disable-sync',
-      ],
-      viewport: { width: 1280, height: 900 },
+    context = await launchHeadlessChromium(chromium, fs.mkdtempSync(path.join(tmp, 'chromium-')), {
       acceptDownloads: true,
     });
     page = context.pages()[0] || (await context.newPage());

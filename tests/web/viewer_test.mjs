@@ -13,6 +13,8 @@ import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { chromium } from 'playwright-core';
 
+import { launchHeadlessChromium } from '../../scripts/headless_chromium.mjs';
+
 const soiqd = process.env.SOIQ_HTTP;
 const ohif = process.env.SOIQ_OHIF;
 const expected = JSON.parse(fs.readFileSync(process.env.SOIQ_EXPECTED, 'utf8'));
@@ -172,21 +174,7 @@ const pct = (x) => `${(100 * x).toFixed(1)}%`;
 
 describe('OHIF reads soiqd', () => {
   before(async () => {
-    // A fresh profile, no network of the browser's own (as query_page_test.mjs).
-    context = await chromium.launchPersistentContext(fs.mkdtempSync(path.join(tmp, 'chromium-')), {
-      executablePath: process.env.SOIQ_CHROMIUM || '/usr/bin/chromium',
-      args: [
-        '--headless',
-        '--no-sandbox',
-        '--disable-gpu',
-        '--disable-quic',
-        '--no-first-run',
-        '--disable-background-networking',
-        '--disable-component-update',
-        '--disable-sync',
-      ],
-      viewport: { width: 1280, height: 900 },
-    });
+    context = await launchHeadlessChromium(chromium, fs.mkdtempSync(path.join(tmp, 'chromium-')));
     // OHIF's onboarding tour would cover the viewport on a fresh profile: marked as seen, in every tab.
     // (Sandboxed frames have no localStorage: skipped.)
     await context.addInitScript(() => {
