@@ -11,6 +11,13 @@
 namespace soiq::db {
 namespace {
 
+// A blob's DELETE whose only parameter is its sha256.
+Status delete_by_sha256(SqlSession& c, const char* sql, const std::string& sha256) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(sql));
+  del.bind(1, sha256);
+  return del.run();
+}
+
 constexpr char kDeleteOrphanSurfaceSql[] = R"sql(
   DELETE FROM surfaces
   WHERE sha256 = ?1 AND NOT EXISTS (SELECT 1 FROM structures WHERE surface_sha256 = ?1))sql";
@@ -19,9 +26,7 @@ constexpr char kDeleteOrphanSurfaceSql[] = R"sql(
 
 // Deletes the surface (and, by cascade, its cached features) when no structure refers to it.
 Status delete_surface_if_orphan(SqlSession& c, const std::string& sha256) {
-  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanSurfaceSql));
-  del.bind(1, sha256);
-  return del.run();
+  return delete_by_sha256(c, kDeleteOrphanSurfaceSql, sha256);
 }
 
 namespace {
@@ -33,9 +38,7 @@ constexpr char kDeleteOrphanImageSql[] = R"sql(
 }  // namespace
 
 Status delete_image_if_orphan(SqlSession& c, const std::string& sha256) {
-  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanImageSql));
-  del.bind(1, sha256);
-  return del.run();
+  return delete_by_sha256(c, kDeleteOrphanImageSql, sha256);
 }
 
 namespace {
@@ -47,9 +50,7 @@ constexpr char kDeleteOrphanInstanceFileSql[] = R"sql(
 }  // namespace
 
 Status delete_instance_file_if_orphan(SqlSession& c, const std::string& sha256) {
-  SOIQ_ASSIGN_OR_RETURN(SqlStatement del, c.prepare(kDeleteOrphanInstanceFileSql));
-  del.bind(1, sha256);
-  return del.run();
+  return delete_by_sha256(c, kDeleteOrphanInstanceFileSql, sha256);
 }
 
 namespace {

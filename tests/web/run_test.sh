@@ -11,15 +11,8 @@ soiqd=$2
 here=$(cd "$(dirname "$0")" && pwd)
 tmp=$(mktemp -d)
 source "$here/../cli_remote/soiqd.sh"
-if [ ! -d "$here/node_modules/playwright-core" ]; then
-  echo "FAIL: tests/web/node_modules is missing: scripts/install-deps installs it (npm ci)"
-  exit 1
-fi
-chromium=${SOIQ_CHROMIUM:-/usr/bin/chromium}
-if [ ! -x "$chromium" ]; then
-  echo "FAIL: $chromium is missing: scripts/install-deps installs Debian's chromium"
-  exit 1
-fi
+# shellcheck source=SCRIPTDIR/browser_checks.sh
+source "$here/browser_checks.sh"
 # A random token, as soiqd asks (at least 16 characters).
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
 # A viewer link, so that the page shows "open in viewer" (the host is never contacted).

@@ -17,15 +17,8 @@ if [ ! -f "$here/ohif/index.html" ]; then
   echo "FAIL: OHIF is missing in tests/web/ohif: scripts/install-deps installs it (tests/web/install_ohif.sh)"
   exit 1
 fi
-if [ ! -d "$here/node_modules/playwright-core" ]; then
-  echo "FAIL: tests/web/node_modules is missing: scripts/install-deps installs it (npm ci)"
-  exit 1
-fi
-chromium=${SOIQ_CHROMIUM:-/usr/bin/chromium}
-if [ ! -x "$chromium" ]; then
-  echo "FAIL: $chromium is missing: scripts/install-deps installs Debian's chromium"
-  exit 1
-fi
+# shellcheck source=SCRIPTDIR/browser_checks.sh
+source "$here/browser_checks.sh"
 
 # OHIF first, on a free port: soiqd must name its origin. Its app-config.js is written once soiqd's
 # HTTP port is known (it is read when the browser loads it, not now).
