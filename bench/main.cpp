@@ -6,6 +6,7 @@
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
+//   soiq-bench coverage --models DIR [--runs N] [--pin CPU]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
 //   soiq-bench codec [--runs N] [--label LABEL_IMAGE] [--image IMAGE]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
@@ -19,6 +20,7 @@
 
 #include "bench/cli_args.h"
 #include "bench/convert_bench.h"
+#include "bench/coverage_bench.h"
 #include "bench/cpu_probe.h"
 #include "bench/dicomweb_bench.h"
 #include "bench/features_bench.h"
@@ -47,6 +49,7 @@ int usage() {
       "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
       "       soiq-bench cpu-probe [--runs N]\n"
       "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
+      "       soiq-bench coverage --models DIR [--runs N] [--pin CPU]\n"
       "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
       "       soiq-bench replicas [--small] [--soiqd PATH] [--workers N] [--seconds S] [--patients N] [--matched N]\n"
       "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
@@ -80,6 +83,7 @@ int main(int argc, char** argv) {
   if (command == "scaling") return run_scaling(*args);
   if (command == "cpu-probe") return run_cpu_probe(*args);
   if (command == "features") return run_features_bench(*args);
+  if (command == "coverage") return run_coverage_bench(*args);
   if (command == "query") return run_query_bench(*args);
   if (command == "replicas") return run_replicas_bench(*args);
   if (command == "import") return run_import_bench(*args);

@@ -1,0 +1,174 @@
+#pragma once
+// The lattice walk shared by the 1D method (voxelize_1d.h) and its coverage fractions
+// (coverage_1d.h): a mesh in the continuous index space of a grid scanned along one axis, the slabs
+// of slices threads scan apart, and, per triangle, every row line whose lattice point its (y,z)
+// projection contains, with the interpolated crossing. Both methods share it so that they decide
+// "does this line cross this triangle" identically (docs/DESIGN.md, "The 1D method, precisely").
+// Internal to core/voxelize.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/base/fill_rule.h"
+#include "core/base/image_geometry.h"
+#include "core/base/triangle_mesh.h"
+#include "core/geometry/exact_predicates.h"
+
+namespace soiq::scanline {
+
+// A mesh in continuous index space of a grid scanned along its first axis: voxel centres at
+// integers, rows are the lines {(x, j, k)}. Coordinates are split per axis (structure of arrays)
+// because the lattice walk reads y and z far more often than x.
+struct ScanProblem {
+  std::vector<double> x, y, z;
+  const std::vector<std::array<int32_t, 3>>* triangles = nullptr;
+  int64_t nx = 0, ny = 0, nz = 0;
+  FillRule rule = FillRule::kNonZero;
+};
+
+// One directed edge a -> b of a triangle's (y,z) projection. Its edge function at a lattice point
+// P = (j,k) is orient2d(a, b, P); its sign is exact (core/geometry/exact_predicates), so the two triangles
+// sharing the edge (which run it in opposite directions) always see opposite signs, and an exact
+// zero takes the sign of the symbolic perturbation of P to (j + e, k + e^2). No lattice point is
+// ever on an edge, and every edge puts it on exactly one side for both triangles: that is the whole
+// watertightness argument, with no epsilon.
+struct ProjectedEdge {
+  double a_y, a_z, b_y, b_z, dy, dz;
+  int tie_sign;  // the perturbed sign where the exact value is 0; 0 for a zero-length edge
+
+  ProjectedEdge(double ay, double az, double by, double bz) : a_y(ay), a_z(az), b_y(by), b_z(bz) {
+    dy = by - ay;
+    dz = bz - az;
+    // E(P + (e, e^2)) = E(P) - dz*e + dy*e^2.
+    tie_sign = dz != 0 ? (dz > 0 ? -1 : 1) : (dy > 0) - (dy < 0);
+  }
+
+  struct Value {
+    double value;  // the edge function in double
+    double error;  // a bound on |value - exact value|
+    int sign;      // the exact perturbed sign: never 0
+  };
+
+  // The part of the edge function that depends on the slice only: computed once per row.
+  double slice_term(double pz) const { return dy * (pz - a_z); }
+
+  // The edge function at (py, pz), given t1 = slice_term(pz).
+  Value at(double t1, double py, double pz) const {
+    const double t2 = dz * (py - a_y);
+    const double value = t1 - t2;
+    const double error = orient2d_error_bound(t1, t2);
+    if (value > error) return {value, error, 1};
+    if (value < -error) return {value, error, -1};
+    // Near or at zero. Both products exactly 0, or the lattice point on an endpoint (every
+    // marching-cubes vertex on a row line), is an exact zero without arithmetic; anything else
+    // asks the exact predicate.
+    if (error == 0 || (py == a_y && pz == a_z) || (py == b_y && pz == b_z)) return {0.0, 0.0, tie_sign};
+    const int exact = orient2d_sign_exact(a_y, a_z, b_y, b_z, py, pz);
+    return {value, error, exact != 0 ? exact : tie_sign};
+  }
+};
+
+// The slabs of slices that threads fill independently: slab s is [k_begin(s), k_begin(s+1)).
+struct Slabs {
+  int64_t count = 1;
+  int64_t nz = 0;
+  int64_t k_begin(int64_t s) const { return nz * s / count; }
+  int64_t of_slice(int64_t k) const { return ((k + 1) * count - 1) / nz; }  // inverse of k_begin
+};
+
+// The lattice slices each triangle reaches, and, with several slabs, the triangles each slab must
+// visit, in one flat array grouped by slab: counted, then placed, both passes in parallel over
+// chunks of triangles, so no slab ever scans every triangle, nothing grows, and no serial sort
+// stands in front of the threads. Within a slab the order follows the chunks; it is irrelevant:
+// crossings are grouped by line and sorted afterwards.
+struct SlabTriangles {
+  std::unique_ptr<int32_t[]> k_first, k_last;  // per triangle, clamped; first > last = none
+  std::vector<int32_t> order;                  // slab s: order[slab_start[s] .. slab_start[s+1])
+  std::vector<int64_t> slab_start;             // empty with one slab: every triangle is visited
+};
+
+SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int threads);
+
+// The mesh in index space of `g`, scanned along `axis` (0 = i, 1 = j, 2 = k). The other two axes
+// follow cyclically, (axis, axis+1, axis+2), a rotation that keeps the handedness and so the
+// meaning of the crossing signs. With `lines_per_voxel` n > 1 the two cross axes are scaled so that
+// the lattice holds n x n lines per voxel, at the centres of an n x n split of its cross-section:
+// line (j', k') = (n j + a, n k + b) runs through (j - 1/2 + (a + 1/2)/n, k - 1/2 + (b + 1/2)/n).
+ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g, int axis, FillRule rule, int threads,
+                                int lines_per_voxel = 1);
+
+// Where row line (j,k) crosses a triangle: x interpolated in double (exact for a line through a
+// vertex), `tolerance` a bound on its error, `normal_x_sign` the exact sign of the triangle
+// normal's x component (+1: the line leaves the surface there), `v` the triangle in index space.
+struct LineHit {
+  int64_t j, k;
+  double x, tolerance;
+  int normal_x_sign;
+  const double (&v)[3][3];
+};
+
+// Calls on_hit(const LineHit&) for every row line (j,k), k in [k_lo, k_hi], whose perturbed lattice
+// point (j + e, k + e^2) lies inside the (y,z) projection of `tri`. Defined here so that each
+// caller's on_hit inlines into the hot loop.
+template <typename OnHit>
+void for_each_hit(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi, OnHit&& on_hit) {
+  const size_t a = size_t(tri[0]), b = size_t(tri[1]), c = size_t(tri[2]);
+  const double ymin = std::min({p.y[a], p.y[b], p.y[c]}), ymax = std::max({p.y[a], p.y[b], p.y[c]});
+  const int64_t j_lo = int64_t(std::max(std::ceil(ymin), 0.0));
+  const int64_t j_hi = int64_t(std::min(std::floor(ymax), double(p.ny - 1)));
+  if (j_lo > j_hi) return;
+  // A triangle whose (y,z) projection has zero area (edge-on to the rows: every face of a
+  // marching-cubes surface parallel to x) contains no perturbed lattice point: skip it before any
+  // lattice work. The area is the exact orient2d of its projected vertices.
+  if (orient2d_sign(p.y[a], p.z[a], p.y[b], p.z[b], p.y[c], p.z[c]) == 0) return;
+  const ProjectedEdge ab(p.y[a], p.z[a], p.y[b], p.z[b]);
+  const ProjectedEdge bc(p.y[b], p.z[b], p.y[c], p.z[c]);
+  const ProjectedEdge ca(p.y[c], p.z[c], p.y[a], p.z[a]);
+  const double v[3][3] = {{p.x[a], p.y[a], p.z[a]}, {p.x[b], p.y[b], p.z[b]}, {p.x[c], p.y[c], p.z[c]}};
+  constexpr double kEps = 1.1102230246251565e-16;
+  for (int64_t k = k_lo; k <= k_hi; ++k) {
+    const double pz = double(k);
+    const double t_ab = ab.slice_term(pz), t_bc = bc.slice_term(pz), t_ca = ca.slice_term(pz);
+    for (int64_t j = j_lo; j <= j_hi; ++j) {
+      const double py = double(j);
+      const ProjectedEdge::Value e_c = ab.at(t_ab, py, pz);
+      const ProjectedEdge::Value e_a = bc.at(t_bc, py, pz);
+      if (e_a.sign != e_c.sign) continue;
+      const ProjectedEdge::Value e_b = ca.at(t_ca, py, pz);
+      if (e_b.sign != e_c.sign) continue;
+      // Barycentric interpolation with the edge functions as weights, written as the heaviest
+      // vertex plus weighted differences, so a line through a vertex (the other weights exactly
+      // 0) gets exactly that vertex's x.
+      const double w[3] = {e_a.value, e_b.value, e_c.value};
+      const double err[3] = {e_a.error, e_b.error, e_c.error};
+      const double sum = w[0] + w[1] + w[2];
+      const int base = (std::abs(w[0]) >= std::abs(w[1]) && std::abs(w[0]) >= std::abs(w[2]))
+                           ? 0
+                           : (std::abs(w[1]) >= std::abs(w[2]) ? 1 : 2);
+      const int o1 = (base + 1) % 3, o2 = (base + 2) % 3;
+      const double d1 = v[o1][0] - v[base][0], d2 = v[o2][0] - v[base][0];
+      const double numerator = w[o1] * d1 + w[o2] * d2;
+      const double x = v[base][0] + numerator / sum;
+      // A bound on x's error from the weights' bounds and the few roundings in between (generous:
+      // it only decides when the exact orient3d test is consulted). A caller that does not read it
+      // does not pay for it: on_hit inlines and the arithmetic is dead.
+      const double sum_error = err[0] + err[1] + err[2] + 4 * kEps * (std::abs(w[0]) + std::abs(w[1]) + std::abs(w[2]));
+      double tolerance = HUGE_VAL;
+      if (std::abs(sum) > 2 * sum_error) {
+        const double num_error =
+            err[o1] * std::abs(d1) + err[o2] * std::abs(d2) + 4 * kEps * (std::abs(w[o1] * d1) + std::abs(w[o2] * d2));
+        const double ratio = std::abs(numerator / sum);
+        tolerance =
+            2 * (num_error + ratio * sum_error) / (std::abs(sum) - sum_error) + 8 * kEps * (std::abs(x) + ratio + 1);
+      }
+      // All weights positive: counter-clockwise in (y,z), normal along +x, so the line leaves.
+      on_hit(LineHit{j, k, x, tolerance, e_c.sign, v});
+    }
+  }
+}
+
+}  // namespace soiq::scanline
