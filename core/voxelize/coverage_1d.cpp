@@ -66,6 +66,11 @@ SliceCoverage cover_slice(const scanline::ScanProblem& p, const scanline::SlabTr
     }
     if (!events.empty()) cover_line(events, p.nx, n * n, out.full_start[size_t(j)], out.full, out.partial);
   }
+  // The buffers stay with the thread for the next slice, but not past a large one: memory the
+  // admission counted for this conversion must not stay held after it.
+  constexpr size_t kKeptCrossings = size_t(1) << 20;
+  if (crossings.capacity() > kKeptCrossings) std::vector<SampleCrossingAt>().swap(crossings);
+  if (grouped.capacity() > kKeptCrossings) std::vector<SampleCrossing>().swap(grouped);
   return out;
 }
 

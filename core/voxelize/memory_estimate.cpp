@@ -84,6 +84,38 @@ ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGe
   return conversion_peak_bytes(surface_measure(mesh), geometry, robust);
 }
 
+ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry,
+                                       int lines_per_voxel) {
+  const double n = std::max(lines_per_voxel, 1);
+  ConversionEstimate e;
+  e.lines = mul_add(geometry.dims[1], geometry.dims[2]);
+  const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
+  e.crossings = saturating(n * n * surface.area_mm2 / (sy * sz) + n * 0.5 * surface.perimeter_mm / std::min(sy, sz) +
+                           double(surface.triangles));
+  const double d = std::sqrt(sx * sx + sy * sy + sz * sz);
+  const double touched = (2 * d * surface.area_mm2 + M_PI * d * d * surface.perimeter_mm +
+                          4.0 / 3.0 * M_PI * d * d * d * double(surface.triangles)) /
+                         (sx * sy * sz);
+  const int64_t partial = std::min(voxels(geometry), saturating(touched));
+  const int64_t slice_lines = mul_add(geometry.dims[1], int64_t(n * n), 1);
+  // Two threads' slices hold disjoint crossings: 24 bytes found (doubled by growth), 16 grouped.
+  int64_t bytes = mul_add(e.crossings, 64);
+  bytes = mul_add(slice_lines, 2 * 2 * 8, bytes);      // two threads' line starts, and the copies
+  bytes = mul_add(e.crossings / 2 + 1, 2 * 8, bytes);  // full runs
+  bytes = mul_add(partial, 2 * 8, bytes);
+  bytes = mul_add(e.lines, 2 * 8, bytes);  // the result's two line indexes
+  bytes = mul_add(surface.vertices, 24, bytes);
+  // Per triangle its slice range, and its place in each voxel slice's list.
+  bytes = mul_add(surface.triangles + saturating(surface.perimeter_mm / std::min(sx, std::min(sy, sz))), 12, bytes);
+  bytes = mul_add(geometry.dims[2], 2 * 8 + 64, bytes);  // slice counts and per-slice results
+  e.bytes = bytes;
+  return e;
+}
+
+int64_t fraction_export_extra_bytes(const ImageGeometry& geometry, int bytes_per_voxel) {
+  return mul_add(voxels(geometry), 2 * int64_t(std::max(bytes_per_voxel, 1)) + 1);
+}
+
 int64_t features_extra_bytes(const ConversionEstimate& conversion, const ImageGeometry& geometry,
                              int64_t uncached_image_voxels, int regions) {
   int64_t bytes = mul_add(conversion.crossings / 2 + 1, 64);

@@ -18,6 +18,17 @@
 //                         hulls (~64 bytes per run), ~0.5 byte per grid voxel measured (1 counted),
 //                         the decoded images not yet cached (4 bytes per voxel) and the
 //                         intensities gathered per region (4 bytes per grid voxel at most).
+// coverage_peak_bytes     coverage_1d with n x n lines per voxel: the crossings bound above with
+//                         n^2 times the area term and n times the perimeter term, each crossing
+//                         held once by one of the threads' slice buffers (64 bytes: found, with
+//                         growth, then grouped by line); one slice's line index per thread;
+//                         runs (<= half the crossings, kept twice: the slice's and the result's);
+//                         partly covered voxels (8 bytes, twice), of which there are no more than
+//                         the voxels the surface touches: each lies within a voxel diagonal d of
+//                         it, so at most (2 d A + pi d^2 P + 4/3 pi d^3 T) / voxel volume, and never
+//                         more than the grid.
+// fraction_export_extra_bytes dense fractions of `bytes_per_voxel` (1 or 4) and their
+//                         compressed NIfTI (2 x bytes per voxel + 1 counted).
 // mask_export_extra_bytes a dense mask and its compressed NIfTI (measured 2 bytes per voxel; 3
 //                         counted).
 // Calibrated on measured peaks (VmHWM) of `soiq features`/`soiq convert`: the estimate is above
@@ -52,6 +63,9 @@ SurfaceMeasure surface_measure(const TriangleMesh& mesh);
 
 ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry, bool robust);
 ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGeometry& geometry, bool robust);
+ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry,
+                                       int lines_per_voxel);
+int64_t fraction_export_extra_bytes(const ImageGeometry& geometry, int bytes_per_voxel);
 
 // Extra bytes of a feature computation over a conversion estimated as `conversion`, with
 // `uncached_image_voxels` voxels of images still to decode and `regions` regions with intensities.
