@@ -28,6 +28,11 @@ std::vector<CommandSpec> offline_commands() {
   const OptionSpec series = {"--series", "UID", "", "stored structure only: the grid of this stored image series"};
   const OptionSpec series_modality = {"--series-modality", "M", "",
                                       "stored structure only: the grid of the study's series of modality M"};
+  const OptionSpec fractional = {"--fractional", "", "binary",
+                                 "write the fraction of each voxel inside (uint8: 0 outside, 255 inside)"};
+  const OptionSpec float32 = {"--float32", "", "uint8", "with --fractional: fractions as float32 0-1"};
+  const OptionSpec oversample = {"--oversample", "N", "4",
+                                 "with --fractional: N x N lines across each voxel (1-8; exact along rows)"};
   const OptionSpec interpolation = {"--interpolation", "nearest|linear", "nearest", "how the image is sampled"};
   return {
       {"mesh",
@@ -43,16 +48,19 @@ std::vector<CommandSpec> offline_commands() {
       {"convert",
        CommandGroup::kOffline,
        {"convert MESH -o OUT.{nii.gz,nii,nrrd,mha} [--reference IMAGE | --spacing S|SX,SY,SZ [--margin N]]",
-        "        [--robust] [--even-odd] [--threads N] [--ras]",
+        "        [--robust] [--even-odd] [--threads N] [--ras] [--fractional [--float32] [--oversample N]]",
         "convert ID -o OUT.{nii.gz,nii,nrrd,mha} [--spacing S [--margin N] | --series UID | --series-modality M]",
-        "        [--even-odd]"},
+        "        [--even-odd] [--fractional [--float32] [--oversample N]]"},
        "surface model -> volume model (the 1D scanline method); prints one summary line",
-       "Converts a closed surface model to a binary volume by the 1D scanline method. The operand is a mesh "
-       "file (run here) or a stored structure id (all digits, or id:N; run on soiqd). A file named like an "
-       "id is refused as ambiguous: write ./N or id:N.",
-       {output, reference, spacing, margin, robust, even_odd, threads, ras, series, series_modality},
+       "Converts a closed surface model to a binary volume by the 1D scanline method, or with --fractional "
+       "to the fraction of each voxel inside it (partial volume: exact along the rows, sampled on N x N lines "
+       "across them). The operand is a mesh file (run here) or a stored structure id (all digits, or id:N; "
+       "run on soiqd). A file named like an id is refused as ambiguous: write ./N or id:N.",
+       {output, reference, spacing, margin, robust, even_odd, threads, ras, series, series_modality, fractional,
+        float32, oversample},
        {"soiq convert brain1.vtp -o brain1.nii.gz --spacing 0.5",
-        "soiq convert 4 -o hippocampus.nii.gz --series-modality MR"},
+        "soiq convert 4 -o hippocampus.nii.gz --series-modality MR",
+        "soiq convert 7 -o gtv_fractions.nii.gz --series-modality PT --fractional --float32"},
        run_convert_any},
       {"features",
        CommandGroup::kOffline,

@@ -54,7 +54,8 @@ Result<int64_t> offline_memory_budget() {
   return parse_byte_size(text, "environment variable SOIQ_MEMORY_BUDGET");
 }
 
-Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOptions& o) {
+Result<MeshOnGrid> read_mesh_on_grid(const std::string& path, const MeshGridOptions& o,
+                                     const NeededBytes& needed_bytes) {
   MeshOnGrid out;
   SOIQ_ASSIGN_OR_RETURN(out.mesh, read_mesh(path, o.ras));
   out.flipped = orient_outward(out.mesh);
@@ -68,18 +69,25 @@ Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOpti
   // is refused here, in one line, instead of dying of bad_alloc (or the OOM killer) minutes later.
   SOIQ_RETURN_IF_ERROR(check_grid_size(out.grid, kDefaultMaxVoxels));
   SOIQ_ASSIGN_OR_RETURN(const int64_t budget, offline_memory_budget());
-  const ConversionEstimate estimate = conversion_peak_bytes(out.mesh, out.grid, o.robust);
-  const int64_t needed =
-      estimate.bytes + std::max(features_extra_bytes(estimate, out.grid, 0, 0), mask_export_extra_bytes(out.grid));
+  const int64_t needed = needed_bytes(out.mesh, out.grid);
   if (needed > budget) {
     const auto& d = out.grid.dims;
     return resource_exhausted("'" + path + "' on a grid of " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-                              std::to_string(d[2]) + " voxels (" + std::to_string(estimate.lines) +
+                              std::to_string(d[2]) + " voxels (" + std::to_string(d[1] * d[2]) +
                               " row lines) needs an estimated " + human_bytes(needed) +
                               ", more than the memory budget of " + human_bytes(budget) +
                               " (half this machine's memory; SOIQ_MEMORY_BUDGET sets it): use a coarser --spacing or a "
                               "smaller --margin");
   }
+  return out;
+}
+
+Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOptions& o) {
+  SOIQ_ASSIGN_OR_RETURN(
+      MeshOnGrid out, read_mesh_on_grid(path, o, [&](const TriangleMesh& mesh, const ImageGeometry& grid) {
+        const ConversionEstimate estimate = conversion_peak_bytes(mesh, grid, o.robust);
+        return estimate.bytes + std::max(features_extra_bytes(estimate, grid, 0, 0), mask_export_extra_bytes(grid));
+      }));
   VoxelizeOptions options;
   options.robust = o.robust;
   options.fill_rule = o.even_odd ? FillRule::kEvenOdd : FillRule::kNonZero;

@@ -3,6 +3,7 @@
 // IMAGE, or --spacing S|SX,SY,SZ with --margin N — and the 1D method's --robust, --even-odd,
 // --threads, --ras) and the conversion itself: read, orient outward, build the grid, voxelize.
 
+#include <functional>
 #include <string>
 
 #include "core/base/image_geometry.h"
@@ -36,7 +37,14 @@ struct MeshOnGrid {
   double milliseconds = 0;  // of the 1D method alone
 };
 
-// Reads `path`, orients it outward, builds the grid and converts the mesh with the 1D method.
+// Reads `path`, orients it outward and builds the grid, refusing (RESOURCE_EXHAUSTED, in one line)
+// work whose `needed_bytes` exceed the offline memory budget (SOIQ_MEMORY_BUDGET, or half the
+// machine's memory). `voxels` stays empty.
+using NeededBytes = std::function<int64_t(const TriangleMesh&, const ImageGeometry&)>;
+Result<MeshOnGrid> read_mesh_on_grid(const std::string& path, const MeshGridOptions& options,
+                                     const NeededBytes& needed_bytes);
+
+// read_mesh_on_grid, then the mesh converted with the 1D method.
 Result<MeshOnGrid> convert_mesh_file(const std::string& path, const MeshGridOptions& options);
 
 }  // namespace soiq::cli

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client/cli/cli_args.h"
+#include "client/cli/fraction_args.h"
 #include "client/cli/grid_args.h"
 #include "client/cli/progress_bar.h"
 #include "client/cli/record_args.h"
@@ -21,6 +22,7 @@ namespace {
 struct RemoteConvertArgs {
   soiq::v1::ConvertRequest request;
   std::string out;
+  FractionArgs fractions;
 };
 
 Result<RemoteConvertArgs> parse_remote_convert_args(int argc, char** argv) {
@@ -30,6 +32,8 @@ Result<RemoteConvertArgs> parse_remote_convert_args(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     SOIQ_ASSIGN_OR_RETURN(const bool is_grid, parse_grid_option(argc, argv, i, grid));
     if (is_grid) continue;
+    SOIQ_ASSIGN_OR_RETURN(const bool is_fraction, parse_fraction_option(argc, argv, i, a.fractions));
+    if (is_fraction) continue;
     const std::string arg = argv[i];
     if (arg == "-o" || arg == "--output") {
       SOIQ_ASSIGN_OR_RETURN(a.out, option_value(argc, argv, i));
@@ -56,6 +60,11 @@ Result<RemoteConvertArgs> parse_remote_convert_args(int argc, char** argv) {
     return invalid_argument("output '" + a.out + "' has an unknown extension; use .nii.gz, .nii, .nrrd or .mha");
   }
   a.request.set_encoding(soiq::v1::NIFTI_GZ);
+  SOIQ_RETURN_IF_ERROR(check_fraction_args(a.fractions));
+  if (a.fractions.fractional) {
+    a.request.set_oversample(a.fractions.lines_per_voxel());
+    a.request.set_fraction_type(a.fractions.float32 ? soiq::v1::FRACTION_FLOAT32 : soiq::v1::FRACTION_UINT8);
+  }
   return a;
 }
 
@@ -92,9 +101,24 @@ Status convert(const RemoteConvertArgs& a, const client::ClientOptions& remote) 
     Result<Image> image = read_image(path);
     std::remove(path.c_str());
     if (!image.ok()) return image.status();
-    SOIQ_RETURN_IF_ERROR(write_mask(mask_from_image(*image), a.out));
+    if (a.fractions.fractional) {
+      // Fractions keep their values: bytes 0-255 stay bytes, floats stay floats.
+      Mask bytes{image->geometry, std::vector<uint8_t>(image->voxels.begin(), image->voxels.end())};
+      SOIQ_RETURN_IF_ERROR(a.fractions.float32 ? write_image(*image, a.out) : write_mask(bytes, a.out));
+    } else {
+      SOIQ_RETURN_IF_ERROR(write_mask(mask_from_image(*image), a.out));
+    }
   }
   const soiq::v1::ConvertSummary& s = *summary;
+  if (a.fractions.fractional) {
+    std::printf(
+        "%lld voxels inside or partly (%lld partly), %.3f mm3 by fractions (%dx%d lines per voxel) on %s; %.2f "
+        "ms -> %s (%s)\n",
+        (long long)s.voxel_count(), (long long)s.partial_voxels(), s.volume_mm3(), s.oversample(), s.oversample(),
+        geometry_text(s.geometry()).c_str(), s.milliseconds(), a.out.c_str(),
+        a.fractions.float32 ? "float32 0-1" : "uint8 0-255");
+    return ok_status();
+  }
   std::printf("%lld voxels inside, %.3f mm3 on %s; %s; %.2f ms -> %s\n", (long long)s.voxel_count(), s.volume_mm3(),
               geometry_text(s.geometry()).c_str(), s.defects().c_str(), s.milliseconds(), a.out.c_str());
   return ok_status();

@@ -3,6 +3,7 @@
 
 #include "core/base/run_length_volume.h"
 #include "core/features/feature_catalogue.h"
+#include "core/voxelize/coverage_1d.h"
 #include "server/api/grid_spec.h"
 #include "server/api/proto_records.h"
 #include "server/api/query_request.h"
@@ -53,6 +54,30 @@ v1::ConvertSummary summary_of(const StructureConversion& c, double milliseconds)
   return summary;
 }
 
+// Convert's first message for coverage fractions: the voxels with any coverage, the volume as the
+// sum of the fractions.
+v1::ConvertSummary summary_of(const StructureCoverage& c, double milliseconds) {
+  v1::ConvertSummary summary;
+  *summary.mutable_geometry() = to_proto(c.grid.geometry);
+  summary.set_voxel_count(voxel_count(any_coverage(c.coverage)));
+  summary.set_volume_mm3(covered_voxels(c.coverage) * c.grid.geometry.voxel_volume_mm3());
+  summary.set_milliseconds(milliseconds);
+  summary.set_defects("closed (checked at upload)");
+  summary.set_oversample(c.coverage.lines_per_voxel);
+  summary.set_partial_voxels(int64_t(c.coverage.partial.size()));
+  return summary;
+}
+
+// NIfTI bytes after the summary, in chunks under gRPC's message limit.
+Status write_nifti_chunks(const std::string& bytes, grpc::ServerWriter<v1::ConvertResponse>& writer) {
+  for (size_t at = 0; at < bytes.size(); at += kMaskChunkBytes) {
+    v1::ConvertResponse chunk;
+    chunk.set_nifti_chunk(bytes.substr(at, kMaskChunkBytes));
+    if (!writer.Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the conversion");
+  }
+  return ok_status();
+}
+
 // A FeaturesRequest as the app's FeatureAsk; images without names ask every shape and intensity
 // feature.
 Result<FeatureAsk> ask_of(const v1::FeaturesRequest& request) {
@@ -83,29 +108,46 @@ grpc::Status SoiqService::Convert(grpc::ServerContext* ctx, const v1::ConvertReq
     const Clock::time_point start = Clock::now();
     SOIQ_RETURN_IF_ERROR(check_enum(request->fill_rule(), v1::FillRule_IsValid, "fill_rule"));
     SOIQ_RETURN_IF_ERROR(check_enum(request->encoding(), v1::VolumeEncoding_IsValid, "encoding"));
+    SOIQ_RETURN_IF_ERROR(check_enum(request->fraction_type(), v1::FractionType_IsValid, "fraction_type"));
     SOIQ_ASSIGN_OR_RETURN(const GridChoice choice, grid_choice(request->grid()));
     const bool runs = request->encoding() == v1::RUNS;
-    SOIQ_ASSIGN_OR_RETURN(
-        const StructureConversion c,
-        convert_structure(store_, features_, pool_, request->structure_id(), choice, fill_rule_of(request->fill_rule()),
-                          !runs, [&] { return stop_status(*ctx); }));
-    const RunLengthVolume& volume = c.voxelization.volume;
-    // Encoded before the summary, which tells the client how many bytes follow.
-    std::string bytes;
-    if (!runs) {
-      SOIQ_ASSIGN_OR_RETURN(bytes, mask_nifti_bytes(volume, config_.max_grid_voxels));
+    const int oversample = request->oversample();
+    if (oversample < 0 || oversample > kMaxLinesPerVoxel) {
+      return invalid_argument("oversample must be 0 (a binary mask) or 1 to " + std::to_string(kMaxLinesPerVoxel) +
+                              " (coverage fractions), not " + std::to_string(oversample));
     }
+    if (oversample > 0 && runs) return invalid_argument("coverage fractions come as NIfTI: ask for NIFTI_GZ, not RUNS");
+    if (oversample == 0 && request->fraction_type() != v1::FRACTION_UINT8) {
+      return invalid_argument("fraction_type applies to coverage fractions: set oversample to 1-8");
+    }
+    std::string bytes;
     v1::ConvertResponse first;
-    *first.mutable_summary() = summary_of(c, ms_since(start));
+    if (oversample > 0) {
+      const bool float32 = request->fraction_type() == v1::FRACTION_FLOAT32;
+      SOIQ_ASSIGN_OR_RETURN(
+          const StructureCoverage c,
+          cover_structure(store_, features_, pool_, request->structure_id(), choice, fill_rule_of(request->fill_rule()),
+                          oversample, float32 ? 4 : 1, [&] { return stop_status(*ctx); }));
+      SOIQ_ASSIGN_OR_RETURN(bytes, fraction_nifti_bytes(c.coverage, float32, config_.max_grid_voxels));
+      *first.mutable_summary() = summary_of(c, ms_since(start));
+    } else {
+      SOIQ_ASSIGN_OR_RETURN(
+          const StructureConversion c,
+          convert_structure(store_, features_, pool_, request->structure_id(), choice,
+                            fill_rule_of(request->fill_rule()), !runs, [&] { return stop_status(*ctx); }));
+      // Encoded before the summary, which tells the client how many bytes follow.
+      if (!runs) {
+        SOIQ_ASSIGN_OR_RETURN(bytes, mask_nifti_bytes(c.voxelization.volume, config_.max_grid_voxels));
+      }
+      *first.mutable_summary() = summary_of(c, ms_since(start));
+      first.mutable_summary()->set_nifti_bytes(int64_t(bytes.size()));
+      if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
+      if (runs) return write_runs(c.voxelization.volume, c.grid.geometry.dims[1], *writer);
+      return write_nifti_chunks(bytes, *writer);
+    }
     first.mutable_summary()->set_nifti_bytes(int64_t(bytes.size()));
     if (!writer->Write(first)) return Status(StatusCode::kCancelled, "the client closed the conversion");
-    if (runs) return write_runs(volume, c.grid.geometry.dims[1], *writer);
-    for (size_t at = 0; at < bytes.size(); at += kMaskChunkBytes) {
-      v1::ConvertResponse chunk;
-      chunk.set_nifti_chunk(bytes.substr(at, kMaskChunkBytes));
-      if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the conversion");
-    }
-    return ok_status();
+    return write_nifti_chunks(bytes, *writer);
   });
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/features/feature_catalogue.h"
 #include "core/features/structure_features.h"
+#include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/memory_estimate.h"
 #include "db/image_blob.h"
 #include "db/surface_blob.h"
@@ -173,6 +174,28 @@ Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db:
   return voxelize_1d(*mesh, geometry, options);
 }
 
+Result<CoverageVolume> FeatureEngine::cover(const Admission& admitted, const db::StructureRecord& structure,
+                                            const ImageGeometry& geometry, FillRule fill_rule, int lines_per_voxel) {
+  if (admitted.structure_id_ != structure.id || !(admitted.geometry_ == geometry))
+    return internal_error("structure " + std::to_string(structure.id) +
+                          " was about to be converted outside its memory admission");
+  if (structure.robust) {
+    return failed_precondition("structure " + std::to_string(structure.id) +
+                               " was uploaded in robust mode (its surface is open or self-intersecting): coverage "
+                               "fractions need a closed surface; ask for a binary mask instead");
+  }
+  SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
+  SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure));
+  CoverageOptions options;
+  options.lines_per_voxel = lines_per_voxel;
+  options.fill_rule = fill_rule;
+  options.max_voxels = max_grid_voxels_;
+  const std::string name = "structure " + std::to_string(structure.id);
+  options.name = name.c_str();
+  options.known_defects = MeshDefects{};  // checked closed at upload
+  return coverage_1d(*mesh, geometry, options);
+}
+
 Result<FeatureEngine::Admission> FeatureEngine::admit(const db::StructureRecord& structure,
                                                       const ImageGeometry& geometry, const WorkExtras& extras,
                                                       const std::function<Status()>& stop) {
@@ -199,11 +222,14 @@ Result<FeatureEngine::Admission> FeatureEngine::reserve_for(const db::StructureR
                                                             const ImageGeometry& geometry, const WorkExtras& extras,
                                                             const SurfaceMeasure& measure,
                                                             const std::function<Status()>& stop) {
-  const ConversionEstimate conversion = conversion_peak_bytes(measure, geometry, structure.robust);
+  const ConversionEstimate conversion = extras.coverage_lines > 0
+                                            ? coverage_peak_bytes(measure, geometry, extras.coverage_lines)
+                                            : conversion_peak_bytes(measure, geometry, structure.robust);
   int64_t bytes = conversion.bytes;
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
   if (extras.mask_export) add(mask_export_extra_bytes(geometry));
+  if (extras.fraction_bytes > 0) add(fraction_export_extra_bytes(geometry, extras.fraction_bytes));
   add(std::max<int64_t>(0, extras.other_bytes));
   const auto& d = geometry.dims;
   SOIQ_ASSIGN_OR_RETURN(

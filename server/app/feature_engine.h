@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/coverage_volume.h"
 #include "core/base/fill_rule.h"
 #include "core/base/image.h"
 #include "core/base/status.h"
@@ -124,10 +125,18 @@ class FeatureEngine {
   Result<Voxelization> convert(const Admission& admitted, const db::StructureRecord& structure,
                                const ImageGeometry& geometry, FillRule fill_rule);
 
+  // The coverage fractions of `structure` on `geometry` with n x n lines per voxel (coverage_1d),
+  // within `admitted` (admit() with WorkExtras::coverage_lines = n). FAILED_PRECONDITION for a
+  // structure stored in robust mode (an open surface has no fractions).
+  Result<CoverageVolume> cover(const Admission& admitted, const db::StructureRecord& structure,
+                               const ImageGeometry& geometry, FillRule fill_rule, int lines_per_voxel);
+
   // What a piece of work will hold besides the conversion itself.
   struct WorkExtras {
+    int coverage_lines = 0;    // n > 0: the work computes coverage fractions (cover), not runs
     bool features = false;     // structure_features on the runs
     bool mask_export = false;  // a dense mask written as NIfTI
+    int fraction_bytes = 0;    // 1 or 4: dense coverage fractions of that size written as NIfTI
     int64_t image_voxels = 0;  // images decoded for intensities
     int regions = 0;           // regions with intensities
     int64_t other_bytes = 0;   // anything else the work holds (a picture's surface and file)

@@ -18,6 +18,7 @@
 #include <functional>
 #include <string>
 
+#include "core/base/coverage_volume.h"
 #include "core/base/fill_rule.h"
 #include "core/base/status.h"
 #include "core/voxelize/voxelize_1d.h"
@@ -39,6 +40,22 @@ struct StructureConversion {
 Result<StructureConversion> convert_structure(db::Store& store, FeatureEngine& features, WorkerPool& pool,
                                               int64_t structure_id, const GridChoice& choice, FillRule fill_rule,
                                               bool mask_export, const std::function<Status()>& stop);
+
+// The same for coverage fractions with n x n lines per voxel (FeatureEngine::cover); the admission
+// counts dense fractions of `fraction_bytes` (1 or 4) per voxel for the NIfTI that follows.
+struct StructureCoverage {
+  db::StructureRecord structure;
+  ResolvedGrid grid;
+  CoverageVolume coverage;
+  FeatureEngine::Admission held;
+};
+
+Result<StructureCoverage> cover_structure(db::Store& store, FeatureEngine& features, WorkerPool& pool,
+                                          int64_t structure_id, const GridChoice& choice, FillRule fill_rule,
+                                          int lines_per_voxel, int fraction_bytes, const std::function<Status()>& stop);
+
+// The fractions as a gzipped NIfTI: uint8 0-255 (to_fraction_bytes) or, with `float32`, 0-1.
+Result<std::string> fraction_nifti_bytes(const CoverageVolume& coverage, bool float32, int64_t max_voxels);
 
 // The volume as a gzipped NIfTI mask (1 inside, 0 outside) on its grid. RESOURCE_EXHAUSTED when
 // the grid has more than max_voxels voxels.

@@ -66,6 +66,24 @@ within mean "$(awk -F, '$3 == "mean" { print $4 }' "$tmp/f.csv")" 2.15 0.005
 grep -q "^identical" <<<"$("$soiq" compare "$tmp/back.nii.gz" "$phantom/mask.nii.gz")" || fail "remote convert != mask"
 grep -q "voxels inside" <<<"$("$soiq" convert "$id" --spacing 0.5 -o "$tmp/fine.nrrd")" || fail "remote convert to nrrd"
 [ -s "$tmp/fine.nrrd" ] || fail "no nrrd written"
+# Coverage fractions computed by soiqd equal the offline ones for the same surface on the same grid,
+# value for value: bytes straight from soiqd's .nii.gz, floats and bytes through the client's .nii.
+check=$(dirname "$0")/../cli/fraction_file.py
+line=$("$soiq" convert "$id" --series 1.2.3.1 --fractional --oversample 3 -o "$tmp/remote_f.nii.gz") ||
+  fail "remote convert --fractional: $line"
+grep -qE "^[0-9]+ voxels inside or partly \([0-9]+ partly\), [0-9.]+ mm3 by fractions \(3x3 lines" <<<"$line" ||
+  fail "remote fraction summary: $line"
+"$soiq" convert "$tmp/phantom.stl" --reference "$phantom/mask.nii.gz" --fractional --oversample 3 \
+  -o "$tmp/local_f.nii.gz" >/dev/null || fail "offline convert --fractional"
+python3 "$check" "$tmp/remote_f.nii.gz" same "$tmp/local_f.nii.gz" || fail "remote uint8 fractions != offline"
+"$soiq" convert "$id" --series 1.2.3.1 --fractional -o "$tmp/remote_u8.nii" >/dev/null || fail "remote fractions to .nii"
+"$soiq" convert "$tmp/phantom.stl" --reference "$phantom/mask.nii.gz" --fractional -o "$tmp/local_u8.nii" >/dev/null
+python3 "$check" "$tmp/remote_u8.nii" same "$tmp/local_u8.nii" || fail "remote uint8 fractions via .nii != offline"
+"$soiq" convert "$id" --series 1.2.3.1 --fractional --float32 -o "$tmp/remote_f32.nii" >/dev/null ||
+  fail "remote float32 fractions"
+"$soiq" convert "$tmp/phantom.stl" --reference "$phantom/mask.nii.gz" --fractional --float32 -o "$tmp/local_f32.nii" >/dev/null
+python3 "$check" "$tmp/remote_f32.nii" same "$tmp/local_f32.nii" || fail "remote float32 fractions != offline"
+expect 2 "add --fractional" -- "$soiq" convert "$id" --float32 -o "$tmp/x.nii.gz"
 grep -q "bytes ->" <<<"$("$soiq" download "$id" -o "$tmp/down.vtp")" || fail "download"
 "$soiq" features "$tmp/down.vtp" --features mesh_volume_mm3 --format csv >/dev/null || fail "downloaded mesh unreadable"
 "$soiq" download "$id" -o "$tmp/new/folder/down.stl" >/dev/null && [ -s "$tmp/new/folder/down.stl" ] || fail "download into a new folder"

@@ -24,7 +24,8 @@ namespace {
 // options of several commands) is held to list every option it spells.
 const std::map<std::string, std::vector<std::string>> kParserSources = {
     {"mesh", {"mesh_command.cpp"}},
-    {"convert", {"convert_command.cpp", "remote_convert_command.cpp", "mesh_on_grid.cpp", "grid_args.cpp"}},
+    {"convert",
+     {"convert_command.cpp", "remote_convert_command.cpp", "mesh_on_grid.cpp", "grid_args.cpp", "fraction_args.cpp"}},
     {"features", {"features_command.cpp", "remote_features_command.cpp", "mesh_on_grid.cpp", "grid_args.cpp"}},
     {"compare", {"compare_command.cpp"}},
     {"upload", {"upload_command.cpp", "record_args.cpp"}},

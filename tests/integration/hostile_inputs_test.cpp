@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/geometry/primitives.h"
+#include "core/geometry/surface_area_volume.h"
 #include "tests/integration/service_fixture.h"
 
 namespace soiq::testing {
@@ -244,6 +245,47 @@ TEST_F(HostileInputs, OversizeAndControlCharacterTextIsRefused) {
 }
 
 // Proto3 enums are open: a number no version of the API defines is refused, not read as a default.
+TEST_F(HostileInputs, CoverageFractionRequestsThatCannotBeAnsweredAreRefused) {
+  Result<v1::UploadSurfaceResponse> up = upload(uv_sphere({0, 0, 0}, 10, 24, 48), "P", "S", "ball");
+  ASSERT_TRUE(up.ok()) << up.status().to_string();
+  auto ask = [&](int64_t id, int oversample, v1::VolumeEncoding encoding, v1::FractionType type) {
+    v1::ConvertRequest c;
+    c.set_structure_id(id);
+    c.mutable_grid()->set_spacing_mm(1);
+    c.set_oversample(oversample);
+    c.set_encoding(encoding);
+    c.set_fraction_type(type);
+    return client_->convert(c, {});
+  };
+  const int64_t id = up->structure().id();
+  auto refused = [](const Result<v1::ConvertSummary>& r, StatusCode code, const std::string& phrase) {
+    EXPECT_EQ(r.status().code(), code) << r.status().to_string();
+    EXPECT_NE(r.status().message().find(phrase), std::string::npos) << r.status().message();
+  };
+  refused(ask(id, 9, v1::NIFTI_GZ, v1::FRACTION_UINT8), StatusCode::kInvalidArgument,
+          "1 to 8 (coverage fractions), not 9");
+  refused(ask(id, -1, v1::NIFTI_GZ, v1::FRACTION_UINT8), StatusCode::kInvalidArgument, "not -1");
+  refused(ask(id, 4, v1::RUNS, v1::FRACTION_UINT8), StatusCode::kInvalidArgument, "ask for NIFTI_GZ");
+  refused(ask(id, 0, v1::NIFTI_GZ, v1::FRACTION_FLOAT32), StatusCode::kInvalidArgument, "set oversample to 1-8");
+  refused(ask(id, 4, v1::NIFTI_GZ, static_cast<v1::FractionType>(7)), StatusCode::kInvalidArgument,
+          "fraction_type: 7 is not a value");
+  refused(ask(id + 1000, 4, v1::NIFTI_GZ, v1::FRACTION_UINT8), StatusCode::kNotFound, "");
+  TriangleMesh open = uv_sphere({0, 0, 0}, 10, 12, 24);
+  open.triangles.pop_back();
+  Result<v1::UploadSurfaceResponse> robust = upload(open, "P", "S", "open", "", "stl", true);
+  ASSERT_TRUE(robust.ok()) << robust.status().to_string();
+  refused(ask(robust->structure().id(), 2, v1::NIFTI_GZ, v1::FRACTION_UINT8), StatusCode::kFailedPrecondition,
+          "robust mode");
+  // And the same sphere answered: the summary's volume is the sum of fractions, near the mesh's.
+  Result<v1::ConvertSummary> ok = ask(id, 4, v1::NIFTI_GZ, v1::FRACTION_FLOAT32);
+  ASSERT_TRUE(ok.ok()) << ok.status().to_string();
+  EXPECT_EQ(ok->oversample(), 4);
+  EXPECT_GT(ok->partial_voxels(), 0);
+  EXPECT_GT(ok->nifti_bytes(), 0);
+  const double mesh_volume = surface_area_volume(uv_sphere({0, 0, 0}, 10, 24, 48))->volume_mm3;
+  EXPECT_NEAR(ok->volume_mm3(), mesh_volume, 0.01 * mesh_volume);
+}
+
 TEST_F(HostileInputs, UnknownEnumValuesAreRefused) {
   Result<v1::UploadSurfaceResponse> up = upload(uv_sphere({0, 0, 0}, 10, 12, 24), "P", "S", "ball");
   ASSERT_TRUE(up.ok()) << up.status().to_string();
