@@ -44,6 +44,7 @@ std::vector<std::string> feature_words() {
   for (const std::string& n : intensity_feature_names()) {
     if (!find_shape_feature(n)) names.push_back(n);
   }
+  for (const std::string& n : weighted_feature_names()) names.push_back(n);
   return names;
 }
 

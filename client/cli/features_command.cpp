@@ -133,6 +133,7 @@ Status features(const FeaturesArgs& a) {
   request.interpolation = a.interpolation;
   request.covariance = a.ibsi ? CovarianceDivisor::kNMinus1 : CovarianceDivisor::kN;
   request.threads = a.grid.threads;
+  request.fill_rule = a.grid.even_odd ? FillRule::kEvenOdd : FillRule::kNonZero;
   SOIQ_ASSIGN_OR_RETURN(FeatureReport report, structure_features(structure, request));
   print_feature_report(report, a.format);
   return ok_status();

@@ -13,6 +13,7 @@ using V = std::vector<double>;
 
 constexpr FeatureNeeds kHull = N::kSurface | N::kConvexHull;
 constexpr FeatureNeeds kImageRegion = N::kImage | N::kRegion;
+constexpr FeatureNeeds kWeighted = N::kSurface | N::kCoverage | N::kImage | N::kRegion | N::kInsideRegion;
 constexpr FeatureNeeds kOwnGridInside = N::kImage | N::kImageOnGrid | N::kRegion | N::kInsideRegion;
 
 // The catalogue's own version: 2 since soiq's exact hull and one-pass area and volume. Each
@@ -25,6 +26,8 @@ const std::array kCatalogue = std::to_array<FeatureDef>({
      [](const FeatureSources& s) { return V{double(s.volume->voxel_count)}; }},
     {"voxel_volume_mm3", F::kVolume, "mm3", "voxel count x voxel volume (IBSI YEKZ)", 1, N::kVoxels, 1,
      [](const FeatureSources& s) { return V{s.volume->voxel_volume_mm3}; }},
+    {"volume_w_mm3", F::kVolume, "mm3", "sum of the voxels' coverage fractions x voxel volume (partial volume)", 1,
+     N::kSurface | N::kCoverage, 1, [](const FeatureSources& s) { return V{*s.covered_volume_mm3}; }},
     {"centroid_mm", F::kVolume, "mm", "mean of the voxel centres, LPS x y z", 3, N::kVoxels, 1,
      [](const FeatureSources& s) {
        const Vec3& c = s.volume->centroid_mm;
@@ -118,6 +121,22 @@ const std::array kCatalogue = std::to_array<FeatureDef>({
     {"centre_of_mass_shift_mm", F::kIntensity, "mm",
      "distance between the intensity-weighted and the plain centroid (IBSI KLMA); inside, same grid only", 1,
      kOwnGridInside, 1, [](const FeatureSources& s) { return V{*s.centre_of_mass_shift_mm}; }},
+
+    // Weighted by coverage fractions (weighted_intensity.h; 4 x 4 lines per voxel): inside only.
+    {"voxel_count_w", F::kIntensity, "voxels", "sum of the coverage fractions of the voxels inside the image", 1,
+     kWeighted, 1, [](const FeatureSources& s) { return V{s.weighted->voxel_count}; }},
+    {"mean_w", F::kIntensity, "image", "coverage-weighted mean: sum f x / sum f", 1, kWeighted, 1,
+     [](const FeatureSources& s) { return V{s.weighted->mean}; }},
+    {"variance_w", F::kIntensity, "image^2",
+     "coverage-weighted population variance: sum f (x - mean_w)^2 / sum f (frequency weights)", 1, kWeighted, 1,
+     [](const FeatureSources& s) { return V{s.weighted->variance}; }},
+    {"standard_deviation_w", F::kIntensity, "image", "square root of variance_w", 1, kWeighted, 1,
+     [](const FeatureSources& s) { return V{s.weighted->standard_deviation}; }},
+    {"root_mean_square_w", F::kIntensity, "image", "sqrt(sum f x^2 / sum f)", 1, kWeighted, 1,
+     [](const FeatureSources& s) { return V{s.weighted->root_mean_square}; }},
+    {"integrated_intensity_w", F::kIntensity, "image mm3",
+     "voxel volume x sum f x: IBSI 99N0 with partial volume (PET: total uptake)", 1, kWeighted, 1,
+     [](const FeatureSources& s) { return V{s.weighted->integrated_intensity}; }},
 });
 
 }  // namespace
@@ -148,6 +167,7 @@ std::string feature_needs(const FeatureDef& f) {
   if (f.needs.has(N::kSurface)) add("surface");
   if (f.needs.has(N::kConvexHull)) add("convex hull");
   if (f.needs.has(N::kDiameter3d)) add("3D diameter");
+  if (f.needs.has(N::kCoverage)) add("coverage fractions");
   if (f.needs.has(N::kImageOnGrid)) {
     add("image on the structure's grid");
   } else if (f.needs.has(N::kImage)) {
@@ -223,7 +243,7 @@ namespace {
 std::vector<std::string> names_where(bool intensity) {
   std::vector<std::string> names;
   for (const FeatureDef& f : kCatalogue)
-    if ((f.family == FeatureFamily::kIntensity) == intensity) names.emplace_back(f.name);
+    if ((f.family == FeatureFamily::kIntensity) == intensity && !f.needs.has(N::kCoverage)) names.emplace_back(f.name);
   return names;
 }
 
@@ -236,6 +256,16 @@ const std::vector<std::string>& shape_feature_names() {
 
 const std::vector<std::string>& intensity_feature_names() {
   static const std::vector<std::string> names = names_where(true);
+  return names;
+}
+
+const std::vector<std::string>& weighted_feature_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const FeatureDef& f : kCatalogue)
+      if (f.needs.has(N::kCoverage)) out.emplace_back(f.name);
+    return out;
+  }();
   return names;
 }
 

@@ -14,6 +14,8 @@
 #include "core/features/mask_surface_shape.h"
 #include "core/features/mask_surface_sweep.h"
 #include "core/features/surface_shape.h"
+#include "core/features/weighted_intensity.h"
+#include "core/voxelize/coverage_1d.h"
 
 namespace soiq {
 
@@ -44,7 +46,16 @@ class PartTimer {
 struct Ask {
   const StructureInput& input;
   const FeatureRequest& request;
-  bool wanted(std::string_view n) const { return request.names.empty() || contains(request.names, n); }
+  const CoverageVolume* coverage = nullptr;  // when a coverage-weighted feature is asked
+  // No names: every feature but the coverage-weighted ones, which are computed only when named.
+  bool wanted(std::string_view n) const {
+    if (request.names.empty()) return !is_weighted(n);
+    return contains(request.names, n);
+  }
+  static bool is_weighted(std::string_view n) {
+    const auto& w = weighted_feature_names();
+    return std::find(w.begin(), w.end(), n) != w.end();
+  }
   // Any feature of `family` wanted under `prefix` ("mask_" for the mask surface's beside a stored one).
   bool any_wanted(FeatureFamily family, std::string_view prefix = "") const {
     for (const FeatureDef& f : feature_catalogue())
@@ -73,8 +84,9 @@ void add_family(FeatureReport& report, FeatureFamily family, const FeatureSource
                 bool inside_on_own_grid = true) {
   for (const FeatureDef& f : feature_catalogue()) {
     if (f.family != family) continue;
-    if (!inside_on_own_grid && (f.needs.has(FeatureNeed::kImageOnGrid) || f.needs.has(FeatureNeed::kInsideRegion)))
-      continue;
+    if (!inside_on_own_grid && f.needs.has(FeatureNeed::kImageOnGrid)) continue;
+    if (region != "" && region != "inside" && f.needs.has(FeatureNeed::kInsideRegion)) continue;
+    if (f.needs.has(FeatureNeed::kCoverage) && (!ask.coverage || (region == "inside" && !sources.weighted))) continue;
     const std::string name = std::string(prefix) + std::string(f.name);
     if (ask.wanted(name)) report.features.push_back({name, f.value(sources), region, image});
   }
@@ -86,6 +98,11 @@ Status volume_section(const Ask& ask, FeatureReport& report) {
       VolumeShape v, timer.run("volume shape", [&] { return volume_shape(ask.input.volume, ask.request.covariance); }));
   FeatureSources sources;
   sources.volume = &v;
+  double covered_mm3 = 0;
+  if (ask.coverage) {
+    covered_mm3 = covered_voxels(*ask.coverage) * ask.input.volume.geometry.voxel_volume_mm3();
+    sources.covered_volume_mm3 = &covered_mm3;
+  }
   add_family(report, FeatureFamily::kVolume, sources, ask);
   return ok_status();
 }
@@ -159,6 +176,16 @@ Status region_section(const Ask& ask, const RegionSpec& spec, FeatureReport& rep
     }));
     FeatureSources sources;
     sources.intensity = &f;
+    std::optional<WeightedIntensity> weighted;
+    if (spec.kind == RegionKind::kInside && ask.coverage &&
+        ask.any_wanted_needing(FeatureFamily::kIntensity, FeatureNeed::kCoverage)) {
+      SOIQ_ASSIGN_OR_RETURN(weighted, timer.run("weighted intensity " + img.name, [&]() -> Result<WeightedIntensity> {
+        SOIQ_ASSIGN_OR_RETURN(const WeightedSamples w,
+                              resample_weighted(*img.image, *ask.coverage, request.interpolation));
+        return weighted_intensity(w.values, w.weights, ask.input.volume.geometry.voxel_volume_mm3());
+      }));
+      sources.weighted = &*weighted;
+    }
     const bool inside_on_own_grid =
         spec.kind == RegionKind::kInside && check_same_grid(img.image->geometry, ask.input.volume.geometry).ok();
     double shift = 0;
@@ -213,7 +240,30 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
   // threads > 1 they run at once on core's pool (run_tasks.h); the report never depends on the
   // thread count. A section stops at its first error, and the first failing section's error is
   // returned, as a sequential run would.
-  const Ask ask{input, request};
+  // Coverage fractions of the stored surface, once, for every weighted feature asked.
+  std::optional<CoverageVolume> coverage;
+  FeatureReport coverage_part;
+  const bool weighted_asked =
+      std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) { return Ask::is_weighted(n); });
+  if (weighted_asked) {
+    if (!has_surface) {
+      return invalid_argument(
+          "coverage-weighted features (" + std::string(weighted_feature_names().front()) +
+          ", ...) are weighted by the fractions of the structure's surface model, and this structure is a mask: ask "
+          "for the unweighted ones (mean, variance, ...)");
+    }
+    PartTimer timer(coverage_part);
+    CoverageOptions options;
+    options.lines_per_voxel = kWeightedFeatureLines;
+    options.fill_rule = request.fill_rule;
+    options.threads = request.threads;
+    options.max_voxels = input.volume.geometry.voxel_count();
+    options.name = "the structure's surface";
+    SOIQ_ASSIGN_OR_RETURN(coverage, timer.run("coverage fractions", [&] {
+      return coverage_1d(*input.surface, input.volume.geometry, options);
+    }));
+  }
+  const Ask ask{input, request, coverage ? &*coverage : nullptr};
   std::vector<std::function<Status(FeatureReport&)>> sections;
   std::vector<int> cost_rank;  // higher starts earlier, so the longest sections do not start last
   auto add = [&](int rank, std::function<Status(FeatureReport&)> section) {
@@ -246,6 +296,7 @@ Result<FeatureReport> structure_features(const StructureInput& input, const Feat
     status[i] = sections[i](parts[i]);
   });
   FeatureReport report;
+  report.timings_ms = coverage_part.timings_ms;
   for (size_t i = 0; i < sections.size(); ++i) {
     SOIQ_RETURN_IF_ERROR(status[i]);
     report.features.insert(report.features.end(), parts[i].features.begin(), parts[i].features.end());

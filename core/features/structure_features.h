@@ -7,7 +7,8 @@
 //   input.volume   the structure's voxels on its grid (a mask, or the 1D method's result for a
 //                  surface model). Required, non-empty.
 //   input.surface  the stored surface model (LPS mm, closed), when the structure has one.
-//   request.names  feature names (below); empty = every feature the inputs allow.
+//   request.names  feature names (below); empty = every feature the inputs allow, except the
+//                  coverage-weighted ones ("_w"), computed only when named.
 //   request.regions / images / interpolation: where and on which images intensity features are
 //                  taken (regions.h, resample.h); images must share the structure's frame of
 //                  reference (any grid).
@@ -27,6 +28,10 @@
 //            maximum, median, p10, p90, interquartile_range, range, mean_absolute_deviation,
 //            energy, root_mean_square, voxel_count (intensity_features.h); for the inside region
 //            also centre_of_mass_shift_mm (when the image shares the structure's grid).
+//   coverage-weighted, named only, with a stored surface: volume_w_mm3; for the inside region and
+//            each image voxel_count_w, mean_w, variance_w, standard_deviation_w,
+//            root_mean_square_w, integrated_intensity_w (weighted_intensity.h), weighted by the
+//            surface's coverage fractions on the grid (coverage_1d.h, 4 x 4 lines per voxel).
 // Errors
 //   INVALID_ARGUMENT  an unknown feature name (the message lists the known ones), intensity
 //                     features asked without an image, an empty structure, an image in another
@@ -45,6 +50,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/fill_rule.h"
 #include "core/base/image.h"
 #include "core/base/run_length_volume.h"
 #include "core/base/status.h"
@@ -72,6 +78,7 @@ struct FeatureRequest {
   std::vector<NamedImage> images;
   Interpolation interpolation = Interpolation::kNearest;
   CovarianceDivisor covariance = CovarianceDivisor::kN;  // PyRadiomics; kNMinus1 for IBSI
+  FillRule fill_rule = FillRule::kNonZero;               // of the surface, for the coverage-weighted features
   int threads = 1;  // >= 1: sections at once (Threads, above), and the regions' distance transform
 };
 

@@ -30,14 +30,14 @@ struct IndexMoments {
 
 // One sweep over the runs: the moments of the inside voxel centres' indices and their LPS bounding
 // box.
-struct Sweep {
+struct VolumeSweep {
   IndexMoments moments;
   Vec3 bbox_min_mm, bbox_max_mm;
 };
 
-Sweep sweep_runs(const RunLengthVolume& volume) {
+VolumeSweep sweep_runs(const RunLengthVolume& volume) {
   const ImageGeometry& g = volume.geometry;
-  Sweep out;
+  VolumeSweep out;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   out.bbox_min_mm = {kInf, kInf, kInf};
   out.bbox_max_mm = {-kInf, -kInf, -kInf};
@@ -91,7 +91,7 @@ Result<VolumeShape> volume_shape(const RunLengthVolume& volume, CovarianceDiviso
     return invalid_argument("volume has " + std::to_string(volume.line_start.size()) + " line starts but its grid " +
                             describe(g) + " needs " + std::to_string(lines + 1));
   }
-  const Sweep sweep = sweep_runs(volume);
+  const VolumeSweep sweep = sweep_runs(volume);
   const IndexMoments& m = sweep.moments;
   if (m.n == 0) return invalid_argument("volume on " + describe(g) + " has no inside voxel; shape is undefined");
 

@@ -79,7 +79,62 @@ double linear_value(const Image& image, const Vec3& c) {
   return sum;
 }
 
+// The image at region voxel (i, j, k), as resample samples it: false when the centre lies outside.
+bool sample(const Image& image, const IndexMap& map, bool same_grid, Interpolation interpolation, int64_t i, int64_t j,
+            int64_t k, double& value) {
+  const auto& dims = image.geometry.dims;
+  if (same_grid) {
+    value = double(image.voxels[size_t(i + dims[0] * (j + dims[1] * k))]);
+    return true;
+  }
+  const Vec3 c = map.offset + mul(map.m, Vec3{double(i), double(j), double(k)});
+  for (int a = 0; a < 3; ++a) {
+    if (!(c[size_t(a)] >= -0.5 - kBorderSlack && c[size_t(a)] <= double(dims[size_t(a)]) - 0.5 + kBorderSlack))
+      return false;
+  }
+  value = interpolation == Interpolation::kLinear ? linear_value(image, c) : nearest_value(image, c);
+  return true;
+}
+
 }  // namespace
+
+Result<WeightedSamples> resample_weighted(const Image& image, const CoverageVolume& coverage,
+                                          Interpolation interpolation) {
+  RunLengthVolume any = any_coverage(coverage);
+  SOIQ_RETURN_IF_ERROR(check_inputs(image, any));
+  WeightedSamples out;
+  out.region_voxels = voxel_count(any);
+  if (out.region_voxels == 0)
+    return invalid_argument("the structure covers no voxel of " + describe(coverage.geometry));
+  const bool same_grid = check_same_grid(image.geometry, coverage.geometry).ok();
+  const IndexMap map = index_map(coverage.geometry, image.geometry);
+  const int64_t ny = coverage.geometry.dims[1];
+  auto take = [&](int64_t i, int64_t l, double w) {
+    double v = 0;
+    if (!sample(image, map, same_grid, interpolation, i, l % ny, l / ny, v)) {
+      ++out.outside_image;
+    } else if (!std::isfinite(v)) {
+      ++out.non_finite;
+    } else {
+      out.values.push_back(v);
+      out.weights.push_back(w);
+    }
+  };
+  for (int64_t l = 0; l < coverage.line_count(); ++l) {
+    for (int64_t r = coverage.full_start[size_t(l)]; r < coverage.full_start[size_t(l) + 1]; ++r) {
+      for (int32_t i = coverage.full[size_t(r)].begin; i < coverage.full[size_t(r)].end; ++i) take(i, l, 1.0);
+    }
+    for (int64_t p = coverage.partial_start[size_t(l)]; p < coverage.partial_start[size_t(l) + 1]; ++p) {
+      take(coverage.partial[size_t(p)].i, l, double(coverage.partial[size_t(p)].fraction));
+    }
+  }
+  if (out.outside_image == out.region_voxels) {
+    return invalid_argument("none of the structure's " + std::to_string(out.region_voxels) +
+                            " covered voxels lies inside the image (image " + describe(image.geometry) +
+                            "): is the image in the same frame of reference as the structure?");
+  }
+  return out;
+}
 
 const char* interpolation_name(Interpolation interpolation) {
   return interpolation == Interpolation::kLinear ? "linear" : "nearest";

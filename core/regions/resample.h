@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/coverage_volume.h"
 #include "core/base/image.h"
 #include "core/base/run_length_volume.h"
 #include "core/base/status.h"
@@ -53,5 +54,17 @@ struct RegionSamples {
 };
 
 Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region, Interpolation interpolation);
+
+// The same sampling at every voxel with coverage (coverage_volume.h), each value beside its
+// voxel's fraction as its weight: per line, the wholly covered voxels (weight 1), then the partly
+// covered ones. Voxels outside the image or non-finite there are left out of both (and counted).
+// Errors as resample's, for the voxels with any coverage.
+struct WeightedSamples {
+  std::vector<double> values;
+  std::vector<double> weights;  // in (0, 1], one per value
+  int64_t region_voxels = 0, outside_image = 0, non_finite = 0;
+};
+Result<WeightedSamples> resample_weighted(const Image& image, const CoverageVolume& coverage,
+                                          Interpolation interpolation);
 
 }  // namespace soiq

@@ -84,6 +84,24 @@ ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGe
   return conversion_peak_bytes(surface_measure(mesh), geometry, robust);
 }
 
+namespace {
+
+// The voxels within a voxel diagonal of the surface (coverage_peak_bytes explains the bound).
+double touched_voxels(const SurfaceMeasure& surface, const ImageGeometry& geometry) {
+  const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
+  const double d = std::sqrt(sx * sx + sy * sy + sz * sz);
+  return (2 * d * surface.area_mm2 + M_PI * d * d * surface.perimeter_mm +
+          4.0 / 3.0 * M_PI * d * d * d * double(surface.triangles)) /
+         (sx * sy * sz);
+}
+
+}  // namespace
+
+int64_t covered_voxels_bound(const SurfaceMeasure& surface, const ImageGeometry& geometry) {
+  const double inside = std::pow(surface.area_mm2, 1.5) / (6 * std::sqrt(M_PI)) / geometry.voxel_volume_mm3();
+  return std::min(voxels(geometry), saturating(inside + touched_voxels(surface, geometry)));
+}
+
 ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry,
                                        int lines_per_voxel) {
   const double n = std::max(lines_per_voxel, 1);
@@ -92,11 +110,7 @@ ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const Imag
   const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
   e.crossings = saturating(n * n * surface.area_mm2 / (sy * sz) + n * 0.5 * surface.perimeter_mm / std::min(sy, sz) +
                            double(surface.triangles));
-  const double d = std::sqrt(sx * sx + sy * sy + sz * sz);
-  const double touched = (2 * d * surface.area_mm2 + M_PI * d * d * surface.perimeter_mm +
-                          4.0 / 3.0 * M_PI * d * d * d * double(surface.triangles)) /
-                         (sx * sy * sz);
-  const int64_t partial = std::min(voxels(geometry), saturating(touched));
+  const int64_t partial = std::min(voxels(geometry), saturating(touched_voxels(surface, geometry)));
   const int64_t slice_lines = mul_add(geometry.dims[1], int64_t(n * n), 1);
   // Two threads' slices hold disjoint crossings: 24 bytes found (doubled by growth), 16 grouped.
   int64_t bytes = mul_add(e.crossings, 64);

@@ -66,6 +66,10 @@ ConversionEstimate conversion_peak_bytes(const TriangleMesh& mesh, const ImageGe
 ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry,
                                        int lines_per_voxel);
 int64_t fraction_export_extra_bytes(const ImageGeometry& geometry, int bytes_per_voxel);
+// An upper bound of the voxels with any coverage: those inside (the enclosed volume is at most
+// A^(3/2) / (6 sqrt(pi)), the isoperimetric inequality, for any closed surface of area A) plus those
+// the surface touches (as coverage_peak_bytes counts them), never more than the grid.
+int64_t covered_voxels_bound(const SurfaceMeasure& surface, const ImageGeometry& geometry);
 
 // Extra bytes of a feature computation over a conversion estimated as `conversion`, with
 // `uncached_image_voxels` voxels of images still to decode and `regions` regions with intensities.

@@ -222,14 +222,20 @@ Result<FeatureEngine::Admission> FeatureEngine::reserve_for(const db::StructureR
                                                             const ImageGeometry& geometry, const WorkExtras& extras,
                                                             const SurfaceMeasure& measure,
                                                             const std::function<Status()>& stop) {
-  const ConversionEstimate conversion = extras.coverage_lines > 0
-                                            ? coverage_peak_bytes(measure, geometry, extras.coverage_lines)
-                                            : conversion_peak_bytes(measure, geometry, structure.robust);
+  // Coverage fractions alone (a fractional Convert) hold no runs; features hold both.
+  const bool coverage_only = extras.coverage_lines > 0 && !extras.features;
+  const ConversionEstimate conversion = coverage_only ? coverage_peak_bytes(measure, geometry, extras.coverage_lines)
+                                                      : conversion_peak_bytes(measure, geometry, structure.robust);
   int64_t bytes = conversion.bytes;
   auto add = [&](int64_t more) { bytes = more > INT64_MAX - bytes ? INT64_MAX : bytes + more; };
   if (extras.features) add(features_extra_bytes(conversion, geometry, extras.image_voxels, extras.regions));
   if (extras.mask_export) add(mask_export_extra_bytes(geometry));
   if (extras.fraction_bytes > 0) add(fraction_export_extra_bytes(geometry, extras.fraction_bytes));
+  if (extras.coverage_lines > 0 && extras.features) {
+    add(coverage_peak_bytes(measure, geometry, extras.coverage_lines).bytes);
+    // Each covered voxel's value and weight, per image sampled (one image at a time).
+    if (extras.image_voxels > 0) add(16 * covered_voxels_bound(measure, geometry));
+  }
   add(std::max<int64_t>(0, extras.other_bytes));
   const auto& d = geometry.dims;
   SOIQ_ASSIGN_OR_RETURN(
@@ -253,6 +259,11 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   extras.features = true;
   for (const db::SeriesRecord& s : plan.images) extras.image_voxels += s.geometry.voxel_count();
   extras.regions = plan.images.empty() ? 0 : int(ask.regions.size());
+  const bool weighted = std::any_of(ask.names.begin(), ask.names.end(), [](const std::string& n) {
+    const auto& w = weighted_feature_names();
+    return std::find(w.begin(), w.end(), n) != w.end();
+  });
+  if (weighted) extras.coverage_lines = kWeightedFeatureLines;
   SOIQ_ASSIGN_OR_RETURN(const Admission admitted, admit(plan.structure, plan.grid.geometry, extras, check_cancel));
   SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(admitted, plan.structure, plan.grid.geometry, ask.fill_rule));
   SOIQ_RETURN_IF_ERROR(check_cancel());
@@ -265,9 +276,11 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   request.names = ask.names;
   // Empty names ask structure_features for everything: ask for a cheap one instead.
   if (request.names.empty()) request.names.emplace_back(cheapest_feature().name);
-  const bool core_needs_mesh = std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
-    return find_feature(FeatureFamily::kSurface, n) != nullptr || mask_feature(n) != nullptr;
-  });
+  const bool core_needs_mesh =
+      weighted || std::any_of(request.names.begin(), request.names.end(), [](const std::string& n) {
+        return find_feature(FeatureFamily::kSurface, n) != nullptr || mask_feature(n) != nullptr;
+      });
+  request.fill_rule = ask.fill_rule;
 
   std::vector<std::shared_ptr<const Image>> images;
   request.regions = ask.regions;

@@ -39,7 +39,9 @@ TEST(FeatureCatalogue, EveryFeatureReadsItsRecordWithTheDeclaredNumberOfValues) 
   const Maximum2DDiameters d2;
   const IntensityFeatures intensity;
   const double shift = 0.5;
-  const FeatureSources sources{&volume, &surface, &d2, &intensity, &shift};
+  const WeightedIntensity weighted;
+  const double covered = 3;
+  const FeatureSources sources{&volume, &surface, &d2, &intensity, &shift, &weighted, &covered};
   for (const FeatureDef& f : feature_catalogue()) {
     ASSERT_NE(f.value, nullptr) << f.name;
     EXPECT_EQ(f.value(sources).size(), size_t(f.components)) << f.name;
@@ -57,7 +59,14 @@ TEST(FeatureCatalogue, NeedsFollowTheFamilyAndRefinementsComeWithWhatTheyRefine)
     const bool intensity = f.family == FeatureFamily::kIntensity;
     EXPECT_EQ(f.needs.has(FeatureNeed::kImage), intensity) << f.name;
     EXPECT_EQ(f.needs.has(FeatureNeed::kRegion), intensity) << f.name;
-    EXPECT_EQ(f.needs.has(FeatureNeed::kSurface), f.family == FeatureFamily::kSurface) << f.name;
+    // Coverage fractions come from the stored surface: the one refinement outside the surface family.
+    EXPECT_EQ(f.needs.has(FeatureNeed::kSurface),
+              f.family == FeatureFamily::kSurface || f.needs.has(FeatureNeed::kCoverage))
+        << f.name;
+    EXPECT_TRUE(!f.needs.has(FeatureNeed::kCoverage) || f.name.ends_with("_w") || f.name.ends_with("_w_mm3"))
+        << f.name << ": weighted, named so";
+    EXPECT_TRUE(!f.needs.has(FeatureNeed::kCoverage) || !intensity || f.needs.has(FeatureNeed::kInsideRegion))
+        << f.name << ": only the inside region has coverage weights";
     EXPECT_TRUE(!f.needs.has(FeatureNeed::kImageOnGrid) || f.needs.has(FeatureNeed::kImage)) << f.name;
     EXPECT_TRUE(!f.needs.has(FeatureNeed::kInsideRegion) || f.needs.has(FeatureNeed::kRegion)) << f.name;
   }
@@ -71,6 +80,8 @@ TEST(FeatureCatalogue, NeedsReadAsWords) {
   EXPECT_EQ(feature_needs(*find_intensity_feature("mean")), "image, region");
   EXPECT_EQ(feature_needs(*find_intensity_feature("centre_of_mass_shift_mm")),
             "image on the structure's grid, inside region");
+  EXPECT_EQ(feature_needs(*find_intensity_feature("mean_w")), "surface, coverage fractions, image, inside region");
+  EXPECT_EQ(feature_needs(*find_shape_feature("volume_w_mm3")), "surface, coverage fractions");
 }
 
 TEST(FeatureCatalogue, TheCheapestFeatureNeedsOnlyTheVoxels) {
@@ -173,10 +184,13 @@ TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsk
   ASSERT_TRUE(v.ok());
   const auto all = structure_features({v->volume, mesh}, FeatureRequest{});
   ASSERT_TRUE(all.ok()) << all.status().to_string();
-  // Shape features come in catalogue order, the stored surface's before the mask's.
+  // Shape features come in catalogue order, the stored surface's before the mask's; the
+  // coverage-weighted ones only when named.
   std::vector<std::string> expected;
   for (const FeatureDef& f : feature_catalogue())
-    if (f.family != FeatureFamily::kIntensity && f.family != FeatureFamily::kDiameter2d) expected.emplace_back(f.name);
+    if (f.family != FeatureFamily::kIntensity && f.family != FeatureFamily::kDiameter2d &&
+        !f.needs.has(FeatureNeed::kCoverage))
+      expected.emplace_back(f.name);
   for (const FeatureDef& f : feature_catalogue())
     if (f.family == FeatureFamily::kSurface) expected.push_back(std::string(kMaskPrefix) + std::string(f.name));
   for (const FeatureDef& f : feature_catalogue())
