@@ -80,9 +80,9 @@ inline const SegCode kTissueCode{"85756007", "SCT", "Tissue"};
 
 enum class SegAlgorithmType { kManual, kSemiautomatic, kAutomatic };
 
-struct SegSegment {
-  std::string label;       // Segment Label: the structure's name; non-empty
-  RunLengthVolume volume;  // on source.geometry
+// What a segment is, whatever its voxels (binary here, fractional in seg_export_fractional.h).
+struct SegSegmentDescription {
+  std::string label;  // Segment Label: the structure's name; non-empty
   SegCode category = kTissueCode;
   SegCode type = kTissueCode;
   // SEMIAUTOMATIC by default: an RT structure's outline is drawn by a person, which voxels it holds
@@ -90,6 +90,10 @@ struct SegSegment {
   SegAlgorithmType algorithm_type = SegAlgorithmType::kSemiautomatic;
   std::string algorithm_name = "soiq";                // required unless MANUAL
   std::optional<std::array<uint8_t, 3>> display_rgb;  // Recommended Display CIELab Value from sRGB
+};
+
+struct SegSegment : SegSegmentDescription {
+  RunLengthVolume volume;  // on source.geometry
 };
 
 struct SegWriteOptions {

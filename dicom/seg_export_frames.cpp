@@ -84,39 +84,45 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std
   return ok_status();
 }
 
-Status add_frames(DcmSegmentation& seg, const SegSource& src, const SegSegment& s, Uint16 segment_number,
-                  const std::vector<int64_t>& slices, BinaryFramePacker& pixels) {
+Status add_frame(DcmSegmentation& seg, const SegSource& src, const std::string& label, Uint16 segment_number, int64_t k,
+                 const char* derivation_text, std::vector<Uint8>& frame) {
   const ImageGeometry& g = src.geometry;
   const CodeSequenceMacro derivation("113076", "DCM", "Segmentation");
   const CodeSequenceMacro purpose("121322", "DCM", "Source image for image processing operation");
-  std::vector<Uint8> frame(static_cast<size_t>(g.dims[0] * g.dims[1]));
+  const Vec3 p = g.index_to_physical({0, 0, static_cast<double>(k)});
+  std::unique_ptr<FGPlanePosPatient> position(
+      FGPlanePosPatient::createMinimal(format_ds(p[0]).c_str(), format_ds(p[1]).c_str(), format_ds(p[2]).c_str()));
+  FGFrameContent content;
+  OFCondition c = content.setDimensionIndexValues(segment_number, 0);
+  if (c.good()) c = content.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1);
+  ImageSOPInstanceReferenceMacro ref;
+  if (c.good()) c = ref.setReferencedSOPClassUID(src.sop_class_uid.c_str(), OFFalse);
+  if (c.good())
+    c = ref.setReferencedSOPInstanceUID(src.slice_sop_instance_uids[static_cast<size_t>(k)].c_str(), OFFalse);
+  if (c.bad()) return seg_export_error("frame of slice " + std::to_string(k) + " of '" + label + "'", c);
+  OFVector<ImageSOPInstanceReferenceMacro> refs;
+  refs.push_back(ref);
+  std::unique_ptr<FGDerivationImage> derived(
+      FGDerivationImage::createMinimal(refs, derivation_text, derivation, purpose));
+  if (!position || !derived)
+    return internal_error("DICOM SEG: could not create the groups of slice " + std::to_string(k) + " of '" + label +
+                          "'");
+  OFVector<FGBase*> groups;
+  groups.push_back(position.get());
+  groups.push_back(&content);
+  groups.push_back(derived.get());
+  c = seg.addFrame(frame.data(), segment_number, groups);  // copies the groups
+  if (c.bad()) return seg_export_error("frame of slice " + std::to_string(k) + " of '" + label + "'", c);
+  return ok_status();
+}
+
+Status add_frames(DcmSegmentation& seg, const SegSource& src, const SegSegment& s, Uint16 segment_number,
+                  const std::vector<int64_t>& slices, BinaryFramePacker& pixels) {
+  std::vector<Uint8> frame(static_cast<size_t>(src.geometry.dims[0] * src.geometry.dims[1]));
   for (int64_t k : slices) {
-    const Vec3 p = g.index_to_physical({0, 0, static_cast<double>(k)});
-    std::unique_ptr<FGPlanePosPatient> position(
-        FGPlanePosPatient::createMinimal(format_ds(p[0]).c_str(), format_ds(p[1]).c_str(), format_ds(p[2]).c_str()));
-    FGFrameContent content;
-    OFCondition c = content.setDimensionIndexValues(segment_number, 0);
-    if (c.good()) c = content.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1);
-    ImageSOPInstanceReferenceMacro ref;
-    if (c.good()) c = ref.setReferencedSOPClassUID(src.sop_class_uid.c_str(), OFFalse);
-    if (c.good())
-      c = ref.setReferencedSOPInstanceUID(src.slice_sop_instance_uids[static_cast<size_t>(k)].c_str(), OFFalse);
-    if (c.bad()) return seg_export_error("frame of slice " + std::to_string(k) + " of '" + s.label + "'", c);
-    OFVector<ImageSOPInstanceReferenceMacro> refs;
-    refs.push_back(ref);
-    std::unique_ptr<FGDerivationImage> derived(
-        FGDerivationImage::createMinimal(refs, "voxels inside the structure", derivation, purpose));
-    if (!position || !derived)
-      return internal_error("DICOM SEG: could not create the groups of slice " + std::to_string(k) + " of '" + s.label +
-                            "'");
     fill_slice(s.volume, k, frame);
-    OFVector<FGBase*> groups;
-    groups.push_back(position.get());
-    groups.push_back(&content);
-    groups.push_back(derived.get());
-    pixels.add_frame(frame);                                 // first: addFrame may scribble on the buffer it packs
-    c = seg.addFrame(frame.data(), segment_number, groups);  // copies the groups (its pixels are replaced)
-    if (c.bad()) return seg_export_error("frame of slice " + std::to_string(k) + " of '" + s.label + "'", c);
+    pixels.add_frame(frame);  // first: addFrame may scribble on the buffer it packs (its pixels are replaced)
+    SOIQ_RETURN_IF_ERROR(add_frame(seg, src, s.label, segment_number, k, "voxels inside the structure", frame));
   }
   return ok_status();
 }

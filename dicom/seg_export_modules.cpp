@@ -79,7 +79,7 @@ Status set_identity(DcmSegmentation& seg, const SegSource& src, const SegWriteOp
   return ok_status();
 }
 
-Status add_segment(DcmSegmentation& seg, const SegSegment& s) {
+Status add_segment(DcmSegmentation& seg, const SegSegmentDescription& s) {
   DcmSegment* raw = nullptr;
   OFCondition c = DcmSegment::create(
       raw, s.label.c_str(),

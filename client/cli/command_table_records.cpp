@@ -81,12 +81,18 @@ std::vector<CommandSpec> record_commands() {
        run_import_command},
       {"export-seg",
        CommandGroup::kRemote,
-       {"export-seg ID... -o OUT.dcm [--description TEXT]"},
+       {"export-seg ID... -o OUT.dcm [--description TEXT] [--fractional [--oversample N]]"},
        "imported structures as one binary DICOM SEG on the image series they were drawn on",
        "Writes imported structures as one binary DICOM Segmentation on the image series they were drawn "
-       "on, one segment per structure.",
-       {output, {"--description", "TEXT", "", "the SEG series' description"}},
-       {"soiq export-seg 1 2 -o seg.dcm"},
+       "on, one segment per structure. With --fractional the SEG is FRACTIONAL (OCCUPANCY): each pixel the "
+       "fraction of its voxel inside the structure, 0-255 (0 wholly outside, 255 wholly inside), as 'soiq "
+       "convert --fractional' computes it; OHIF and dcmqi read only binary SEGs, highdicom and pydicom read "
+       "both.",
+       {output,
+        {"--description", "TEXT", "", "the SEG series' description"},
+        {"--fractional", "", "binary", "a FRACTIONAL SEG of coverage fractions (OCCUPANCY, 0-255)"},
+        {"--oversample", "N", "4", "with --fractional: N x N lines across each voxel (1-8; exact along rows)"}},
+       {"soiq export-seg 1 2 -o seg.dcm", "soiq export-seg 1 -o gtv_fractions.dcm --fractional"},
        run_export_seg_command},
       {"render",
        CommandGroup::kRemote,

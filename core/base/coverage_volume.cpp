@@ -94,11 +94,11 @@ Result<Mask> to_fraction_bytes(const CoverageVolume& v, int64_t max_voxels) {
   Mask bytes;
   bytes.geometry = v.geometry;
   bytes.voxels.assign(size_t(v.geometry.voxel_count()), 0);
-  coverage_volume_detail::fill_values(v, bytes.voxels.data(), uint8_t(255), [](float f) {
-    return uint8_t(std::clamp(std::lround(255.0 * double(f)), 1L, 254L));
-  });
+  coverage_volume_detail::fill_values(v, bytes.voxels.data(), uint8_t(255), fraction_byte);
   return bytes;
 }
+
+uint8_t fraction_byte(float f) { return uint8_t(std::clamp(std::lround(255.0 * double(f)), 1L, 254L)); }
 
 int64_t coverage_bytes(const CoverageVolume& v) {
   return int64_t((v.full_start.capacity() + v.partial_start.capacity()) * sizeof(int64_t) +

@@ -58,6 +58,10 @@ Result<Image> to_fraction_image(const CoverageVolume& v, int64_t max_voxels = kD
 // (a mask of uint8 0..255 rather than 0/1). RESOURCE_EXHAUSTED over `max_voxels`. O(voxels).
 Result<Mask> to_fraction_bytes(const CoverageVolume& v, int64_t max_voxels = kDefaultMaxVoxels);
 
+// The byte to_fraction_bytes gives a partly covered voxel of fraction f in (0, 1): round(255 f)
+// clamped to 1..254. O(1).
+uint8_t fraction_byte(float f);
+
 // Bytes the volume holds as allocated. O(1).
 int64_t coverage_bytes(const CoverageVolume& v);
 

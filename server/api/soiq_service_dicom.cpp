@@ -44,8 +44,9 @@ grpc::Status SoiqService::ExportSeg(grpc::ServerContext* ctx, const v1::ExportSe
   return handle(__func__, *ctx, [&]() -> Status {
     const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
     SOIQ_ASSIGN_OR_RETURN(const BudgetedSeg written, on_pool<BudgetedSeg>([&] {
-                            return structure_seg(store_, features_, budget_, ids, request->series_description(),
-                                                 nullptr, [&] { return stop_status(*ctx); });
+                            return structure_seg(
+                                store_, features_, budget_, ids, request->series_description(), nullptr,
+                                [&] { return stop_status(*ctx); }, request->oversample());
                           }));
     const dicom::WrittenSeg& seg = written.seg;
     SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));

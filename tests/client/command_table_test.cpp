@@ -31,7 +31,7 @@ const std::map<std::string, std::vector<std::string>> kParserSources = {
     {"upload", {"upload_command.cpp", "record_args.cpp"}},
     {"upload-image", {"upload_image_command.cpp", "record_args.cpp"}},
     {"import", {"import_command.cpp"}},
-    {"export-seg", {"export_seg_command.cpp"}},
+    {"export-seg", {"export_seg_command.cpp", "fraction_args.cpp"}},
     {"render", {"render_command.cpp"}},
     {"pacs echo", {"pacs_command.cpp"}},
     {"pacs find", {"pacs_command.cpp"}},

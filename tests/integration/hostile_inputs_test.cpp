@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -284,6 +285,33 @@ TEST_F(HostileInputs, CoverageFractionRequestsThatCannotBeAnsweredAreRefused) {
   EXPECT_GT(ok->nifti_bytes(), 0);
   const double mesh_volume = surface_area_volume(uv_sphere({0, 0, 0}, 10, 24, 48))->volume_mm3;
   EXPECT_NEAR(ok->volume_mm3(), mesh_volume, 0.01 * mesh_volume);
+}
+
+// A fractional SEG: oversample out of range before any lookup; an open surface has no fractions,
+// which is said before that it also has no DICOM images to reference.
+TEST_F(HostileInputs, FractionalSegRequestsThatCannotBeAnsweredAreRefused) {
+  TriangleMesh open = uv_sphere({0, 0, 0}, 10, 12, 24);
+  open.triangles.pop_back();
+  Result<v1::UploadSurfaceResponse> robust = upload(open, "P", "S", "open", "", "stl", true);
+  ASSERT_TRUE(robust.ok()) << robust.status().to_string();
+  auto ask = [&](int oversample) {
+    v1::ExportSegRequest e;
+    e.add_structure_ids(robust->structure().id());
+    e.set_oversample(oversample);
+    return client_->export_seg(e, dir_.file("refused.dcm"));
+  };
+  for (const int n : {9, -1}) {
+    const Result<v1::SegInfo> r = ask(n);
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << r.status().to_string();
+    EXPECT_NE(r.status().message().find("1 to 8 (a FRACTIONAL SEG of coverage fractions), not " + std::to_string(n)),
+              std::string::npos)
+        << r.status().message();
+  }
+  const Result<v1::SegInfo> r = ask(4);
+  EXPECT_EQ(r.status().code(), StatusCode::kFailedPrecondition) << r.status().to_string();
+  EXPECT_NE(r.status().message().find("robust mode"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("export a binary SEG"), std::string::npos) << r.status().message();
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("refused.dcm")));
 }
 
 TEST_F(HostileInputs, UnknownEnumValuesAreRefused) {
