@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/clock.h"
+#include "bench/coverage_accuracy.h"
 #include "bench/cpu_affinity.h"
 #include "core/geometry/mesh_defects.h"
 #include "core/io/read_image.h"
@@ -28,7 +29,7 @@ constexpr int kLines[] = {1, 2, 4, 8};
 
 int run_coverage_bench(const CliArgs& args) {
   if (!args.has("--models")) {
-    std::fprintf(stderr, "usage: soiq-bench coverage --models DIR [--runs N] [--pin CPU]\n");
+    std::fprintf(stderr, "usage: soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]\n");
     return 2;
   }
   const Result<int> runs = args.get_int("--runs", 9);
@@ -79,6 +80,18 @@ int run_coverage_bench(const CliArgs& args) {
   }
   std::printf("\nLeast of %d interleaved rounds, one thread%s.\n", *runs,
               affinity->pinned() ? " pinned to one CPU" : " (unpinned)");
+  affinity.reset();
+  std::printf("\nSum of fractions x voxel volume against the exact volume of the polyhedron:\n\n");
+  if (Status s = print_volume_accuracy(); !s.ok()) return fail(s);
+  std::printf(
+      "\nA 1 cm lesion (radius 5 mm) at 64 sub-voxel positions, the image its uptake field sampled at the "
+      "voxel centres: error of the mean uptake against the field's exact mean over the lesion (mean and "
+      "standard deviation over the positions), and mean |error| of the volume against the mesh's:\n\n");
+  if (Status s = print_lesion_accuracy(); !s.ok()) return fail(s);
+  if (args.has("--sts")) {
+    std::printf("\nThe STS tumours on their PET series:\n\n");
+    if (Status s = print_sts_pet_uptake(args.get("--sts", "")); !s.ok()) return fail(s);
+  }
   return 0;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// soiq-bench coverage --models DIR [--runs N] [--pin CPU]: the cost of coverage fractions
+// soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]: the cost of coverage fractions
 // (core/voxelize/coverage_1d.h) beside the plain 1D method on the simulated models SM1, SM6 and
 // SM11 (soiq-bench simgen), one thread, runs interleaved so that both see the same machine; each
 // method to its own sparse output (runs, or runs plus partly covered voxels), as the service keeps

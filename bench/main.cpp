@@ -6,7 +6,7 @@
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench cpu-probe [--runs N]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
-//   soiq-bench coverage --models DIR [--runs N] [--pin CPU]
+//   soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
 //   soiq-bench codec [--runs N] [--label LABEL_IMAGE] [--image IMAGE]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
@@ -49,7 +49,7 @@ int usage() {
       "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
       "       soiq-bench cpu-probe [--runs N]\n"
       "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
-      "       soiq-bench coverage --models DIR [--runs N] [--pin CPU]\n"
+      "       soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]\n"
       "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
       "       soiq-bench replicas [--small] [--soiqd PATH] [--workers N] [--seconds S] [--patients N] [--matched N]\n"
       "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"

@@ -75,6 +75,12 @@ Result<QueryFeature> parse_ref(const v1::FeatureRef& r, const char* field) {
     Result<RegionSpec> region = parse_region(r.region().empty() ? "inside" : r.region());
     if (!region.ok()) return region.status().in_field(field);
     p.region = *region;
+    // Coverage weights and the centre of mass shift exist for the structure itself only.
+    if (const FeatureDef* def = find_intensity_feature(p.name);
+        def && def->needs.has(FeatureNeed::kInsideRegion) && region->kind != RegionKind::kInside) {
+      return invalid_argument("'" + p.name + "' is given for the inside region only, not " + region_name(*region))
+          .in_field(field);
+    }
     p.image = dicom_modality(r.image());
   } else if (!r.image().empty() || !r.region().empty()) {
     return invalid_argument("shape feature '" + p.name + "' takes no region or image").in_field(field);

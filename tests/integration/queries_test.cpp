@@ -233,6 +233,72 @@ TEST_F(QueryTest, AQueryEqualsABruteForceEvaluationColdAndWarm) {
   }
 }
 
+// The coverage-weighted features on soiqd equal the offline ones bit for bit, come from the cache
+// the second time, and a query filters and orders by them; a shell has no weights (only inside).
+TEST_F(QueryTest, CoverageWeightedFeaturesAreComputedCachedAndQueried) {
+  const std::vector<std::string> names = {"volume_w_mm3", "mean_w", "variance_w", "integrated_intensity_w"};
+  const CohortStructure& s = cohort_.structures[7];
+  v1::FeaturesRequest req;
+  req.set_structure_id(s.id);
+  req.mutable_grid()->set_spacing_mm(1);
+  req.mutable_grid()->set_margin_voxels(kMargin);
+  for (const std::string& n : names) req.add_features(n);
+  req.add_regions("inside");
+  req.add_images("MR");
+  Result<v1::FeaturesResponse> first = client_->compute_features(req);
+  ASSERT_TRUE(first.ok()) << first.status().to_string();
+  const auto expected = offline_features(s, s.image_path, names, {"inside"});
+  ASSERT_EQ(first->features_size(), 4);
+  for (const v1::FeatureValue& f : first->features()) {
+    const std::string key = f.name() + (f.region().empty() ? "" : "[" + f.region() + "]");
+    ASSERT_TRUE(expected.count(key)) << key;
+    EXPECT_DOUBLE_EQ(f.value(0), expected.at(key)) << key;
+  }
+  Result<v1::FeaturesResponse> second = client_->compute_features(req);
+  ASSERT_TRUE(second.ok());
+  EXPECT_TRUE(second->from_cache());
+
+  // Hippocampi whose weighted mean inside exceeds the median of all of them, ordered by it.
+  std::vector<std::pair<double, int64_t>> means;
+  for (const CohortStructure& c : cohort_.structures) {
+    if (c.name != "hippocampus") continue;
+    means.push_back({offline_features(c, c.image_path, {"mean_w"}, {"inside"}).at("mean_w[inside]"), c.id});
+  }
+  std::sort(means.rbegin(), means.rend());
+  const double cut = means[means.size() / 2].first;
+  v1::QueryRequest q;
+  q.mutable_stage1()->set_structure_name_glob("hippo*");
+  auto* w = q.add_where();
+  *w->mutable_feature() = ref("mean_w", "inside", "MR");
+  w->set_op(v1::GT);
+  w->set_value(cut);
+  *q.mutable_order_by() = ref("mean_w", "inside", "MR");
+  q.set_descending(true);
+  q.mutable_grid()->set_spacing_mm(1);
+  q.mutable_grid()->set_margin_voxels(kMargin);
+  std::vector<v1::QueryRow> rows;
+  client::QueryHandlers h;
+  h.on_row = [&](const v1::QueryRow& r) {
+    rows.push_back(r);
+    return true;
+  };
+  Result<v1::QuerySummary> summary = client_->query(q, h);
+  ASSERT_TRUE(summary.ok()) << summary.status().to_string();
+  EXPECT_EQ(summary->failed(), 0) << (summary->failures_size() ? summary->failures(0) : "");
+  ASSERT_EQ(rows.size(), means.size() / 2);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].structure().id(), means[i].second) << i;
+    EXPECT_DOUBLE_EQ(rows[i].values(0).value(0), means[i].first) << i;
+  }
+
+  // In a shell the weighted features have no meaning: refused, naming the region.
+  v1::QueryRequest shell = q;
+  *shell.mutable_where(0)->mutable_feature() = ref("mean_w", "shell:3", "MR");
+  Result<v1::QuerySummary> refused = client_->query(shell, {});
+  EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument) << refused.status().to_string();
+  EXPECT_NE(refused.status().message().find("inside"), std::string::npos) << refused.status().message();
+}
+
 TEST_F(QueryTest, RowsStreamWithoutOrderAndALimitStopsEarly) {
   v1::QueryRequest q;
   q.mutable_stage1()->set_laterality("L");
