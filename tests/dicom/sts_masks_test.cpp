@@ -13,7 +13,7 @@
 #include "dicom_test_support.h"
 
 namespace soiq::dicom {
-namespace {
+namespace sts_masks_test {
 
 struct StsCase {
   std::string patient, modality;  // modality folder: CT, MR_T1, PET
@@ -75,5 +75,5 @@ std::vector<StsCase> cases() {
 INSTANTIATE_TEST_SUITE_P(Sts, StsMasks, ::testing::ValuesIn(cases()),
                          [](const auto& info) { return info.param.patient + "_" + info.param.modality; });
 
-}  // namespace
+}  // namespace sts_masks_test
 }  // namespace soiq::dicom
