@@ -96,7 +96,10 @@ void cover_line(std::vector<CoverageEvent>& events, int64_t nx, int samples, int
   auto sweep = [&](double x0, double x1, int count) {
     if (!(x1 > x0)) return;
     const int64_t v0 = std::min<int64_t>(int64_t(std::floor(x0 + 0.5)), nx - 1);
-    const int64_t v1 = std::min<int64_t>(int64_t(std::ceil(x1 + 0.5)) - 1, nx - 1);
+    // x + 1/2 rounds: a piece a few ulps long just below a voxel boundary can see its start rounded
+    // up into the next voxel and its end not. It then belongs to v0 alone: the sweep must never go
+    // back to a voxel it has left (that voxel would be written twice).
+    const int64_t v1 = std::max(v0, std::min<int64_t>(int64_t(std::ceil(x1 + 0.5)) - 1, nx - 1));
     if (v0 == v1) {
       row.add_piece(v0, x1 - x0, count);
       return;

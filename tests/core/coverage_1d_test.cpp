@@ -76,12 +76,37 @@ double steiner_bound(const TriangleMesh& m, double area_mm2, const ImageGeometry
   return 2 * r * area_mm2 + 4 * M_PI * radius * r * r + 4.0 / 3.0 * M_PI * r * r * r;
 }
 
+// The volume's own contract: per line, full runs sorted and apart, partial voxels strictly
+// increasing, inside the row, never inside a full run, fractions in (0, 1); so the dense image has
+// exactly as many covered voxels as the lists.
+void expect_canonical(const CoverageVolume& v) {
+  const int64_t nx = v.geometry.dims[0];
+  for (int64_t l = 0; l < v.line_count(); ++l) {
+    std::vector<bool> full(size_t(nx), false);
+    int32_t last_end = -1;
+    for (int64_t r = v.full_start[size_t(l)]; r < v.full_start[size_t(l) + 1]; ++r) {
+      const Run& run = v.full[size_t(r)];
+      ASSERT_TRUE(run.begin > last_end && run.begin < run.end && run.end <= nx) << "line " << l;
+      last_end = run.end;
+      for (int32_t i = run.begin; i < run.end; ++i) full[size_t(i)] = true;
+    }
+    int32_t last = -1;
+    for (int64_t p = v.partial_start[size_t(l)]; p < v.partial_start[size_t(l) + 1]; ++p) {
+      const PartialVoxel& pv = v.partial[size_t(p)];
+      ASSERT_TRUE(pv.i > last && pv.i < nx && !full[size_t(pv.i)]) << "line " << l << " voxel " << pv.i;
+      ASSERT_TRUE(pv.fraction > 0 && pv.fraction < 1) << pv.fraction;
+      last = pv.i;
+    }
+  }
+}
+
 CoverageVolume must_cover(const TriangleMesh& m, const ImageGeometry& g, int n, int threads = 1) {
   CoverageOptions o;
   o.lines_per_voxel = n;
   o.threads = threads;
   auto r = coverage_1d(m, g, o);
   EXPECT_TRUE(r.ok()) << r.status().to_string();
+  if (r.ok()) expect_canonical(*r);
   return r.ok() ? std::move(r).value() : CoverageVolume{};
 }
 
@@ -310,6 +335,22 @@ TEST(CoverLine, FractionsOfHandMadeIntervals) {
   EXPECT_FLOAT_EQ(partial[1].fraction, (1 + 1 + 0.5f + 0.5f) / 4);
   EXPECT_EQ(partial[2].i, 2);
   EXPECT_FLOAT_EQ(partial[2].fraction, 0.5f);
+}
+
+TEST(CoverLine, APieceAFewUlpsBelowAVoxelBoundaryNeverSendsTheSweepBack) {
+  // x = 2.5 - 2^-51: x + 1/2 rounds up to 3, so the piece [x, 2.5) seemed to start in voxel 3 and end
+  // in voxel 2, and voxel 2 was written twice. Two lines: [1.7, x) + [x, 2.5), and [1.7, 3.2).
+  const double x = std::nextafter(2.5, 0.0);
+  std::vector<CoverageEvent> events = {{1.7, 1}, {x, -1}, {x, 1}, {2.5, -1}, {1.7, 1}, {3.2, -1}};
+  std::vector<soiq::Run> full;
+  std::vector<PartialVoxel> partial;
+  cover_line(events, 6, 2, 0, full, partial);
+  EXPECT_TRUE(full.empty());
+  ASSERT_EQ(partial.size(), 2u);
+  EXPECT_EQ(partial[0].i, 2);
+  EXPECT_NEAR(partial[0].fraction, 0.8, 1e-6);
+  EXPECT_EQ(partial[1].i, 3);
+  EXPECT_NEAR(partial[1].fraction, 0.35, 1e-6);
 }
 
 TEST(CoverLine, WhollyCoveredVoxelsAreRunsAndTheRowIsClamped) {
