@@ -12,10 +12,11 @@
 //          surface = core/io marching_cubes of that volume (cropped to its bounding box, which
 //          does not change the surface), in LPS mm; contours_outside_grid counts contours on
 //          planes the grid does not have. ROIs without CLOSED_PLANAR contours (none at all, or
-//          only POINT and other types) are listed in `skipped` with the reason, not converted.
-// Errors   INVALID_ARGUMENT from fill_contours (a contour not on a slice plane of `grid`: the
-//          message names the ROI and contour) or an invalid grid; RESOURCE_EXHAUSTED over
-//          max_voxels.
+//          only POINT and other types) are listed in `skipped` with the reason, not converted; so
+//          is an ROI a contour rule of fill_contours refuses (a contour not planar, or too far
+//          from every image plane: the reason names the contour and the distance in mm), and only
+//          that ROI.
+// Errors   INVALID_ARGUMENT for an invalid grid; RESOURCE_EXHAUSTED over max_voxels.
 // Cost     O(points + crossings + lines) per ROI plus marching cubes over its bounding box.
 
 #include <cstdint>
@@ -35,8 +36,9 @@ struct ImportedStructure {
   std::string name;
   int64_t contour_count = 0;
   int64_t contours_outside_grid = 0;
-  RunLengthVolume volume;  // on the referenced series' grid
-  TriangleMesh surface;    // LPS mm, closed, outward; empty when the volume is
+  int64_t contours_superseded = 0;  // fill_contours: another plane's contours were nearer their slice
+  RunLengthVolume volume;           // on the referenced series' grid
+  TriangleMesh surface;             // LPS mm, closed, outward; empty when the volume is
 };
 
 struct SkippedRoi {

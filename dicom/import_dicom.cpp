@@ -74,6 +74,7 @@ Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t 
       auto set = import_rt_struct(inst, out, max_voxels, known);
       if (!set.ok()) {
         out.problems.push_back({inst.path, set.status()});
+        out.failed_structure_sets.push_back(inst.path);
         continue;
       }
       out.structure_sets.push_back(std::move(set).value());
@@ -85,6 +86,7 @@ Result<DicomImport> import_dicom(const std::vector<std::string>& paths, int64_t 
       auto seg = import_seg(inst, out.scan, out.images, known);
       if (!seg.ok()) {
         out.problems.push_back({inst.path, seg.status()});
+        out.failed_structure_sets.push_back(inst.path);
         continue;
       }
       out.structure_sets.push_back(std::move(seg).value());

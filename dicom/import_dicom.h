@@ -61,6 +61,8 @@ struct DicomImport {
   std::vector<SeriesImage> images;
   std::vector<ImportedStructureSet> structure_sets;
   std::vector<FileProblem> problems;  // path: the file or, for a whole series, its uid
+  // RT Structure Sets and SEGs that failed as a whole (their problem is in `problems`).
+  std::vector<std::string> failed_structure_sets;
 
   const SeriesImage* find_image(const std::string& series_uid) const;  // nullptr when absent
 };

@@ -66,6 +66,14 @@ Status import(const ImportArgs& a, const client::ClientOptions& remote) {
   }
   if (!r.ok()) return r.status();
   print_import_report(*r, a.format);
+  // The series and the other structures are stored; but a structure set given to be imported that
+  // gave nothing is a failure a script must see.
+  if (r->structure_sets_without_structures_size() > 0) {
+    const int n = r->structure_sets_without_structures_size();
+    return failed_precondition(std::to_string(n) + (n == 1 ? " structure set" : " structure sets") +
+                               " stored no structure (" + r->structure_sets_without_structures(0) +
+                               (n > 1 ? ", ..." : "") + "): see the problems above");
+  }
   if (a.wait) return wait_option(c);
   return ok_status();
 }

@@ -1,7 +1,9 @@
 #include "core/voxelize/fill_contours.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "core/geometry/exact_predicates.h"
 #include "core/voxelize/line_fill.h"
@@ -44,48 +46,99 @@ void edge_crossings(const Vec3& p, const Vec3& q, int64_t k, int64_t nx, int64_t
 
 }  // namespace
 
+namespace fill_contours_detail {
+
+// A contour in the grid's index space, placed on its slice.
+struct PlacedContour {
+  std::vector<Vec3> u;   // the points in continuous index space
+  int64_t slice = 0;     // the nearest image plane
+  double offset_mm = 0;  // signed distance of the contour's plane from it along the slice normal
+};
+
+std::string mm(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g mm", x);
+  return buf;
+}
+
+std::string share(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+}  // namespace fill_contours_detail
+
 Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, const ImageGeometry& geometry,
-                                  FillRule rule, double slice_tolerance_voxels, int64_t max_voxels) {
+                                  FillRule rule, double slice_tolerance_voxels, int64_t max_voxels,
+                                  double planarity_tolerance_mm) {
+  using fill_contours_detail::mm;
+  using fill_contours_detail::PlacedContour;
   SOIQ_RETURN_IF_ERROR(validate_geometry(geometry));
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_voxels));
   ContourFill out;
-  std::vector<LineCrossingAt> crossings;
-  std::vector<Vec3> u;
+  const double sz = geometry.spacing_mm[2];
+  std::vector<PlacedContour> placed;
   for (size_t c = 0; c < contours.size(); ++c) {
     const auto& points = contours[c].points_mm;
     if (points.size() < 3) {
       return invalid_argument("contour " + std::to_string(c) + " has " + std::to_string(points.size()) +
                               " points; a closed planar contour needs at least 3");
     }
-    u.resize(points.size());
-    double k_sum = 0;
+    PlacedContour pc;
+    pc.u.resize(points.size());
+    std::vector<double> ks(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
       const Vec3& p = points[i];
       if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
         return invalid_argument("contour " + std::to_string(c) + " has NaN or infinite coordinates");
       }
-      u[i] = geometry.physical_to_index(p);
-      k_sum += u[i][2];
+      pc.u[i] = geometry.physical_to_index(p);
+      ks[i] = pc.u[i][2];
     }
-    const double k_mean = k_sum / double(points.size());
+    // The contour's plane: the median of its points along the slice normal, so that a point that
+    // strays is measured from where the others lie. Every point must lie on it (a contour is
+    // planar); the whole contour then goes to the nearest image plane.
+    std::nth_element(ks.begin(), ks.begin() + ptrdiff_t(ks.size() / 2), ks.end());
+    const double k_mean = ks[ks.size() / 2];
+    double worst = 0;
+    for (const Vec3& v : pc.u) worst = std::max(worst, std::abs(v[2] - k_mean) * sz);
+    if (worst > planarity_tolerance_mm) {
+      return invalid_argument("contour " + std::to_string(c) + " is not planar: a point lies " + mm(worst) +
+                              " from the contour's plane along the slice normal (tolerance " +
+                              mm(planarity_tolerance_mm) + ")");
+    }
     const double k_round = std::round(k_mean);
-    for (const Vec3& v : u) {
-      if (std::abs(v[2] - k_round) > slice_tolerance_voxels) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf,
-                      "contour %zu does not lie in a slice plane of the grid: a point is %.3f voxels from slice "
-                      "%.0f (tolerance %.3f); is it the right reference series?",
-                      c, v[2] - k_round, k_round, slice_tolerance_voxels);
-        return invalid_argument(buf);
-      }
+    pc.offset_mm = (k_mean - k_round) * sz;
+    if (std::abs(k_mean - k_round) > slice_tolerance_voxels) {
+      return invalid_argument("contour " + std::to_string(c) + " lies " + mm(std::abs(pc.offset_mm)) +
+                              " from the nearest image plane (slice " + std::to_string(int64_t(k_round)) +
+                              "), more than " + mm(slice_tolerance_voxels * sz) + " (" +
+                              fill_contours_detail::share(slice_tolerance_voxels) +
+                              " of the slice spacing): is it the right reference series?");
     }
     if (k_round < 0 || k_round >= double(geometry.dims[2])) {
       ++out.contours_outside_grid;
       continue;
     }
-    const int64_t k = int64_t(k_round);
-    for (size_t i = 0; i < u.size(); ++i)
-      edge_crossings(u[i], u[(i + 1) % u.size()], k, geometry.dims[0], geometry.dims[1], crossings);
+    pc.slice = int64_t(k_round);
+    placed.push_back(std::move(pc));
+  }
+  // Contours drawn on a finer series than the referenced one reach one image plane from several
+  // planes of their own: XOR-ing near copies of one outline would cut the structure to slivers, so
+  // a slice keeps the contours of the plane nearest to it (planes apart by more than the planarity
+  // tolerance are different planes).
+  std::vector<double> nearest(size_t(geometry.dims[2]), HUGE_VAL);
+  for (const PlacedContour& pc : placed)
+    nearest[size_t(pc.slice)] = std::min(nearest[size_t(pc.slice)], std::abs(pc.offset_mm));
+  std::vector<LineCrossingAt> crossings;
+  for (const PlacedContour& pc : placed) {
+    if (std::abs(pc.offset_mm) > nearest[size_t(pc.slice)] + planarity_tolerance_mm) {
+      ++out.contours_superseded;
+      continue;
+    }
+    for (size_t i = 0; i < pc.u.size(); ++i)
+      edge_crossings(pc.u[i], pc.u[(i + 1) % pc.u.size()], pc.slice, geometry.dims[0], geometry.dims[1], crossings);
   }
   LineRuns lines = fill_lines(crossings, geometry.dims[1] * geometry.dims[2], geometry.dims[0], rule, false);
   out.volume.geometry = geometry;

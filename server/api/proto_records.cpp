@@ -87,6 +87,7 @@ v1::ImportDicomResponse to_proto(const DicomImportResult& r) {
     q->set_code(status_code_name(p.code));
     q->set_message(p.message);
   }
+  for (const std::string& path : r.structure_sets_without_structures) out.add_structure_sets_without_structures(path);
   out.set_files_received(r.files_received);
   out.set_dicom_files_read(r.dicom_files_read);
   out.set_milliseconds(r.milliseconds);

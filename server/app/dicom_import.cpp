@@ -144,9 +144,11 @@ Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const
     s.replace_other_content = replace;
     out.batch.series.push_back(std::move(s));
   }
+  for (const std::string& failed : in.failed_structure_sets) r.structure_sets_without_structures.push_back(rel(failed));
   for (const dicom::ImportedStructureSet& set : in.structure_sets) {
     const std::string path = rel(set.path);
     const std::string what = set.segmentation ? "segment" : "ROI";
+    const size_t stored_before = out.batch.structures.size();
     for (const dicom::SkippedRoi& roi : set.converted.skipped) {
       add_problem(r, path, StatusCode::kInvalidArgument,
                   what + " '" + roi.name + "' (number " + std::to_string(roi.roi_number) + ") skipped: " + roi.reason);
@@ -180,7 +182,15 @@ Result<Planned> plan(db::RecordStore& store, const dicom::DicomImport& in, const
       out.batch.structures.push_back(std::move(s));
       out.referenced_series.push_back(set.referenced_series_uid);
       out.voxel_counts.push_back(voxel_count(roi.volume));
+      if (roi.contours_superseded > 0) {
+        add_problem(r, path, StatusCode::kInvalidArgument,
+                    what + " '" + name + "': " + std::to_string(roi.contours_superseded) +
+                        " contours left out, another plane's contours being nearer their image slice (drawn on a "
+                        "finer series than " +
+                        set.referenced_series_uid + "?)");
+      }
     }
+    if (out.batch.structures.size() == stored_before) r.structure_sets_without_structures.push_back(path);
   }
   return out;
 }

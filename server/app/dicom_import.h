@@ -71,6 +71,9 @@ struct DicomImportResult {
   std::vector<db::SeriesRecord> series;
   std::vector<ImportedStructure> structures;
   std::vector<ImportProblem> problems;
+  // RT Structure Sets and SEGs sent from which no structure was stored (every ROI refused or
+  // skipped, or the file refused whole): the import did not do what it was asked.
+  std::vector<std::string> structure_sets_without_structures;
   int64_t files_received = 0;
   int64_t dicom_files_read = 0;
   double milliseconds = 0;

@@ -59,11 +59,51 @@ TEST(FillContours, ContoursOnTheSameSliceCombineByXor) {
   EXPECT_EQ(count({square(0.5, 0.5, 4.5, 4.5, 1), square(2.5, 2.5, 6.5, 6.5, 1)}, FillRule::kNonZero), 16 + 16 - 4);
 }
 
-TEST(FillContours, ContourBetweenSlicesIsRefused) {
+TEST(FillContours, ContourMidwayBetweenSlicesIsRefusedWithItsDistance) {
   auto r = fill_contours({square(0.5, 0.5, 4.5, 4.5, 2.5)}, grid(8));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(r.status().message().find("slice plane"), std::string::npos);
+  EXPECT_NE(r.status().message().find(
+                "contour 0 lies 0.5 mm from the nearest image plane (slice 3), more than 0.45 mm (0.45 of"),
+            std::string::npos)
+      << r.status().message();
+}
+
+TEST(FillContours, ContourOffItsPlaneGoesToTheNearestPlane) {
+  // 0.3 of the 3 mm spacing above slice 1 (z = 3): filled on slice 1, as the contour at z = 3 is.
+  ImageGeometry g = grid(8);
+  g.spacing_mm = {1, 1, 3};
+  auto off = fill_contours({square(0.5, 0.5, 4.5, 4.5, 3.9)}, g);
+  auto on = fill_contours({square(0.5, 0.5, 4.5, 4.5, 3.0)}, g);
+  ASSERT_TRUE(off.ok() && on.ok()) << off.status().to_string();
+  EXPECT_EQ(off->volume.runs, on->volume.runs);
+  EXPECT_EQ(voxel_count(off->volume), 16);
+}
+
+TEST(FillContours, ANonPlanarContourIsRefusedWithItsLargestDistanceInMm) {
+  // One corner 2 mm above the others: measured from the plane the other points lie on.
+  PlanarContour c = square(0.5, 0.5, 4.5, 4.5, 3);
+  c.points_mm.push_back({2.5, 5.5, 3});
+  c.points_mm[2][2] = 5;
+  auto r = fill_contours({c}, grid(8));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("contour 0 is not planar: a point lies 2 mm from the contour's plane"),
+            std::string::npos)
+      << r.status().message();
+  c.points_mm[2][2] = 3.05;  // within the tolerance (0.1 mm)
+  EXPECT_TRUE(fill_contours({c}, grid(8)).ok());
+}
+
+TEST(FillContours, ContoursOfAFinerSeriesKeepTheNearestPlanePerSlice) {
+  // Outlines drawn every 1 mm on a 3 mm series: slice 1 (z = 3) is reached by those at z = 2, 3
+  // and 4; it keeps the one at z = 3 (XOR of the three would leave one copy, of the wrong size).
+  ImageGeometry g = grid(8);
+  g.spacing_mm = {1, 1, 3};
+  auto r =
+      fill_contours({square(0.5, 0.5, 2.5, 2.5, 2), square(0.5, 0.5, 4.5, 4.5, 3), square(0.5, 0.5, 6.5, 6.5, 4)}, g);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_EQ(voxel_count(r->volume), 16);
+  EXPECT_EQ(r->contours_superseded, 2);
 }
 
 TEST(FillContours, ContourOutsideTheGridIsCountedNotFilled) {

@@ -81,11 +81,24 @@ TEST(ConvertRtStruct, ObliqueSeriesGivesTheSameVoxelsAsAnAxisAlignedOne) {
   EXPECT_EQ(voxel_count(r->structures[0].volume), 64 - 9);
 }
 
-TEST(ConvertRtStruct, ContourBetweenSlicesIsAnErrorNamingTheRoi) {
+TEST(ConvertRtStruct, AContourMidwayBetweenSlicesLeavesOutItsRoiOnlyNamingTheContourAndDistance) {
   auto r = write_and_convert({square(grid(), 0.5, 8.5, 1.5)}, grid());
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(r.status().message().find("ROI 7 'ring'"), std::string::npos) << r.status().message();
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_TRUE(r->structures.empty());
+  ASSERT_EQ(r->skipped.size(), 1u);
+  EXPECT_EQ(r->skipped[0].roi_number, 7);
+  EXPECT_EQ(r->skipped[0].name, "ring");
+  EXPECT_NE(r->skipped[0].reason.find("refused: contour 0 lies 0.5 mm from the nearest image plane"), std::string::npos)
+      << r->skipped[0].reason;
+}
+
+TEST(ConvertRtStruct, AContourACoupleOfTenthsOfASpacingOffGoesToTheNearestSlice) {
+  auto off = write_and_convert({square(grid(), 0.5, 8.5, 1.3)}, grid());
+  auto on = write_and_convert({square(grid(), 0.5, 8.5, 1)}, grid());
+  ASSERT_TRUE(off.ok() && on.ok());
+  ASSERT_EQ(off->structures.size(), 1u);
+  EXPECT_EQ(off->structures[0].volume.runs, on->structures[0].volume.runs);
+  EXPECT_GT(voxel_count(off->structures[0].volume), 0);
 }
 
 TEST(ConvertRtStruct, PointRoisAreReportedAndSkipped) {
