@@ -21,20 +21,6 @@ namespace soiq::bench {
 
 namespace coverage_accuracy_detail {
 
-Mat3 rotation(Vec3 axis, double angle) {
-  axis = (1 / norm(axis)) * axis;
-  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
-  const double x = axis[0], y = axis[1], z = axis[2];
-  return {{{t * x * x + c, t * x * y - z * s, t * x * z + y * s},
-           {t * x * y + z * s, t * y * y + c, t * y * z - x * s},
-           {t * x * z - y * s, t * y * z + x * s, t * z * z + c}}};
-}
-
-TriangleMesh transformed(TriangleMesh m, const Vec3& scale, const Mat3& r, const Vec3& centre) {
-  for (Vec3& v : m.vertices_mm) v = centre + mul(r, Vec3{scale[0] * v[0], scale[1] * v[1], scale[2] * v[2]});
-  return m;
-}
-
 // `n` voxels of `spacing` per side centred on `centre`, axes rotated by `direction`.
 ImageGeometry grid_at(const Vec3& centre, int64_t n, const Vec3& spacing, const Mat3& direction) {
   ImageGeometry g;
@@ -72,13 +58,13 @@ using namespace coverage_accuracy_detail;
 
 Status print_volume_accuracy() {
   const Vec3 c{10, -20, 35};
-  const ImageGeometry g = grid_at(c, 34, {0.9, 1.1, 1.4}, rotation({0.2, 1, 0.5}, 0.3));
+  const ImageGeometry g = grid_at(c, 34, {0.9, 1.1, 1.4}, rotation_about({0.2, 1, 0.5}, 0.3));
   const std::vector<std::pair<const char*, TriangleMesh>> shapes = {
       {"sphere r 9.3",
        transformed(uv_sphere({0, 0, 0}, 9.3, 90, 180), {1, 1, 1}, identity3(), c + Vec3{0.31, -0.17, 0.23})},
       {"ellipsoid 12.2 x 7.1 x 5.3", transformed(uv_sphere({0, 0, 0}, 1, 90, 180), {12.2, 7.1, 5.3},
-                                                 rotation({1, 2, 3}, 0.7), c + Vec3{-0.4, 0.2, 0.1})},
-      {"cube 13", transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {1, 1, 1}, rotation({1, 1, 0.3}, 0.5),
+                                                 rotation_about({1, 2, 3}, 0.7), c + Vec3{-0.4, 0.2, 0.1})},
+      {"cube 13", transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {1, 1, 1}, rotation_about({1, 1, 0.3}, 0.5),
                               c + Vec3{0.13, 0.29, -0.37})},
   };
   std::printf("| shape (oblique, grid 0.9 x 1.1 x 1.4 mm, rotated) | exact mm3 | n=1 | n=2 | n=4 | n=8 |\n");

@@ -105,4 +105,18 @@ TriangleMesh flipped(const TriangleMesh& m) {
   return f;
 }
 
+Mat3 rotation_about(const Vec3& axis, double angle) {
+  const Vec3 u = (1 / norm(axis)) * axis;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
+  const double x = u[0], y = u[1], z = u[2];
+  return {{{t * x * x + c, t * x * y - z * s, t * x * z + y * s},
+           {t * x * y + z * s, t * y * y + c, t * y * z - x * s},
+           {t * x * z - y * s, t * y * z + x * s, t * z * z + c}}};
+}
+
+TriangleMesh transformed(TriangleMesh m, const Vec3& scale, const Mat3& r, const Vec3& centre) {
+  for (Vec3& v : m.vertices_mm) v = centre + mul(r, Vec3{scale[0] * v[0], scale[1] * v[1], scale[2] * v[2]});
+  return m;
+}
+
 }  // namespace soiq

@@ -28,4 +28,11 @@ TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 // Reverses every triangle (inward normals); used to build hollow shells and to test orientation.
 TriangleMesh flipped(const TriangleMesh& m);
 
+// The rotation by `angle` radians about `axis` (any non-zero length; Rodrigues' formula).
+Mat3 rotation_about(const Vec3& axis, double angle);
+
+// Every vertex v -> centre + r (scale * v), scale per axis: ellipsoids from spheres, oblique shapes.
+// A rotation and a positive scale keep the mesh closed and outward.
+TriangleMesh transformed(TriangleMesh m, const Vec3& scale, const Mat3& r, const Vec3& centre);
+
 }  // namespace soiq

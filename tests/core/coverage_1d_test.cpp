@@ -16,23 +16,12 @@
 namespace soiq {
 namespace {
 
-// Rodrigues: the rotation by `angle` about `axis`.
-Mat3 rotation(Vec3 axis, double angle) {
-  axis = (1 / norm(axis)) * axis;
-  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
-  const double x = axis[0], y = axis[1], z = axis[2];
-  return {{{t * x * x + c, t * x * y - z * s, t * x * z + y * s},
-           {t * x * y + z * s, t * y * y + c, t * y * z - x * s},
-           {t * x * z - y * s, t * y * z + x * s, t * z * z + c}}};
-}
-
 // Each vertex v -> centre + R diag(scale) (v - about).
-TriangleMesh transformed(TriangleMesh m, const Vec3& about, const Vec3& scale, const Mat3& r, const Vec3& centre) {
-  for (Vec3& v : m.vertices_mm) {
-    const Vec3 d = v - about;
-    v = centre + mul(r, Vec3{scale[0] * d[0], scale[1] * d[1], scale[2] * d[2]});
-  }
-  return m;
+TriangleMesh transformed(const TriangleMesh& m, const Vec3& about, const Vec3& scale, const Mat3& r,
+                         const Vec3& centre) {
+  TriangleMesh shifted = m;
+  for (Vec3& v : shifted.vertices_mm) v = v - about;
+  return soiq::transformed(shifted, scale, r, centre);
 }
 
 // An oblique, anisotropic grid around `centre`: no axis of any shape below lines up with it.
@@ -40,7 +29,7 @@ ImageGeometry oblique_grid(const Vec3& centre, int64_t n) {
   ImageGeometry g;
   g.dims = {n, n, n};
   g.spacing_mm = {0.9, 1.1, 1.4};
-  g.direction = rotation({0.2, 1, 0.5}, 0.3);
+  g.direction = rotation_about({0.2, 1, 0.5}, 0.3);
   // Columns of the direction are the axes: origin = centre - D diag(s) (n - 1)/2.
   Vec3 half{};
   for (int a = 0; a < 3; ++a) {
@@ -59,10 +48,10 @@ struct Shape {
 std::vector<Shape> oblique_shapes(const Vec3& c) {
   return {
       {"sphere", transformed(uv_sphere(c, 9.3, 90, 180), c, {1, 1, 1}, identity3(), c + Vec3{0.31, -0.17, 0.23})},
-      {"ellipsoid", transformed(uv_sphere({0, 0, 0}, 1, 90, 180), {0, 0, 0}, {12.2, 7.1, 5.3}, rotation({1, 2, 3}, 0.7),
-                                c + Vec3{-0.4, 0.2, 0.1})},
-      {"cube", transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {0, 0, 0}, {1, 1, 1}, rotation({1, 1, 0.3}, 0.5),
-                           c + Vec3{0.13, 0.29, -0.37})},
+      {"ellipsoid", transformed(uv_sphere({0, 0, 0}, 1, 90, 180), {0, 0, 0}, {12.2, 7.1, 5.3},
+                                rotation_about({1, 2, 3}, 0.7), c + Vec3{-0.4, 0.2, 0.1})},
+      {"cube", transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {0, 0, 0}, {1, 1, 1},
+                           rotation_about({1, 1, 0.3}, 0.5), c + Vec3{0.13, 0.29, -0.37})},
   };
 }
 
@@ -160,7 +149,7 @@ TEST(Coverage1D, VoxelsWhollyInsideAreExactlyOneAndWhollyOutsideExactlyZero) {
   // are all beyond one face plane is wholly outside.
   const Vec3 c{10, -20, 35};
   const ImageGeometry g = oblique_grid(c, 34);
-  const Mat3 r = rotation({1, 1, 0.3}, 0.5);
+  const Mat3 r = rotation_about({1, 1, 0.3}, 0.5);
   const TriangleMesh cube = transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {0, 0, 0}, {1, 1, 1}, r, c);
   // Face planes: outward normal n (a rotated axis), offset 6.5 from c.
   std::vector<Vec3> normals;
@@ -209,7 +198,7 @@ TEST(Coverage1D, EachFractionMatchesAnIndependentPointCountOfTheVoxel) {
   // integral, ours exact along rows and 8 x 8 across, the count to within a few 1/24 slabs.
   const Vec3 c{10, -20, 35};
   const ImageGeometry g = oblique_grid(c, 34);
-  const Mat3 r = rotation({1, 1, 0.3}, 0.5);
+  const Mat3 r = rotation_about({1, 1, 0.3}, 0.5);
   const TriangleMesh cube = transformed(box({-6.5, -6.5, -6.5}, {6.5, 6.5, 6.5}), {0, 0, 0}, {1, 1, 1}, r, c);
   const Mat3 rt = {{{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}};
   auto inside = [&](const Vec3& p) {
