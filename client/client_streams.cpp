@@ -263,6 +263,30 @@ Result<v1::SegInfo> Client::export_seg(const v1::ExportSegRequest& request, cons
   return *info;
 }
 
+Result<v1::RtStructInfo> Client::export_rt_struct(const v1::ExportRtStructRequest& request,
+                                                  const std::string& out_path) const {
+  std::optional<v1::RtStructInfo> info;
+  int64_t written = 0;
+  SOIQ_RETURN_IF_ERROR(stream_to_file<v1::ExportRtStructResponse>(
+      out_path, [&](grpc::ClientContext* ctx) { return stub_->ExportRtStruct(ctx, request); },
+      [&](const v1::ExportRtStructResponse& r) -> const std::string* {
+        if (!r.has_info()) return &r.chunk();
+        info = r.info();
+        return nullptr;
+      },
+      written));
+  Status check;
+  if (!info) check = data_loss("soiqd at " + options_.address + " sent the RT Structure Set without its summary");
+  if (check.ok() && written != info->size_bytes())
+    check = data_loss("soiqd at " + options_.address + " announced an RT Structure Set of " +
+                      std::to_string(info->size_bytes()) + " bytes but sent " + std::to_string(written));
+  if (!check.ok()) {
+    std::remove(out_path.c_str());
+    return check;
+  }
+  return *info;
+}
+
 Result<v1::RenderInfo> Client::render(const v1::RenderRequest& request, const std::string& out_path) const {
   std::optional<v1::RenderInfo> info;
   int64_t written = 0;

@@ -127,6 +127,9 @@ class Client {
   // DICOM out and the PACS soiqd is configured with (its --pacs). Long calls: stream_deadline.
   // The SEG of imported structures written to `out_path` (replaced; removed again on failure).
   Result<soiq::v1::SegInfo> export_seg(const soiq::v1::ExportSegRequest& request, const std::string& out_path) const;
+  // The RT Structure Set of imported structures, written the same way.
+  Result<soiq::v1::RtStructInfo> export_rt_struct(const soiq::v1::ExportRtStructRequest& request,
+                                                  const std::string& out_path) const;
   Result<soiq::v1::PacsEchoResponse> pacs_echo() const;
   Result<soiq::v1::PacsFindResponse> pacs_find(const soiq::v1::PacsFindRequest& request) const;
   // Pulls studies into soiq; `on_progress` after each instance (false cancels: nothing is stored).

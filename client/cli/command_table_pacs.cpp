@@ -46,11 +46,13 @@ std::vector<CommandSpec> pacs_commands() {
        run_pacs_command},
       {"pacs push",
        CommandGroup::kRemote,
-       {"pacs push ID... [--description TEXT]"},
-       "a SEG of imported structures C-STOREd back to the PACS",
-       "Exports imported structures as one DICOM SEG (as 'soiq export-seg') and C-STOREs it to the PACS.",
-       {{"--description", "TEXT", "", "the SEG series' description"}},
-       {"soiq pacs push 1 2"},
+       {"pacs push ID... [--as seg|rtstruct] [--description TEXT]"},
+       "a SEG or RT Structure Set of imported structures C-STOREd back to the PACS",
+       "Exports imported structures as one DICOM SEG (as 'soiq export-seg') or one RT Structure Set (as 'soiq "
+       "export-rtstruct') and C-STOREs it to the PACS.",
+       {{"--as", "seg|rtstruct", "seg", "the object to store: a binary SEG or an RT Structure Set"},
+        {"--description", "TEXT", "", "the series' description"}},
+       {"soiq pacs push 1 2", "soiq pacs push --as rtstruct 1 2"},
        run_pacs_command},
   };
 }

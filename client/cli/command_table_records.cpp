@@ -2,6 +2,7 @@
 // command table: upload, upload-image, import, export-seg, render, ls, show, rm, download.
 #include "client/cli/command_table.h"
 #include "client/cli/download_command.h"
+#include "client/cli/export_rt_struct_command.h"
 #include "client/cli/export_seg_command.h"
 #include "client/cli/import_command.h"
 #include "client/cli/ls_command.h"
@@ -94,6 +95,16 @@ std::vector<CommandSpec> record_commands() {
         {"--oversample", "N", "4", "with --fractional: N x N lines across each voxel (1-8; exact along rows)"}},
        {"soiq export-seg 1 2 -o seg.dcm", "soiq export-seg 1 -o gtv_fractions.dcm --fractional"},
        run_export_seg_command},
+      {"export-rtstruct",
+       CommandGroup::kRemote,
+       {"export-rtstruct ID... -o OUT.dcm [--description TEXT]"},
+       "imported structures as one DICOM RT Structure Set on the image series they were drawn on",
+       "Writes imported structures as one DICOM RT Structure Set on the image series they were drawn on, one "
+       "ROI per structure: each stored surface cut into closed planar contours on every slice plane of that "
+       "series (holes and separate parts as separate contours), each contour referencing its slice.",
+       {output, {"--description", "TEXT", "", "the RT Structure Set series' description"}},
+       {"soiq export-rtstruct 1 2 -o rtstruct.dcm"},
+       run_export_rt_struct_command},
       {"render",
        CommandGroup::kRemote,
        {"render ID [--image MODALITY|SERIES_UID|none] [--plane axial|coronal|sagittal]",

@@ -70,6 +70,11 @@ Result<PacsArgs> parse_pacs_args(int argc, char** argv) {
       a.pull.set_replace(true);
     } else if (a.verb == "pull" && arg == "--patient") {
       SOIQ_ASSIGN_OR_RETURN(*a.pull.mutable_patient_id(), option_value(argc, argv, i));
+    } else if (a.verb == "push" && arg == "--as") {
+      SOIQ_ASSIGN_OR_RETURN(const std::string object, option_value(argc, argv, i));
+      if (object != "seg" && object != "rtstruct")
+        return invalid_argument("--as takes seg or rtstruct, not '" + object + "'");
+      a.push.set_object(object == "rtstruct" ? v1::PUSHED_OBJECT_RTSTRUCT : v1::PUSHED_OBJECT_SEG);
     } else if (a.verb == "push" && arg == "--description") {
       SOIQ_ASSIGN_OR_RETURN(*a.push.mutable_series_description(), option_value(argc, argv, i));
     } else if (a.verb == "push" && !(arg.size() > 1 && arg[0] == '-')) {
@@ -138,8 +143,16 @@ Status pacs(const PacsArgs& a, const client::ClientOptions& remote) {
   if (a.verb == "pull") return pull(c, a);
   const Result<v1::PacsPushResponse> pushed = c.pacs_push(a.push);
   if (!pushed.ok() && interrupted())
-    return interrupted_by_user("the PACS may have stored the SEG already ('soiq pacs find' shows its series)");
+    return interrupted_by_user("the PACS may have stored the object already ('soiq pacs find' shows its series)");
   SOIQ_ASSIGN_OR_RETURN(const v1::PacsPushResponse r, pushed);
+  if (r.has_rt_struct()) {
+    const v1::RtStructInfo& i = r.rt_struct();
+    std::printf(
+        "stored DICOM RT Structure Set %s (%d ROI%s, %lld contours, %lld bytes, on series %s) on %s in %.1f ms\n",
+        i.sop_instance_uid().c_str(), i.rois(), i.rois() == 1 ? "" : "s", (long long)i.contours(),
+        (long long)i.size_bytes(), i.referenced_series_uid().c_str(), r.pacs().c_str(), r.milliseconds());
+    return ok_status();
+  }
   std::printf("stored DICOM SEG %s (%d segment%s, %lld frames, %lld bytes, on series %s) on %s in %.1f ms\n",
               r.seg().sop_instance_uid().c_str(), r.seg().segments(), r.seg().segments() == 1 ? "" : "s",
               (long long)r.seg().frames(), (long long)r.seg().size_bytes(), r.seg().referenced_series_uid().c_str(),

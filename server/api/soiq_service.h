@@ -62,11 +62,13 @@ class SoiqService final : public v1::Soiq::Service {
                      grpc::ServerWriter<v1::QueryEvent>* writer) override;
   grpc::Status GetServerInfo(grpc::ServerContext* ctx, const v1::GetServerInfoRequest* request,
                              v1::ServerInfo* response) override;
-  // DICOM SEG export and the PACS (server/api/soiq_service_dicom.cpp).
+  // DICOM SEG and RT Structure Set export and the PACS (server/api/soiq_service_dicom.cpp).
   grpc::Status Render(grpc::ServerContext* ctx, const v1::RenderRequest* request,
                       grpc::ServerWriter<v1::RenderResponse>* writer) override;
   grpc::Status ExportSeg(grpc::ServerContext* ctx, const v1::ExportSegRequest* request,
                          grpc::ServerWriter<v1::ExportSegResponse>* writer) override;
+  grpc::Status ExportRtStruct(grpc::ServerContext* ctx, const v1::ExportRtStructRequest* request,
+                              grpc::ServerWriter<v1::ExportRtStructResponse>* writer) override;
   grpc::Status PacsEcho(grpc::ServerContext* ctx, const v1::PacsEchoRequest* request,
                         v1::PacsEchoResponse* response) override;
   grpc::Status PacsFind(grpc::ServerContext* ctx, const v1::PacsFindRequest* request,

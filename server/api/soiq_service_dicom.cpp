@@ -1,4 +1,5 @@
-// SoiqService's DICOM-out and PACS handlers: ExportSeg, PacsEcho, PacsFind, PacsPull, PacsPush.
+// SoiqService's DICOM-out and PACS handlers: ExportSeg, ExportRtStruct, PacsEcho, PacsFind, PacsPull,
+// PacsPush.
 // Thin, as the others: validate, call one function of server/ or dicom/, map once.
 #include <filesystem>
 
@@ -10,6 +11,7 @@
 #include "server/api/rpc_handling.h"
 #include "server/app/dicom_import.h"
 #include "server/app/pacs_pull_studies.h"
+#include "server/app/structure_rt_struct.h"
 #include "server/app/structure_seg.h"
 #include "server/util/temp_dir.h"
 #include "server/util/temp_file.h"
@@ -29,6 +31,31 @@ v1::SegInfo info_of(const dicom::WrittenSeg& seg, const std::vector<int64_t>& id
   i.set_frames(seg.frame_count);
   i.set_size_bytes(int64_t(seg.bytes.size()));
   return i;
+}
+
+v1::RtStructInfo info_of(const BudgetedRtStruct& written, const std::vector<int64_t>& ids) {
+  v1::RtStructInfo i;
+  const dicom::WrittenRtStruct& rt = written.rt_struct;
+  i.set_sop_instance_uid(rt.sop_instance_uid);
+  i.set_series_uid(rt.series_uid);
+  i.set_referenced_series_uid(written.referenced_series_uid);
+  i.set_study_uid(written.study_uid);
+  i.set_rois(int32_t(ids.size()));
+  i.set_contours(rt.contour_count);
+  i.set_points(rt.point_count);
+  i.set_size_bytes(int64_t(rt.bytes.size()));
+  return i;
+}
+
+// Part 10 bytes as a stream of `Response`s: chunks after the info the caller sent.
+template <typename Response, typename Writer>
+Status write_chunks(const std::string& bytes, Writer* writer) {
+  for (size_t at = 0; at < bytes.size(); at += kSegChunkBytes) {
+    Response chunk;
+    chunk.set_chunk(bytes.substr(at, kSegChunkBytes));
+    if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the export");
+  }
+  return ok_status();
 }
 
 }  // namespace
@@ -59,6 +86,21 @@ grpc::Status SoiqService::ExportSeg(grpc::ServerContext* ctx, const v1::ExportSe
       if (!writer->Write(chunk)) return Status(StatusCode::kCancelled, "the client closed the export");
     }
     return ok_status();
+  });
+}
+
+grpc::Status SoiqService::ExportRtStruct(grpc::ServerContext* ctx, const v1::ExportRtStructRequest* request,
+                                         grpc::ServerWriter<v1::ExportRtStructResponse>* writer) {
+  return handle(__func__, *ctx, [&]() -> Status {
+    const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
+    SOIQ_ASSIGN_OR_RETURN(const BudgetedRtStruct written, on_pool<BudgetedRtStruct>([&] {
+                            return structure_rt_struct(store_, features_, budget_, ids, request->series_description(),
+                                                       nullptr, [&] { return stop_status(*ctx); });
+                          }));
+    v1::ExportRtStructResponse head;
+    *head.mutable_info() = info_of(written, ids);
+    if (!writer->Write(head)) return Status(StatusCode::kCancelled, "the client closed the export");
+    return write_chunks<v1::ExportRtStructResponse>(written.rt_struct.bytes, writer);
   });
 }
 
@@ -125,16 +167,29 @@ grpc::Status SoiqService::PacsPush(grpc::ServerContext* ctx, const v1::PacsPushR
     SOIQ_ASSIGN_OR_RETURN(const dicom::PacsPeer peer, pacs());
     const Clock::time_point start = Clock::now();
     const std::vector<int64_t> ids(request->structure_ids().begin(), request->structure_ids().end());
-    SOIQ_ASSIGN_OR_RETURN(const BudgetedSeg written, on_pool<BudgetedSeg>([&] {
-                            return structure_seg(store_, features_, budget_, ids, request->series_description(),
-                                                 nullptr, [&] { return stop_status(*ctx); });
-                          }));
-    const dicom::WrittenSeg& seg = written.seg;
+    const auto stop = [&] { return stop_status(*ctx); };
     SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".dcm"));
-    SOIQ_RETURN_IF_ERROR(file.write(seg.bytes));
-    SOIQ_RETURN_IF_ERROR(dicom::pacs_store(peer, {file.path()}));
-    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));
-    *response->mutable_seg() = info_of(seg, ids, first);
+    if (request->object() == v1::PUSHED_OBJECT_RTSTRUCT) {
+      SOIQ_ASSIGN_OR_RETURN(const BudgetedRtStruct written, on_pool<BudgetedRtStruct>([&] {
+                              return structure_rt_struct(store_, features_, budget_, ids, request->series_description(),
+                                                         nullptr, stop);
+                            }));
+      SOIQ_RETURN_IF_ERROR(file.write(written.rt_struct.bytes));
+      SOIQ_RETURN_IF_ERROR(dicom::pacs_store(peer, {file.path()}));
+      *response->mutable_rt_struct() = info_of(written, ids);
+    } else if (request->object() == v1::PUSHED_OBJECT_SEG) {
+      SOIQ_ASSIGN_OR_RETURN(const BudgetedSeg written, on_pool<BudgetedSeg>([&] {
+                              return structure_seg(store_, features_, budget_, ids, request->series_description(),
+                                                   nullptr, stop);
+                            }));
+      SOIQ_RETURN_IF_ERROR(file.write(written.seg.bytes));
+      SOIQ_RETURN_IF_ERROR(dicom::pacs_store(peer, {file.path()}));
+      SOIQ_ASSIGN_OR_RETURN(db::StructureRecord first, store_.get_structure(ids.front()));
+      *response->mutable_seg() = info_of(written.seg, ids, first);
+    } else {
+      return invalid_argument("unknown object " + std::to_string(int(request->object())) +
+                              " to push: PUSHED_OBJECT_SEG or PUSHED_OBJECT_RTSTRUCT");
+    }
     response->set_pacs(dicom::describe_pacs_peer(peer));
     response->set_milliseconds(ms_since(start));
     return ok_status();

@@ -14,7 +14,7 @@ man1=$build/man/soiq.1
 man8=$build/man/soiqd.8
 grep -q '^\.TH SOIQ 1' "$man1" || fail "soiq.1 has no .TH"
 grep -q '^\.TH SOIQD 8' "$man8" || fail "soiqd.8 has no .TH"
-for cmd in mesh convert features compare upload upload-image import export-seg "pacs echo" "pacs find" \
+for cmd in mesh convert features compare upload upload-image import export-seg export-rtstruct "pacs echo" "pacs find" \
   "pacs pull" "pacs push" ls show rm download query info health demo-load help completion; do
   escaped=${cmd//-/\\-}
   grep -qF ".SS \"soiq $escaped\"" "$man1" || fail "soiq.1 lacks 'soiq $cmd'"

@@ -12,7 +12,7 @@ for form in "query --help" "query -h" "help query"; do
   grep -q "Exit codes" "$tmp/help" || fail "'soiq $form' lacks the exit codes"
   [ -s "$tmp/err" ] && fail "'soiq $form' wrote to stderr: $(cat "$tmp/err")"
 done
-for cmd in mesh convert features compare upload upload-image import export-seg ls show rm download query info \
+for cmd in mesh convert features compare upload upload-image import export-seg export-rtstruct ls show rm download query info \
   health demo-load help completion "pacs echo" "pacs find" "pacs pull" "pacs push"; do
   $soiq $cmd --help >"$tmp/help" 2>&1 || fail "'soiq $cmd --help' exited $?"
   grep -q "^usage: soiq $cmd" "$tmp/help" || fail "'soiq $cmd --help': $(head -2 "$tmp/help")"

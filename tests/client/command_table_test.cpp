@@ -32,6 +32,7 @@ const std::map<std::string, std::vector<std::string>> kParserSources = {
     {"upload-image", {"upload_image_command.cpp", "record_args.cpp"}},
     {"import", {"import_command.cpp"}},
     {"export-seg", {"export_seg_command.cpp", "fraction_args.cpp"}},
+    {"export-rtstruct", {"export_rt_struct_command.cpp"}},
     {"render", {"render_command.cpp"}},
     {"pacs echo", {"pacs_command.cpp"}},
     {"pacs find", {"pacs_command.cpp"}},
