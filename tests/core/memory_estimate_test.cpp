@@ -181,7 +181,10 @@ TEST(MemoryEstimate, CoverageEstimateIsAboveWhatItHoldsAndItsPeak) {
       {"disc", box({300, 300, 0.4})},
       {"bar", box({400, 0.6, 0.6})},
   };
-  for (const auto& [name, mesh] : meshes) {
+  for (const auto& named : meshes) {
+    // Not a structured binding: clang 14 refuses to capture one in the lambda below.
+    const char* name = named.first;
+    const TriangleMesh& mesh = named.second;
     auto grid = grid_around(mesh, {1, 1, 1}, 2);
     ASSERT_TRUE(grid.ok());
     // Centre the disc and the bar on voxel centres' planes (a slice, a line of rows).
