@@ -65,7 +65,7 @@ interrupted "no file was written" "$soiq" export-seg "$id" -o "$tmp/s.dcm"
 [ -e "$tmp/s.dcm" ] && fail "an interrupted export-seg left its output"
 interrupted "the rows printed are part of the answer only" "$soiq" query --name phantom --select voxel_volume_mm3
 interrupted "nothing was imported" "$soiq" pacs pull --study 1.2.3.4
-interrupted "the PACS may have stored the SEG already" "$soiq" pacs push "$id"
+interrupted "the PACS may have stored the object already" "$soiq" pacs push "$id"
 
 # Every interrupted call reached soiqd once it resumed; it still serves and stored nothing.
 [ "$("$soiq" health)" = SERVING ] || fail "soiqd does not serve after the interrupted calls"
