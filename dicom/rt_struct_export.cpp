@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "dicom/dcmtk_file.h"
+#include "dicom/dicom_value_fits.h"
 
 namespace soiq::dicom {
 namespace rt_struct_writing {
@@ -20,24 +21,6 @@ constexpr const char* kStudyReferenceClass = "1.2.840.10008.3.1.2.3.1";
 bool beyond_ascii(const std::string& v) {
   return std::any_of(v.begin(), v.end(), [](char ch) { return static_cast<unsigned char>(ch) >= 0x80; });
 }
-
-// LO: at most 64 characters, no backslash or control characters.
-bool fits_long_string(const std::string& v) {
-  return v.size() <= 64 &&
-         std::none_of(v.begin(), v.end(), [](char ch) { return ch == '\\' || static_cast<unsigned char>(ch) < 0x20; });
-}
-
-// SH in the default repertoire: at most 16 printable ASCII characters, no backslash.
-bool fits_short_string(const std::string& v) {
-  return v.size() <= 16 &&
-         std::all_of(v.begin(), v.end(), [](unsigned char ch) { return ch >= 0x20 && ch < 0x7F && ch != '\\'; });
-}
-
-// A Type 2 value copied when it fits its VR; "" (unknown) rather than a truncated value, which
-// would name something else.
-std::string type2(const std::string& v, bool fits) { return fits ? v : ""; }
-bool fits_date(const std::string& v) { return DcmDate::checkStringValue(v.c_str(), "1").good(); }
-bool fits_time(const std::string& v) { return DcmTime::checkStringValue(v.c_str(), "1").good(); }
 
 Status validate(const SegSource& source, const std::vector<RtStructRoi>& rois, const RtStructWriteOptions& options) {
   const ImageGeometry& g = source.geometry;
@@ -134,15 +117,15 @@ void put_identity(Puts& w, DcmItem& ds, const SegSource& src, const RtStructWrit
   w.put(ds, DCM_InstanceCreationTime, time);
   w.put(ds, DCM_PatientName, src.patient_name);  // "" unless soiqd keeps names
   w.put(ds, DCM_PatientID, src.patient_id);
-  w.put(ds, DCM_PatientBirthDate, type2(src.patient_birth_date, fits_date(src.patient_birth_date)));
+  w.put(ds, DCM_PatientBirthDate, type2_value(src.patient_birth_date, fits_date(src.patient_birth_date)));
   w.put(ds, DCM_PatientSex,
         src.patient_sex == "M" || src.patient_sex == "F" || src.patient_sex == "O" ? src.patient_sex : "");
   w.put(ds, DCM_StudyInstanceUID, src.study_uid);
-  w.put(ds, DCM_StudyDate, type2(src.study_date, fits_date(src.study_date)));
-  w.put(ds, DCM_StudyTime, type2(src.study_time, fits_time(src.study_time)));
+  w.put(ds, DCM_StudyDate, type2_value(src.study_date, fits_date(src.study_date)));
+  w.put(ds, DCM_StudyTime, type2_value(src.study_time, fits_time(src.study_time)));
   w.put(ds, DCM_ReferringPhysicianName, "");
-  w.put(ds, DCM_StudyID, type2(src.study_id, fits_short_string(src.study_id)));
-  w.put(ds, DCM_AccessionNumber, type2(src.accession_number, fits_short_string(src.accession_number)));
+  w.put(ds, DCM_StudyID, type2_value(src.study_id, fits_short_string(src.study_id)));
+  w.put(ds, DCM_AccessionNumber, type2_value(src.accession_number, fits_short_string(src.accession_number)));
   w.put(ds, DCM_FrameOfReferenceUID, src.frame_of_reference_uid);
   w.put(ds, DCM_PositionReferenceIndicator, "");
   w.put(ds, DCM_Modality, "RTSTRUCT");

@@ -22,7 +22,7 @@ namespace {
 
 // A DS value (at most 16 characters, Part 5 6.2) with as many significant digits as fit: 16
 // characters keep about 1e-11 mm of a position and 1e-13 of a direction cosine.
-std::string format_ds(double v) {
+std::string frame_ds(double v) {
   if (v == 0) return "0";  // also turns -0 into 0
   char buf[64];
   for (int precision = 16; precision > 0; --precision) {
@@ -62,13 +62,13 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std
   const Vec3 row{g.direction[0][0], g.direction[1][0], g.direction[2][0]};  // direction of increasing i
   const Vec3 col{g.direction[0][1], g.direction[1][1], g.direction[2][1]};  // direction of increasing j
   std::unique_ptr<FGPlaneOrientationPatient> orientation(FGPlaneOrientationPatient::createMinimal(
-      format_ds(row[0]).c_str(), format_ds(row[1]).c_str(), format_ds(row[2]).c_str(), format_ds(col[0]).c_str(),
-      format_ds(col[1]).c_str(), format_ds(col[2]).c_str()));
+      frame_ds(row[0]).c_str(), frame_ds(row[1]).c_str(), frame_ds(row[2]).c_str(), frame_ds(col[0]).c_str(),
+      frame_ds(col[1]).c_str(), frame_ds(col[2]).c_str()));
   if (!orientation) return internal_error("DICOM SEG: could not create the Plane Orientation group");
   OFCondition c = seg.addForAllFrames(*orientation);
   FGPixelMeasures measures;
-  const std::string slice = format_ds(g.spacing_mm[2]);
-  if (c.good()) c = measures.setPixelSpacing((format_ds(g.spacing_mm[1]) + "\\" + format_ds(g.spacing_mm[0])).c_str());
+  const std::string slice = frame_ds(g.spacing_mm[2]);
+  if (c.good()) c = measures.setPixelSpacing((frame_ds(g.spacing_mm[1]) + "\\" + frame_ds(g.spacing_mm[0])).c_str());
   if (c.good()) c = measures.setSliceThickness(slice.c_str());
   if (c.good()) c = measures.setSpacingBetweenSlices(slice.c_str());
   if (c.good()) c = seg.addForAllFrames(measures);
@@ -91,7 +91,7 @@ Status add_frame(DcmSegmentation& seg, const SegSource& src, const std::string& 
   const CodeSequenceMacro purpose("121322", "DCM", "Source image for image processing operation");
   const Vec3 p = g.index_to_physical({0, 0, static_cast<double>(k)});
   std::unique_ptr<FGPlanePosPatient> position(
-      FGPlanePosPatient::createMinimal(format_ds(p[0]).c_str(), format_ds(p[1]).c_str(), format_ds(p[2]).c_str()));
+      FGPlanePosPatient::createMinimal(frame_ds(p[0]).c_str(), frame_ds(p[1]).c_str(), frame_ds(p[2]).c_str()));
   FGFrameContent content;
   OFCondition c = content.setDimensionIndexValues(segment_number, 0);
   if (c.good()) c = content.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1);

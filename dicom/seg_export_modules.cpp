@@ -12,6 +12,7 @@
 #include <cmath>
 #include <memory>
 
+#include "dicom/dicom_value_fits.h"
 #include "dicom/seg_export_steps.h"
 
 namespace soiq::dicom {
@@ -27,21 +28,6 @@ DcmSegTypes::E_SegmentAlgoType algo_type(SegAlgorithmType t) {
       return DcmSegTypes::SAT_AUTOMATIC;
   }
   return DcmSegTypes::SAT_UNKNOWN;
-}
-
-// A Type 2 value copied from the source series, or "" when it does not fit its VR. The STS CTs'
-// Study ID "IBSI_1_STS_002_CT" has 17 characters where SH allows 16: an empty Type 2 value says
-// "unknown", a truncated one would name another study, and a copied one makes our object
-// non-conformant (dciodvfy: "Length invalid for this VR").
-std::string type2_value(const std::string& value, bool fits) { return fits ? value : ""; }
-
-bool fits_date(const std::string& v) { return DcmDate::checkStringValue(v.c_str(), "1").good(); }
-bool fits_time(const std::string& v) { return DcmTime::checkStringValue(v.c_str(), "1").good(); }
-// SH: at most 16 characters (DCMTK 3.6.7 leaves the length unchecked); the SEG declares no
-// Specific Character Set, so only the default repertoire (ASCII) fits and characters are bytes.
-bool fits_short_string(const std::string& v) {
-  return v.size() <= 16 && std::all_of(v.begin(), v.end(), [](unsigned char ch) { return ch >= 0x20 && ch < 0x7F; }) &&
-         DcmShortString::checkStringValue(v.c_str(), "1").good();
 }
 
 }  // namespace
