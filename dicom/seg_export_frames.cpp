@@ -67,7 +67,8 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std
   if (!orientation) return internal_error("DICOM SEG: could not create the Plane Orientation group");
   OFCondition c = seg.addForAllFrames(*orientation);
   FGPixelMeasures measures;
-  const std::string slice = frame_ds(g.spacing_mm[2]);
+  // Along the normal of the planes: on a tilted series the step from frame to frame is longer.
+  const std::string slice = frame_ds(g.slice_distance_mm());
   if (c.good()) c = measures.setPixelSpacing((frame_ds(g.spacing_mm[1]) + "\\" + frame_ds(g.spacing_mm[0])).c_str());
   if (c.good()) c = measures.setSliceThickness(slice.c_str());
   if (c.good()) c = measures.setSpacingBetweenSlices(slice.c_str());

@@ -82,21 +82,46 @@ Status check_same_as_first(const SliceInfo& s, const SliceInfo& first) {
   return ok_status();
 }
 
-// Checks that consecutive slices (in `order`, sorted along n) are apart by more than `tol` and
-// differ along the normal only; anything else is a tilted or sheared stack that an orthogonal grid
-// cannot represent.
-Status check_stacked_along_normal(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
-                                  const std::vector<double>& along, const Vec3& n, double tol) {
+// Checks that consecutive slices (in `order`, sorted along n) are apart by more than `tol`.
+Status check_distinct_positions(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
+                                const std::vector<double>& along, double tol) {
   for (size_t k = 0; k + 1 < slices.size(); ++k) {
     const SliceInfo& a = slices[order[k]];
     const SliceInfo& b = slices[order[k + 1]];
-    const double step = along[order[k + 1]] - along[order[k]];
-    const std::string where =
-        "slices " + a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm);
-    if (step <= tol) return invalid_argument("two slices at the same position: " + where);
-    const Vec3 d = b.position_mm - a.position_mm;
-    if (norm(d - step * n) > tol)
-      return invalid_argument("slices are not stacked along the normal of their planes (gantry tilt?): " + where);
+    if (along[order[k + 1]] - along[order[k]] <= tol)
+      return invalid_argument("two slices at the same position: slices " + a.label + " at " + fmt(a.position_mm) +
+                              " and " + b.label + " at " + fmt(b.position_mm));
+  }
+  return ok_status();
+}
+
+// True when some slice lies more than `tol` off the normal line through the first one: the stack
+// is not along the normal of its planes (gantry tilt). Measured from the first slice, not from the
+// previous one, so that a drift too small per step to see still counts once it adds up.
+bool shifted_in_plane(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order, const Vec3& n,
+                      double tol) {
+  const Vec3& first = slices[order.front()].position_mm;
+  for (size_t k = 1; k < slices.size(); ++k) {
+    const Vec3 d = slices[order[k]].position_mm - first;
+    if (norm(d - dot(d, n) * n) > tol) return true;
+  }
+  return false;
+}
+
+// Checks that a tilted stack is tilted by one angle: every slice within `tol` of the line from the
+// first slice along the mean step, so one sheared grid holds all their voxel centres.
+Status check_constant_tilt(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order, const Vec3& step,
+                           double tol) {
+  const Vec3& first = slices[order.front()].position_mm;
+  for (size_t k = 1; k < slices.size(); ++k) {
+    const SliceInfo& s = slices[order[k]];
+    const Vec3 expected = first + double(k) * step;
+    const double off = norm(s.position_mm - expected);
+    if (off > tol)
+      return invalid_argument("slice " + s.label + " at " + fmt(s.position_mm) + " is " + fmt(off) +
+                              " mm from where one gantry tilt through the first and last slices puts it " +
+                              fmt(expected) + ": the slices are neither stacked along the normal of their planes "
+                              "nor tilted by one angle");
   }
   return ok_status();
 }
@@ -145,19 +170,29 @@ Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double s
   for (size_t i = 0; i < slices.size(); ++i) along[i] = dot(n, slices[i].position_mm);
   std::stable_sort(out.order.begin(), out.order.end(), [&](size_t a, size_t b) { return along[a] < along[b]; });
 
+  Vec3 k_axis = n;
   double spacing =
       single_slice_spacing_mm > 0 && std::isfinite(single_slice_spacing_mm) ? single_slice_spacing_mm : 1.0;
   if (slices.size() > 1) {
     spacing = (along[out.order.back()] - along[out.order.front()]) / static_cast<double>(slices.size() - 1);
-    SOIQ_RETURN_IF_ERROR(check_stacked_along_normal(slices, out.order, along, n, std::max(0.01, 0.01 * spacing)));
+    const double tol = std::max(0.01, 0.01 * spacing);
+    SOIQ_RETURN_IF_ERROR(check_distinct_positions(slices, out.order, along, tol));
     SOIQ_RETURN_IF_ERROR(check_regular_steps(slices, out.order, along));
+    if (shifted_in_plane(slices, out.order, n, tol)) {
+      // Gantry tilt: the grid's k axis is the step itself, so its voxel centres are the slices'.
+      const Vec3 step = (1.0 / static_cast<double>(slices.size() - 1)) *
+                        (slices[out.order.back()].position_mm - slices[out.order.front()].position_mm);
+      SOIQ_RETURN_IF_ERROR(check_constant_tilt(slices, out.order, step, tol));
+      k_axis = (1.0 / norm(step)) * step;
+      spacing = norm(step);
+    }
   }
 
   ImageGeometry& g = out.geometry;
   g.origin_mm = slices[out.order.front()].position_mm;
   g.spacing_mm = {first.pixel_spacing_mm[1], first.pixel_spacing_mm[0], spacing};
   g.dims = {first.columns, first.rows, static_cast<int64_t>(slices.size())};
-  for (int r = 0; r < 3; ++r) g.direction[r] = {row[r], col[r], n[r]};
+  for (int r = 0; r < 3; ++r) g.direction[r] = {row[r], col[r], k_axis[r]};
   SOIQ_RETURN_IF_ERROR(validate_geometry(g));
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace soiq {
 
@@ -11,9 +12,59 @@ Vec3 ImageGeometry::index_to_physical(const Vec3& ijk) const {
   return origin_mm + mul(direction, scaled);
 }
 
+namespace {
+
+Vec3 column(const Mat3& m, int c) { return {m[0][c], m[1][c], m[2][c]}; }
+
+constexpr double kOrthonormalTolerance = 1e-4;
+
+}  // namespace
+
+bool ImageGeometry::sheared() const {
+  const Vec3 k = column(direction, 2);
+  return std::abs(dot(k, column(direction, 0))) > kOrthonormalTolerance ||
+         std::abs(dot(k, column(direction, 1))) > kOrthonormalTolerance;
+}
+
+double ImageGeometry::slice_distance_mm() const {
+  if (!sheared()) return spacing_mm[2];
+  const Vec3 n = cross(column(direction, 0), column(direction, 1));
+  return spacing_mm[2] * std::abs(dot(column(direction, 2), n));
+}
+
+double ImageGeometry::voxel_volume_mm3() const {
+  if (!sheared()) return spacing_mm[0] * spacing_mm[1] * spacing_mm[2];
+  return spacing_mm[0] * spacing_mm[1] * slice_distance_mm();
+}
+
+Mat3 ImageGeometry::frame() const {
+  if (!sheared()) return direction;
+  const Vec3 n = cross(column(direction, 0), column(direction, 1));
+  const double side = dot(column(direction, 2), n) < 0 ? -1.0 : 1.0;
+  Mat3 f = direction;
+  for (int r = 0; r < 3; ++r) f[r][2] = side * n[r];
+  return f;
+}
+
+double ImageGeometry::tilt_degrees() const {
+  if (!sheared()) return 0;
+  const Vec3 n = cross(column(direction, 0), column(direction, 1));
+  const double c = std::min(1.0, std::abs(dot(column(direction, 2), n)) / norm(n));
+  return std::acos(c) * 180 / std::numbers::pi;
+}
+
 Vec3 ImageGeometry::physical_to_index(const Vec3& p_mm) const {
-  // D is orthonormal (validate_geometry), so its inverse is its transpose.
   const Vec3 d = p_mm - origin_mm;
+  if (sheared()) {
+    // The slice first, from the distance along the normal (k alone moves a point off its plane),
+    // then the in-plane position from that slice's own origin.
+    const Vec3 row = column(direction, 0), col = column(direction, 1), k_axis = column(direction, 2);
+    const Vec3 n = cross(row, col);
+    const double k = dot(d, n) / (dot(k_axis, n) * spacing_mm[2]);
+    const Vec3 in_plane = d - (k * spacing_mm[2]) * k_axis;
+    return {dot(in_plane, row) / spacing_mm[0], dot(in_plane, col) / spacing_mm[1], k};
+  }
+  // D is orthonormal (validate_geometry), so its inverse is its transpose.
   Vec3 out{};
   for (int c = 0; c < 3; ++c) {
     out[c] = (direction[0][c] * d[0] + direction[1][c] * d[1] + direction[2][c] * d[2]) / spacing_mm[c];
@@ -35,15 +86,25 @@ Status validate_geometry(const ImageGeometry& g) {
       if (!std::isfinite(g.direction[r][c])) return invalid_argument("grid direction matrix is not finite");
     }
   }
+  // i and j orthonormal, k of unit length; k perpendicular to both unless the grid is sheared.
+  const bool sheared = g.sheared();
   for (int a = 0; a < 3; ++a) {
     for (int b = a; b < 3; ++b) {
-      double d = 0;
-      for (int r = 0; r < 3; ++r) d += g.direction[r][a] * g.direction[r][b];
-      if (std::abs(d - (a == b ? 1.0 : 0.0)) > 1e-4) {
+      if (sheared && a != b && b == 2) continue;
+      const double d = dot(column(g.direction, a), column(g.direction, b));
+      if (std::abs(d - (a == b ? 1.0 : 0.0)) > kOrthonormalTolerance) {
         return invalid_argument("grid direction matrix is not orthonormal (columns " + std::to_string(a) + " and " +
                                 std::to_string(b) + " have dot product " + std::to_string(d) + ")");
       }
     }
+  }
+  if (sheared && g.tilt_degrees() > kMaxTiltDegrees) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "grid slices are stacked %.1f degrees away from the normal of their planes; at most %g (gantry tilt) "
+                  "is a slice stack",
+                  g.tilt_degrees(), kMaxTiltDegrees);
+    return invalid_argument(buf);
   }
   return ok_status();
 }
@@ -84,7 +145,11 @@ std::string describe(const ImageGeometry& g) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "%lldx%lldx%lld voxels of %gx%gx%g mm", (long long)g.dims[0], (long long)g.dims[1],
                 (long long)g.dims[2], g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2]);
-  return buf;
+  if (!g.sheared()) return buf;
+  char tilt[80];
+  std::snprintf(tilt, sizeof tilt, ", slices %g mm apart, tilted %.2g degrees", g.slice_distance_mm(),
+                g.tilt_degrees());
+  return buf + std::string(tilt);
 }
 
 }  // namespace soiq

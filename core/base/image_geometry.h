@@ -4,6 +4,12 @@
 //   p(i,j,k) = origin + D * diag(spacing) * (i,j,k)      (LPS, mm)
 // where the columns of the direction matrix D are the unit axis directions in LPS.
 // Voxel data is stored with i fastest: index = i + nx * (j + ny * k).
+//
+// i and j (rows and columns of a slice) are orthonormal. k is either along their normal, or, for
+// a series acquired with gantry tilt, a unit vector leaning away from it: the grid is then
+// sheared, its slices still the planes k = const but each one shifted in-plane from the last.
+// Everything here holds for both; the sheared one is kept as it is, never resampled, so that its
+// voxel centres are the series' own.
 
 #include <array>
 #include <cstdint>
@@ -21,7 +27,20 @@ struct ImageGeometry {
   Mat3 direction = identity3();          // columns: unit directions of i, j, k in LPS
 
   int64_t voxel_count() const { return dims[0] * dims[1] * dims[2]; }
-  double voxel_volume_mm3() const { return spacing_mm[0] * spacing_mm[1] * spacing_mm[2]; }
+  // True when k leans away from the normal i x j by more than validate_geometry's orthonormality
+  // tolerance (1e-4): a sheared (gantry-tilted) grid. Grids that are not take the orthonormal
+  // formulas below, bit for bit what they always were.
+  bool sheared() const;
+  // The distance between consecutive slice planes along their normal: spacing_mm[2] unless sheared,
+  // spacing_mm[2] x cos(tilt) when it is.
+  double slice_distance_mm() const;
+  // The volume of one voxel, a parallelepiped when sheared: spacing x, y and slice_distance_mm().
+  double voxel_volume_mm3() const;
+  // The orthonormal frame of the slices, columns (i, j, normal), the normal on k's side of the
+  // planes: the direction matrix itself unless sheared.
+  Mat3 frame() const;
+  // The tilt: the angle between k and the normal of the slices, in degrees (0 unless sheared).
+  double tilt_degrees() const;
   // Continuous index (i,j,k) -> LPS point.
   Vec3 index_to_physical(const Vec3& ijk) const;
   // LPS point -> continuous index; voxel centres sit at integers. Needs a valid geometry.
@@ -29,10 +48,14 @@ struct ImageGeometry {
   bool operator==(const ImageGeometry&) const = default;
 };
 
-// OK when spacing is finite and > 0, dims >= 0, values finite and the direction is orthonormal
-// (to 1e-4, as DICOM orientation vectors are often stored with 6 decimals). INVALID_ARGUMENT
-// naming the offending field otherwise.
+// OK when spacing is finite and > 0, dims >= 0, values finite, i and j orthonormal and k a unit
+// vector (to 1e-4, as DICOM orientation vectors are often stored with 6 decimals) either
+// perpendicular to both (to 1e-4) or leaning at most kMaxTiltDegrees from their normal.
+// INVALID_ARGUMENT naming the offending field otherwise.
 Status validate_geometry(const ImageGeometry& g);
+
+// Gantry tilts reach 30 degrees; beyond 60 a "slice stack" is no longer one.
+inline constexpr double kMaxTiltDegrees = 60;
 
 // RESOURCE_EXHAUSTED when the grid has more voxels than `max_voxels`, with a message that says how
 // many it has and what to do; checked before anything of that size is allocated.

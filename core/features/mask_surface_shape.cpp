@@ -1,5 +1,6 @@
 #include "core/features/mask_surface_shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -34,22 +35,42 @@ Int128 volume_times_48(const MaskSurfaceSweep& sweep, const CubeCaseTable& cases
   return sum;
 }
 
-// Surface area in mm2: per case, its triangles' area with the doubled coordinates scaled by
-// spacing / 2, times the number of cubes of that case.
-double area_mm2(const MaskSurfaceSweep& sweep, const CubeCaseTable& cases, const Vec3& spacing) {
-  const Vec3 h = 0.5 * spacing;
+// Surface area in mm2: per case, its triangles' area with the doubled coordinates mapped into mm
+// by `half_step` (spacing / 2 along each grid axis; on a sheared grid the axes themselves, as the
+// cube's edges are not at right angles), times the number of cubes of that case.
+double area_mm2(const MaskSurfaceSweep& sweep, const CubeCaseTable& cases, const ImageGeometry& grid) {
+  const Vec3 h = 0.5 * grid.spacing_mm;
+  const bool sheared = grid.sheared();
+  Mat3 half_step = grid.direction;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) half_step[r][c] *= h[size_t(c)];
   double area = 0;
   for (size_t c = 0; c < 256; ++c) {
     if (sweep.cube_count[c] == 0) continue;
     double case_area = 0;
     for (const CubeCaseTriangle& t : cases.triangles[c]) {
       Vec3 p[3];
-      for (size_t v = 0; v < 3; ++v) p[v] = {t[v][0] * h[0], t[v][1] * h[1], t[v][2] * h[2]};
+      for (size_t v = 0; v < 3; ++v) {
+        p[v] = {t[v][0] * h[0], t[v][1] * h[1], t[v][2] * h[2]};
+        if (sheared) p[v] = mul(half_step, {double(t[v][0]), double(t[v][1]), double(t[v][2])});
+      }
       case_area += norm(cross(p[1] - p[0], p[2] - p[0])) / 2;
     }
     area += double(sweep.cube_count[c]) * case_area;
   }
   return area;
+}
+
+// The extents of `points` along the columns of `frame`.
+Vec3 frame_extent(const std::vector<Vec3>& points, const Mat3& frame) {
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const Vec3& p : points) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = frame[0][c] * p[0] + frame[1][c] * p[1] + frame[2][c] * p[2];
+      lo[size_t(c)] = std::min(lo[size_t(c)], x), hi[size_t(c)] = std::max(hi[size_t(c)], x);
+    }
+  }
+  return hi - lo;
 }
 
 }  // namespace
@@ -59,16 +80,17 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
   SOIQ_RETURN_IF_ERROR(validate_geometry(grid));
   if (sweep.empty) return invalid_argument("surface shape of an empty mask is undefined");
   const Vec3& s = grid.spacing_mm;
-  // |det(direction)| = 1: the mm3 volume is the index volume times the voxel volume. The sign
-  // follows the case table's winding, consistent over the surface (marching_cubes flips it
-  // globally the same way).
-  const double volume = std::fabs(double(volume_times_48(sweep, cases))) / 48 * (s[0] * s[1] * s[2]);
-  const double area = area_mm2(sweep, cases, s);
+  // The mm3 volume is the index volume times the voxel volume (a linear map scales every volume
+  // by its determinant). The sign follows the case table's winding, consistent over the surface
+  // (marching_cubes flips it globally the same way).
+  const double volume = std::fabs(double(volume_times_48(sweep, cases))) / 48 * grid.voxel_volume_mm3();
+  const double area = area_mm2(sweep, cases, grid);
   if (!(volume > 0)) return internal_error("mask surface encloses no volume: the case table is broken");
 
-  const Vec3 extent{double(sweep.hi[0] - sweep.lo[0] + 1) * s[0], double(sweep.hi[1] - sweep.lo[1] + 1) * s[1],
+  Vec3 extent{double(sweep.hi[0] - sweep.lo[0] + 1) * s[0], double(sweep.hi[1] - sweep.lo[1] + 1) * s[1],
                     double(sweep.hi[2] - sweep.lo[2] + 1) * s[2]};
-  if (hull_part == HullPart::kSkip) {
+  const bool sheared = grid.sheared();
+  if (hull_part == HullPart::kSkip && !sheared) {
     return surface_shape_from_measures(volume, area, skipped_hull(), std::numeric_limits<double>::quiet_NaN(), extent);
   }
 
@@ -84,6 +106,12 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
       if (!fx.is_hull_vertex(x, z, y) || !fy.is_hull_vertex(y, z, x)) continue;
       candidates.push_back(grid.index_to_physical({0.5 * double(x), 0.5 * double(y), 0.5 * double(z)}));
     }
+  }
+  // On a sheared grid the box is along the slices' orthonormal frame, as surface_shape measures it:
+  // its extremes are hull vertices, all among the candidates.
+  if (sheared) extent = frame_extent(candidates, grid.frame());
+  if (hull_part == HullPart::kSkip) {
+    return surface_shape_from_measures(volume, area, skipped_hull(), std::numeric_limits<double>::quiet_NaN(), extent);
   }
   if (hull_part == HullPart::kDiameterOnly) {
     return surface_shape_from_measures(volume, area, skipped_hull(), point_set_diameter(candidates), extent);

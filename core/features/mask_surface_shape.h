@@ -7,7 +7,9 @@
 //          grid   the structure's grid (volume.geometry).
 //          cases  the marching-cubes implementation's case table (marching_cubes_table() for
 //                 soiq's marching_cubes).
-// Output   the SurfaceShape surface_shape(marching_cubes(mask), grid.direction) gives, to rounding:
+// Output   the SurfaceShape surface_shape(marching_cubes(mask), grid.frame()) gives, to rounding
+//          (on a sheared grid the cubes are parallelepipeds: areas through the direction matrix,
+//          the box along the slices' frame from the hull shortlist, which holds its extremes):
 //            volume  sum over cubes of the signed tetrahedra of their case's triangles: per case
 //                    the triangles' determinants and area vectors are constants, and the cubes'
 //                    positions enter through their corner sums (exact in integers; one rounding

@@ -50,11 +50,26 @@ double plane_diameter(const PlanePoint* first, const PlanePoint* last, std::vect
 }
 
 // Max over planes of constant index coordinate `axis`.
-double diameter_along(const std::vector<Vec3>& index_coords, const Vec3& spacing, int axis) {
+double diameter_along(const std::vector<Vec3>& index_coords, const ImageGeometry& grid, int axis) {
+  const Vec3& spacing = grid.spacing_mm;
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  // On a sheared grid the planes that hold the leaning k axis are not spanned at right angles:
+  // in-plane coordinates come from an orthonormal basis (e1, e2) of the plane instead.
+  const bool sheared = grid.sheared() && axis != 2;
+  const Mat3& d = grid.direction;
+  const Vec3 a_u = spacing[ua] * Vec3{d[0][ua], d[1][ua], d[2][ua]};
+  const Vec3 a_v = spacing[va] * Vec3{d[0][va], d[1][va], d[2][va]};
+  const Vec3 e1 = (1 / norm(a_u)) * a_u;
+  const Vec3 v_rest = a_v - dot(a_v, e1) * e1;
+  const Vec3 e2 = (1 / norm(v_rest)) * v_rest;
   std::vector<PlanePoint> points(index_coords.size());
   for (size_t p = 0; p < index_coords.size(); ++p) {
     const Vec3& c = index_coords[p];
+    if (sheared) {
+      const Vec3 q = c[ua] * a_u + c[va] * a_v;
+      points[p] = {std::llround(2 * c[axis]), dot(q, e1), dot(q, e2)};
+      continue;
+    }
     // With an orthonormal direction matrix, in-plane distances in mm are index differences times
     // the spacing, so the plane needs no 3D coordinates.
     points[p] = {std::llround(2 * c[axis]), c[ua] * spacing[ua], c[va] * spacing[va]};
@@ -85,9 +100,9 @@ Result<Maximum2DDiameters> maximum_2d_diameters(const TriangleMesh& mesh, const 
     index_coords[p] = grid.physical_to_index(v);
   }
   Maximum2DDiameters out;
-  out.row_mm = diameter_along(index_coords, grid.spacing_mm, 0);
-  out.column_mm = diameter_along(index_coords, grid.spacing_mm, 1);
-  out.slice_mm = diameter_along(index_coords, grid.spacing_mm, 2);
+  out.row_mm = diameter_along(index_coords, grid, 0);
+  out.column_mm = diameter_along(index_coords, grid, 1);
+  out.slice_mm = diameter_along(index_coords, grid, 2);
   return out;
 }
 

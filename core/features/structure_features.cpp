@@ -110,7 +110,7 @@ Status volume_section(const Ask& ask, FeatureReport& report) {
 Status stored_surface_section(const Ask& ask, FeatureReport& report) {
   PartTimer timer(report);
   SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("surface shape", [&] {
-    return surface_shape(*ask.input.surface, ask.input.volume.geometry.direction, ask.hull_part(""));
+    return surface_shape(*ask.input.surface, ask.input.volume.geometry.frame(), ask.hull_part(""));
   }));
   FeatureSources sources;
   sources.surface = &s;
@@ -137,7 +137,7 @@ Status mask_surface_section(const Ask& ask, const std::optional<std::string>& pr
   }
   if (ask.any_wanted(FeatureFamily::kDiameter2d)) {
     SOIQ_ASSIGN_OR_RETURN(Maximum2DDiameters d,
-                          timer.run("2d diameters", [&] { return mask_maximum_2d_diameters(sweep, grid.spacing_mm); }));
+                          timer.run("2d diameters", [&] { return mask_maximum_2d_diameters(sweep, grid); }));
     FeatureSources sources;
     sources.diameters_2d = &d;
     add_family(report, FeatureFamily::kDiameter2d, sources, ask);

@@ -48,12 +48,12 @@ std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& ro
   return hull;
 }
 
-double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v) {
+namespace {
+
+// The rotating calipers over the antipodal pairs of `hull`, measured by squared(a, b).
+template <typename Squared>
+double caliper_diameter(const std::vector<LatticePoint>& hull, Squared&& squared) {
   const size_t h = hull.size();
-  auto squared = [&](size_t a, size_t b) {
-    const double du = double(hull[a].u - hull[b].u) * scale_u, dv = double(hull[a].v - hull[b].v) * scale_v;
-    return du * du + dv * dv;
-  };
   if (h < 2) return 0;
   if (h == 2) return std::sqrt(squared(0, 1));
   double best = 0;
@@ -70,6 +70,22 @@ double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double sc
     }
   }
   return std::sqrt(best);
+}
+
+}  // namespace
+
+double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v) {
+  return caliper_diameter(hull, [&](size_t a, size_t b) {
+    const double du = double(hull[a].u - hull[b].u) * scale_u, dv = double(hull[a].v - hull[b].v) * scale_v;
+    return du * du + dv * dv;
+  });
+}
+
+double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, const Vec3& step_u, const Vec3& step_v) {
+  return caliper_diameter(hull, [&](size_t a, size_t b) {
+    const Vec3 d = double(hull[a].u - hull[b].u) * step_u + double(hull[a].v - hull[b].v) * step_v;
+    return dot(d, d);
+  });
 }
 
 }  // namespace soiq

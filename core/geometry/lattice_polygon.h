@@ -28,9 +28,13 @@
 //           map (the scaling) keeps parallel supporting lines parallel, so the antipodal pairs of
 //           the scaled polygon are those of the integer one, and its diameter is one of them.
 //   Cost    O(h) for h vertices. Thread-safe.
+//   The overload with step_u, step_v measures du step_u + dv step_v instead: any linear map of
+//   the plane (a sheared grid's planes that hold its leaning k axis), by the same argument.
 
 #include <cstdint>
 #include <vector>
+
+#include "core/base/vec3.h"
 
 namespace soiq {
 
@@ -48,5 +52,6 @@ struct LatticeRow {
 std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows);
 
 double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, double scale_u, double scale_v);
+double lattice_polygon_diameter(const std::vector<LatticePoint>& hull, const Vec3& step_u, const Vec3& step_v);
 
 }  // namespace soiq

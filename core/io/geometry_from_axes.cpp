@@ -21,8 +21,10 @@ Result<ImageGeometry> geometry_from_axes(const Mat3& axes_mm, const Vec3& origin
   }
   const Status valid = validate_geometry(g);
   if (!valid.ok()) {
-    return invalid_argument("image '" + name + "' has sheared or non-orthogonal axes, which soiq does not support (" +
-                            valid.message() + ")");
+    return invalid_argument("image '" + name +
+                            "' has sheared or non-orthogonal axes that soiq does not support (rows and columns must "
+                            "be at right angles, slices within 60 degrees of their normal): " +
+                            valid.message());
   }
   return g;
 }

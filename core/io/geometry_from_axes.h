@@ -7,7 +7,8 @@
 //          origin_mm: centre of voxel (0,0,0), LPS; dims >= 0; `name` (the file) for messages.
 // Output   spacing = column norms, direction = normalized columns.
 // Errors   INVALID_ARGUMENT naming the file when an axis has zero or non-finite length, or the
-//          axes are sheared or non-orthogonal (validate_geometry's 1e-4 tolerance).
+//          axes are sheared or non-orthogonal beyond what validate_geometry allows (a third axis
+//          leaning like a tilted series' k is a sheared grid soiq keeps as it is).
 // Cost     O(1); thread-safe.
 
 #include <array>

@@ -57,7 +57,9 @@ Status write_nifti(const ImageGeometry& g, VoxelType type, const void* voxels, c
   double dx = 0, dy = 0, dz = 0, qfac = 1;
   nifti_dmat44_to_quatern(affine, &nim->quatern_b, &nim->quatern_c, &nim->quatern_d, &nim->qoffset_x, &nim->qoffset_y,
                           &nim->qoffset_z, &dx, &dy, &dz, &qfac);
-  nim->qform_code = NIFTI_XFORM_SCANNER_ANAT;
+  // A quaternion holds a rotation only: a sheared (tilted) grid is in the sform alone, and readers
+  // told the qform is unknown take the sform.
+  nim->qform_code = g.sheared() ? NIFTI_XFORM_UNKNOWN : NIFTI_XFORM_SCANNER_ANAT;
   nim->qfac = qfac;
   nim->dx = nim->pixdim[1] = g.spacing_mm[0];
   nim->dy = nim->pixdim[2] = g.spacing_mm[1];

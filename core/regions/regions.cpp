@@ -142,6 +142,12 @@ Result<RegionPlan> plan_region(const RunLengthVolume& structure, const RegionSpe
                             std::to_string(spec.radius_mm));
   }
   const ImageGeometry& g = structure.geometry;
+  if (g.sheared()) {
+    // Balls and distance transforms here walk the grid's axes as if at right angles.
+    return unimplemented(std::string(kind_word(spec.kind)) + " regions measure distances along the grid's axes, which "
+                         "are not at right angles on a tilted series (" + describe(g) +
+                         "); use the inside region, or a grid of your own (a spacing) for this structure");
+  }
   plan.inside_box = bounding_box(structure);
   if (plan.inside_box.empty) return plan;
   // No two voxel centres of the grid are farther apart than its diagonal: a larger radius selects

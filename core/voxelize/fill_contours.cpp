@@ -77,7 +77,11 @@ Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, co
   SOIQ_RETURN_IF_ERROR(validate_geometry(geometry));
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_voxels));
   ContourFill out;
-  const double sz = geometry.spacing_mm[2];
+  // Distances along the slice normal: on a sheared (tilted) grid the k axis is longer than that.
+  const double sz = geometry.slice_distance_mm();
+  const bool sheared = geometry.sheared();
+  const Mat3 frame = geometry.frame();
+  const Vec3 normal{frame[0][2], frame[1][2], frame[2][2]};
   std::vector<PlacedContour> placed;
   for (size_t c = 0; c < contours.size(); ++c) {
     const auto& points = contours[c].points_mm;
@@ -110,6 +114,12 @@ Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, co
     }
     const double k_round = std::round(k_mean);
     pc.offset_mm = (k_mean - k_round) * sz;
+    if (sheared) {
+      // A point goes to its plane along the normal, not along the leaning k axis: on its plane the
+      // two agree, off it they part by the tilt.
+      for (size_t i = 0; i < points.size(); ++i)
+        pc.u[i] = geometry.physical_to_index(points[i] - ((pc.u[i][2] - k_round) * sz) * normal);
+    }
     if (std::abs(k_mean - k_round) > slice_tolerance_voxels) {
       return invalid_argument("contour " + std::to_string(c) + " lies " + mm(std::abs(pc.offset_mm)) +
                               " from the nearest image plane (slice " + std::to_string(int64_t(k_round)) +

@@ -54,6 +54,25 @@ SurfaceMeasure surface_measure(const TriangleMesh& mesh) {
   return m;
 }
 
+namespace {
+
+// The row lines' lattice seen along the rows: the area in mm2 one line stands for, and the
+// shortest a lattice unit can be in mm, which bound the lines through a triangle by its area and
+// perimeter. On a sheared grid the cell is the slices' distance high (not the k spacing) and
+// leans: its shortest unit is at least its area over its diagonal.
+struct LineLattice {
+  double cell_mm2, unit_mm;
+};
+
+LineLattice line_lattice(const ImageGeometry& g) {
+  const double sy = g.spacing_mm[1], sz = g.spacing_mm[2];
+  if (!g.sheared()) return {sy * sz, std::min(sy, sz)};
+  const double cell = sy * g.slice_distance_mm();
+  return {cell, cell / std::sqrt(sy * sy + sz * sz)};
+}
+
+}  // namespace
+
 ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const ImageGeometry& geometry, bool robust) {
   ConversionEstimate e;
   e.lines = mul_add(geometry.dims[1], geometry.dims[2]);
@@ -63,9 +82,9 @@ ConversionEstimate conversion_peak_bytes(const SurfaceMeasure& surface, const Im
   // the surface is bounded by its area and perimeter alone, whatever the grid's orientation: one
   // measure per surface serves every grid (in double: absurd meshes exceed int64, saturating()
   // clamps).
-  const double sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
+  const LineLattice lattice = line_lattice(geometry);
   const double crossings =
-      surface.area_mm2 / (sy * sz) + 0.5 * surface.perimeter_mm / std::min(sy, sz) + double(surface.triangles);
+      surface.area_mm2 / lattice.cell_mm2 + 0.5 * surface.perimeter_mm / lattice.unit_mm + double(surface.triangles);
   e.crossings = saturating(crossings);
   constexpr int64_t kPerLine = 4 * 24 + 3 * 8;  // reserved crossings, line starts (slab and result), sort counts
   const int64_t reserved = mul_add(e.lines, 4);
@@ -89,10 +108,11 @@ namespace {
 // The voxels within a voxel diagonal of the surface (coverage_peak_bytes explains the bound).
 double touched_voxels(const SurfaceMeasure& surface, const ImageGeometry& geometry) {
   const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
-  const double d = std::sqrt(sx * sx + sy * sy + sz * sz);
+  // A sheared voxel's longest diagonal is at most the sum of its edges.
+  const double d = geometry.sheared() ? sx + sy + sz : std::sqrt(sx * sx + sy * sy + sz * sz);
   return (2 * d * surface.area_mm2 + M_PI * d * d * surface.perimeter_mm +
           4.0 / 3.0 * M_PI * d * d * d * double(surface.triangles)) /
-         (sx * sy * sz);
+         geometry.voxel_volume_mm3();
 }
 
 }  // namespace
@@ -107,8 +127,8 @@ ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const Imag
   const double n = std::max(lines_per_voxel, 1);
   ConversionEstimate e;
   e.lines = mul_add(geometry.dims[1], geometry.dims[2]);
-  const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.spacing_mm[2];
-  e.crossings = saturating(n * n * surface.area_mm2 / (sy * sz) + n * 0.5 * surface.perimeter_mm / std::min(sy, sz) +
+  const LineLattice lattice = line_lattice(geometry);
+  e.crossings = saturating(n * n * surface.area_mm2 / lattice.cell_mm2 + n * 0.5 * surface.perimeter_mm / lattice.unit_mm +
                            double(surface.triangles));
   const int64_t partial = std::min(voxels(geometry), saturating(touched_voxels(surface, geometry)));
   const int64_t slice_lines = mul_add(geometry.dims[1], int64_t(n * n), 1);
@@ -120,6 +140,7 @@ ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const Imag
   bytes = mul_add(e.lines, 2 * 8, bytes);  // the result's two line indexes
   bytes = mul_add(surface.vertices, 24, bytes);
   // Per triangle its slice range, and its place in each voxel slice's list.
+  const double sx = geometry.spacing_mm[0], sy = geometry.spacing_mm[1], sz = geometry.slice_distance_mm();
   bytes = mul_add(surface.triangles + saturating(surface.perimeter_mm / std::min(sx, std::min(sy, sz))), 12, bytes);
   bytes = mul_add(geometry.dims[2], 2 * 8 + 64, bytes);  // slice counts and per-slice results
   e.bytes = bytes;

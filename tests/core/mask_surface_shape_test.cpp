@@ -38,7 +38,7 @@ void expect_matches_marching_cubes(const Mask& mask, int trial) {
   ASSERT_TRUE(sweep.ok()) << sweep.status().to_string();
   const auto got = mask_surface_shape(*sweep, mask.geometry, marching_cubes_table());
   ASSERT_TRUE(got.ok()) << got.status().to_string();
-  const auto got_2d = mask_maximum_2d_diameters(*sweep, mask.geometry.spacing_mm);
+  const auto got_2d = mask_maximum_2d_diameters(*sweep, mask.geometry);
   ASSERT_TRUE(got_2d.ok());
   expect_same(got->mesh_volume_mm3, want->mesh_volume_mm3, "mesh volume", trial);
   expect_same(got->surface_area_mm2, want->surface_area_mm2, "area", trial);
@@ -101,7 +101,7 @@ TEST(MaskSurfaceShape, PyRadiomicsBrain1FromRuns) {
   const auto sweep = mask_surface_sweep(from_mask(mask));
   ASSERT_TRUE(sweep.ok());
   const auto s = mask_surface_shape(*sweep, mask.geometry, marching_cubes_table());
-  const auto d = mask_maximum_2d_diameters(*sweep, mask.geometry.spacing_mm);
+  const auto d = mask_maximum_2d_diameters(*sweep, mask.geometry);
   ASSERT_TRUE(s.ok() && d.ok());
   // REFERENCE_VALUES.md: vertex-position features to 1e-9 relative.
   EXPECT_NEAR(s->maximum_3d_diameter_mm, 69.6009903059, 1e-9 * 69.6009903059);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 namespace soiq::dicom {
 namespace {
@@ -99,12 +100,62 @@ TEST(SliceStack, InconsistentOrientationOrSizeIsNamed) {
   EXPECT_NE(r.status().message().find("slice #3 is 4x5"), std::string::npos) << r.status().message();
 }
 
-TEST(SliceStack, TiltedStackIsRefused) {
-  auto slices = stack(3, 3);
-  for (int k = 0; k < 3; ++k) slices[k].position_mm[1] += 0.5 * k;  // gantry tilt: y drifts with z
+// Gantry tilt: each slice shifted in-plane by the same step. The grid is sheared so that every
+// voxel centre is its slice's own pixel centre, never resampled.
+TEST(SliceStack, TiltedStackGetsAShearedGridThroughEverySlicesOwnPixels) {
+  const std::array<double, 6> oblique = {0.8, 0.6, 0, 0, 0, -1};  // rows and columns not on the LPS axes
+  auto slices = stack(5, 2.5, oblique);
+  const Vec3 row{0.8, 0.6, 0}, col{0, 0, -1};
+  const Vec3 shift = 0.9 * row + (-0.4) * col;  // per slice, in-plane: tilt atan(0.985 / 2.5) = 21.5 degrees
+  for (int k = 0; k < 5; ++k) slices[k].position_mm = slices[k].position_mm + double(k) * shift;
+  std::swap(slices[1], slices[4]);
+  auto r = slice_stack(slices);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  const ImageGeometry& g = r->geometry;
+  ASSERT_TRUE(g.sheared());
+  EXPECT_NEAR(g.slice_distance_mm(), 2.5, 1e-12);
+  EXPECT_NEAR(g.spacing_mm[2], std::sqrt(2.5 * 2.5 + 0.81 + 0.16), 1e-12);
+  EXPECT_NEAR(g.tilt_degrees(), std::atan(std::sqrt(0.97) / 2.5) * 180 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(g.voxel_volume_mm3(), 0.5 * 0.7 * 2.5, 1e-12);
+  for (size_t k = 0; k < 5; ++k) {
+    const SliceInfo& s = slices[r->order[k]];
+    // Pixel (column 3, row 2) of slice k, from its own position: the grid's voxel (3, 2, k).
+    const Vec3 pixel = s.position_mm + (3 * 0.5) * row + (2 * 0.7) * col;
+    const Vec3 centre = g.index_to_physical({3, 2, double(k)});
+    const Vec3 back = g.physical_to_index(pixel);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(centre[a], pixel[a], 1e-12) << "slice " << k;
+      EXPECT_NEAR(back[a], (Vec3{3, 2, double(k)})[a], 1e-12) << "slice " << k;
+    }
+  }
+  // The orthonormal frame of the slices: rows, columns and their normal on k's side.
+  const Mat3 f = g.frame();
+  const Vec3 n = cross(row, col);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(f[a][2], n[a], 1e-12);
+}
+
+TEST(SliceStack, DriftTooSmallPerStepToSeeStillMakesATiltedGridOnceItAddsUp) {
+  auto slices = stack(40, 1);
+  for (int k = 0; k < 40; ++k) slices[k].position_mm[1] += 0.008 * k;  // 8 um per slice, 0.3 mm in all
+  auto r = slice_stack(slices);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_TRUE(r->geometry.sheared());
+  EXPECT_NEAR(r->geometry.index_to_physical({0, 0, 39})[1], 20 + 0.008 * 39, 1e-12);
+}
+
+TEST(SliceStack, StackTiltedByMoreThanOneAngleOrTooFarIsRefusedNamingTheSlice) {
+  auto slices = stack(4, 3);
+  for (int k = 0; k < 4; ++k) slices[k].position_mm[1] += 0.5 * k;
+  slices[2].position_mm[0] += 0.2;  // one slice off the tilted line
   auto r = slice_stack(slices);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.status().message().find("gantry tilt"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("slice #3"), std::string::npos) << r.status().message();
+  EXPECT_NE(r.status().message().find("nor tilted by one angle"), std::string::npos) << r.status().message();
+  slices = stack(3, 1);
+  for (int k = 0; k < 3; ++k) slices[k].position_mm[0] += 2 * k;  // 63 degrees
+  r = slice_stack(slices);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("63.4 degrees"), std::string::npos) << r.status().message();
 }
 
 TEST(SliceStack, NonFinitePositionOfAnySliceIsRefusedNamingItAndTheTag) {
