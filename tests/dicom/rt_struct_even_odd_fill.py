@@ -31,6 +31,7 @@ def grid_mapping(path):
     spacing = np.array(grid["spacing"], float)
     direction = np.array(grid["direction"], float)
     nx, ny, nz = (int(n) for n in grid["dims"])
+    assert np.allclose(direction.T @ direction, np.eye(3), atol=1e-4), "a sheared grid: read it with --series"
 
     def place(points):
         # LPS -> continuous index: D^T (p - origin) / spacing.
