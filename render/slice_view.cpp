@@ -139,8 +139,10 @@ Result<SliceAxes> slice_axes(const ImageGeometry& geometry, Plane plane) {
   axes.slice_count = geometry.dims[axes.normal_axis];
   axes.width = geometry.dims[axes.across_axis];
   axes.height = geometry.dims[axes.down_axis];
-  axes.pixel_width_mm = geometry.spacing_mm[axes.across_axis];
-  axes.pixel_height_mm = geometry.spacing_mm[axes.down_axis];
+  // A tilted series' slices stand their planes' distance apart (the shear itself is not drawn).
+  auto pixel_mm = [&](int axis) { return axis == 2 ? geometry.slice_distance_mm() : geometry.spacing_mm[axis]; };
+  axes.pixel_width_mm = pixel_mm(axes.across_axis);
+  axes.pixel_height_mm = pixel_mm(axes.down_axis);
   // Where the screen's right and down point in the patient: the voxel axes as shown, flips included.
   const Vec3 right = (axes.flip_across ? -1.0 : 1.0) * across;
   const Vec3 below = (axes.flip_down ? -1.0 : 1.0) * down;

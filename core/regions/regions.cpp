@@ -144,9 +144,10 @@ Result<RegionPlan> plan_region(const RunLengthVolume& structure, const RegionSpe
   const ImageGeometry& g = structure.geometry;
   if (g.sheared()) {
     // Balls and distance transforms here walk the grid's axes as if at right angles.
-    return unimplemented(std::string(kind_word(spec.kind)) + " regions measure distances along the grid's axes, which "
-                         "are not at right angles on a tilted series (" + describe(g) +
-                         "); use the inside region, or a grid of your own (a spacing) for this structure");
+    return failed_precondition(std::string(kind_word(spec.kind)) +
+                               " regions measure distances along the grid's axes, which are not at right angles on "
+                               "a gantry-tilted series; use the inside region there, or a grid of your own "
+                               "(--spacing) for the structure");
   }
   plan.inside_box = bounding_box(structure);
   if (plan.inside_box.empty) return plan;

@@ -30,6 +30,7 @@
 #include "core/io/marching_cubes.h"
 #include "core/io/read_image.h"
 #include "core/io/write_image.h"
+#include "core/regions/regions.h"
 #include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/voxelize_1d.h"
 
@@ -261,6 +262,21 @@ TEST(ShearedGrid, MaskFeaturesEqualThoseOfTheMarchingCubesSurfaceInMm) {
       // larger than the 3D one and close to the shape's own size.
       EXPECT_LE(d_mesh->row_mm, from_mesh->maximum_3d_diameter_mm + 1e-9) << what;
     }
+  }
+}
+
+TEST(ShearedGrid, ShellsAndCoresAreRefusedForWantOfRightAnglesInsideIsNot) {
+  auto v = voxelize_1d(shapes()[0].second, stacks()[0].geometry());
+  ASSERT_TRUE(v.ok());
+  auto inside = region(v->volume, RegionSpec{});
+  ASSERT_TRUE(inside.ok()) << inside.status().to_string();
+  EXPECT_EQ(voxel_count(*inside), voxel_count(v->volume));
+  for (const RegionKind kind : {RegionKind::kShell, RegionKind::kCore}) {
+    auto refused = region(v->volume, RegionSpec{kind, 3});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.status().code(), StatusCode::kFailedPrecondition);
+    EXPECT_NE(refused.status().message().find("gantry-tilted series; use the inside region"), std::string::npos)
+        << refused.status().message();
   }
 }
 
