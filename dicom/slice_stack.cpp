@@ -109,13 +109,14 @@ bool shifted_in_plane(const std::vector<SliceInfo>& slices, const std::vector<si
 }
 
 // Checks that a tilted stack is tilted by one angle: every slice within `tol` of the line from the
-// first slice along the mean step, so one sheared grid holds all their voxel centres.
-Status check_constant_tilt(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order, const Vec3& step,
-                           double tol) {
+// first slice to the last, at its own height along the normal, so one sheared grid holds all their
+// voxel centres.
+Status check_constant_tilt(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
+                           const std::vector<double>& along, const Vec3& n, const Vec3& k_axis, double tol) {
   const Vec3& first = slices[order.front()].position_mm;
   for (size_t k = 1; k < slices.size(); ++k) {
     const SliceInfo& s = slices[order[k]];
-    const Vec3 expected = first + double(k) * step;
+    const Vec3 expected = first + ((along[order[k]] - along[order[0]]) / dot(k_axis, n)) * k_axis;
     const double off = norm(s.position_mm - expected);
     if (off > tol)
       return invalid_argument("slice " + s.label + " at " + fmt(s.position_mm) + " is " + fmt(off) +
@@ -126,28 +127,34 @@ Status check_constant_tilt(const std::vector<SliceInfo>& slices, const std::vect
   return ok_status();
 }
 
-// Checks that every step between consecutive slices equals the smallest one. The mean step hides a
-// gap; the smallest step is the series' real spacing when a slice is missing, so a step of about a
-// whole multiple of it is reported as missing slices.
-Status check_regular_steps(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
-                           const std::vector<double>& along) {
-  double smallest = along[order[1]] - along[order[0]];
-  for (size_t k = 1; k + 1 < slices.size(); ++k) smallest = std::min(smallest, along[order[k + 1]] - along[order[k]]);
+// True when every step between consecutive slices equals the smallest one (to max(0.01 mm, 1 %));
+// false for an unevenly spaced stack, which a grid holds slice by slice. One pattern is refused: a
+// step of about a whole multiple of the others with the smallest step on both sides, the trace of
+// a file missing from a series, not of a protocol that changes its spacing (that runs longer).
+Result<bool> steps_are_even(const std::vector<SliceInfo>& slices, const std::vector<size_t>& order,
+                            const std::vector<double>& along) {
+  const size_t steps = slices.size() - 1;
+  std::vector<double> step(steps);
+  for (size_t k = 0; k < steps; ++k) step[k] = along[order[k + 1]] - along[order[k]];
+  const double smallest = *std::min_element(step.begin(), step.end());
   const double step_tol = std::max(0.01, 0.01 * smallest);
-  for (size_t k = 0; k + 1 < slices.size(); ++k) {
-    const SliceInfo& a = slices[order[k]];
-    const SliceInfo& b = slices[order[k + 1]];
-    const double step = along[order[k + 1]] - along[order[k]];
-    if (near(step, smallest, step_tol)) continue;
-    const double ratio = step / smallest;
+  auto even = [&](size_t k) { return near(step[k], smallest, step_tol); };
+  bool all_even = true;
+  for (size_t k = 0; k < steps; ++k) {
+    if (even(k)) continue;
+    all_even = false;
+    const double ratio = step[k] / smallest;
     const double missing = std::round(ratio) - 1;
-    const std::string where = a.label + " at " + fmt(a.position_mm) + " and " + b.label + " at " + fmt(b.position_mm) +
-                              " (" + fmt(step) + " mm apart, the others " + fmt(smallest) + " mm)";
-    if (missing >= 1 && near(ratio, std::round(ratio), 0.05))
-      return invalid_argument(fmt(missing) + " missing slice(s) between " + where);
-    return invalid_argument("irregular slice spacing between " + where);
+    const bool isolated = (k == 0 || even(k - 1)) && (k + 1 == steps || even(k + 1));
+    if (missing >= 1 && near(ratio, std::round(ratio), 0.05) && isolated && steps >= 3) {
+      const SliceInfo& a = slices[order[k]];
+      const SliceInfo& b = slices[order[k + 1]];
+      return invalid_argument(fmt(missing) + " missing slice(s) between " + a.label + " at " + fmt(a.position_mm) +
+                              " and " + b.label + " at " + fmt(b.position_mm) + " (" + fmt(step[k]) +
+                              " mm apart, the others " + fmt(smallest) + " mm): a file of the series is missing");
+    }
   }
-  return ok_status();
+  return all_even;
 }
 
 }  // namespace
@@ -173,18 +180,25 @@ Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double s
   Vec3 k_axis = n;
   double spacing =
       single_slice_spacing_mm > 0 && std::isfinite(single_slice_spacing_mm) ? single_slice_spacing_mm : 1.0;
+  std::vector<double> positions;  // along k_axis from the first slice, for an uneven stack only
   if (slices.size() > 1) {
-    spacing = (along[out.order.back()] - along[out.order.front()]) / static_cast<double>(slices.size() - 1);
+    const size_t last = out.order.back(), first_slice = out.order.front();
+    spacing = (along[last] - along[first_slice]) / static_cast<double>(slices.size() - 1);
     const double tol = std::max(0.01, 0.01 * spacing);
     SOIQ_RETURN_IF_ERROR(check_distinct_positions(slices, out.order, along, tol));
-    SOIQ_RETURN_IF_ERROR(check_regular_steps(slices, out.order, along));
+    SOIQ_ASSIGN_OR_RETURN(const bool even, steps_are_even(slices, out.order, along));
     if (shifted_in_plane(slices, out.order, n, tol)) {
-      // Gantry tilt: the grid's k axis is the step itself, so its voxel centres are the slices'.
-      const Vec3 step = (1.0 / static_cast<double>(slices.size() - 1)) *
-                        (slices[out.order.back()].position_mm - slices[out.order.front()].position_mm);
-      SOIQ_RETURN_IF_ERROR(check_constant_tilt(slices, out.order, step, tol));
-      k_axis = (1.0 / norm(step)) * step;
-      spacing = norm(step);
+      // Gantry tilt: the grid's k axis runs from slice to slice, so its voxel centres are the slices'.
+      const Vec3 span = slices[last].position_mm - slices[first_slice].position_mm;
+      k_axis = (1.0 / norm(span)) * span;
+      SOIQ_RETURN_IF_ERROR(check_constant_tilt(slices, out.order, along, n, k_axis, tol));
+      spacing = norm(span) / static_cast<double>(slices.size() - 1);
+    }
+    if (!even) {
+      // Each slice where it is along the k axis; the mean step is the grid's k spacing.
+      for (const size_t i : out.order) positions.push_back((along[i] - along[first_slice]) / dot(k_axis, n));
+      positions[0] = 0;
+      spacing = positions.back() / static_cast<double>(slices.size() - 1);
     }
   }
 
@@ -193,6 +207,7 @@ Result<StackGeometry> slice_stack(const std::vector<SliceInfo>& slices, double s
   g.spacing_mm = {first.pixel_spacing_mm[1], first.pixel_spacing_mm[0], spacing};
   g.dims = {first.columns, first.rows, static_cast<int64_t>(slices.size())};
   for (int r = 0; r < 3; ++r) g.direction[r] = {row[r], col[r], k_axis[r]};
+  g.slice_positions_mm = std::move(positions);
   SOIQ_RETURN_IF_ERROR(validate_geometry(g));
   return out;
 }

@@ -15,15 +15,18 @@
 //          slices); `order[k]` is the input index of slice k. A stack acquired with gantry tilt
 //          (a slice more than the tolerance below off the normal line through the first) gets a
 //          sheared grid instead: its k axis the mean step from slice to slice, unit, and
-//          spacing[2] that step's length, so voxel (i,j,k)'s centre is slice k's own pixel.
+//          spacing[2] that step's length, so voxel (i,j,k)'s centre is slice k's own pixel. An
+//          unevenly spaced stack (a step differing from the smallest by more than max(0.01 mm,
+//          1%)) gets slice_positions_mm, each slice where it is along the k axis, so again voxel
+//          (i,j,k)'s centre is slice k's own pixel.
 // Errors   INVALID_ARGUMENT naming the slice(s), the tag and the value: no slices; a position
 //          (0020,0032) that is not finite or over 1e6 mm from the origin; an orientation (0020,0037)
 //          that is not finite, or (first slice) not two orthonormal vectors to 1e-4; a pixel
 //          spacing (0028,0030) that is not finite, not > 0 or over 1000 mm; rows or columns <= 0;
 //          a slice whose orientation, pixel spacing, rows or columns differ from the first
-//          slice's; two slices at the same position; a gap of about twice the others ("missing
-//          slice between ...") or any other step along n that differs from the smallest step by
-//          more than max(0.01 mm, 1%) ("irregular slice spacing"); a tilted stack whose slices are
+//          slice's; two slices at the same position; a lone step of about a whole multiple (>= 2)
+//          of the others, which are all equal, in a stack of 4 or more ("1 missing slice(s)
+//          between ...": a file is missing); a tilted stack whose slices are
 //          not on one line (off by more than that tolerance: "neither stacked along the normal
 //          ... nor tilted by one angle") or tilted more than kMaxTiltDegrees. A
 //          single_slice_spacing_mm that is not finite and > 0 becomes 1.

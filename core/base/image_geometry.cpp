@@ -7,9 +7,46 @@
 
 namespace soiq {
 
-Vec3 ImageGeometry::index_to_physical(const Vec3& ijk) const {
-  const Vec3 scaled{ijk[0] * spacing_mm[0], ijk[1] * spacing_mm[1], ijk[2] * spacing_mm[2]};
+Vec3 ImageGeometry::lattice_to_physical(const Vec3& ijz) const {
+  const Vec3 scaled{ijz[0] * spacing_mm[0], ijz[1] * spacing_mm[1], ijz[2] * spacing_mm[2]};
   return origin_mm + mul(direction, scaled);
+}
+
+Vec3 ImageGeometry::index_to_physical(const Vec3& ijk) const {
+  if (!uneven()) return lattice_to_physical(ijk);
+  return lattice_to_physical({ijk[0], ijk[1], lattice_z(ijk[2])});
+}
+
+double ImageGeometry::lattice_z(double k) const {
+  if (!uneven()) return k;
+  const std::vector<double>& p = slice_positions_mm;
+  const size_t n = p.size();
+  if (n < 2) return k;  // not a valid uneven grid (validate_geometry): no pieces to follow
+  // The piece holding k: [a, a + 1], the end pieces extended.
+  const double a = std::clamp(std::floor(k), 0.0, double(n - 2));
+  const size_t i = size_t(a);
+  return (p[i] + (k - a) * (p[i + 1] - p[i])) / spacing_mm[2];
+}
+
+double ImageGeometry::slice_index(double z) const {
+  if (!uneven()) return z;
+  const std::vector<double>& p = slice_positions_mm;
+  if (p.size() < 2) return z;
+  const double mm = z * spacing_mm[2];
+  // The piece [p[i], p[i + 1]] holding mm, the end pieces extended.
+  const size_t upper = size_t(std::upper_bound(p.begin(), p.end(), mm) - p.begin());
+  const size_t i = std::min(std::max<size_t>(upper, 1), p.size() - 1) - 1;
+  return double(i) + (mm - p[i]) / (p[i + 1] - p[i]);
+}
+
+double ImageGeometry::voxel_volume_mm3(int64_t k) const {
+  if (!uneven()) return voxel_volume_mm3();
+  const std::vector<double>& p = slice_positions_mm;
+  if (p.size() < 2) return voxel_volume_mm3();
+  const size_t n = p.size(), i = size_t(std::clamp<int64_t>(k, 0, int64_t(n - 1)));
+  const double below = i > 0 ? p[i] - p[i - 1] : p[1] - p[0];
+  const double above = i + 1 < n ? p[i + 1] - p[i] : p[n - 1] - p[n - 2];
+  return voxel_volume_mm3() / spacing_mm[2] * 0.5 * (below + above);
 }
 
 namespace {
@@ -54,6 +91,12 @@ double ImageGeometry::tilt_degrees() const {
 }
 
 Vec3 ImageGeometry::physical_to_index(const Vec3& p_mm) const {
+  if (!uneven()) return physical_to_lattice(p_mm);
+  const Vec3 l = physical_to_lattice(p_mm);
+  return {l[0], l[1], slice_index(l[2])};
+}
+
+Vec3 ImageGeometry::physical_to_lattice(const Vec3& p_mm) const {
   const Vec3 d = p_mm - origin_mm;
   if (sheared()) {
     // The slice first, from the distance along the normal (k alone moves a point off its plane),
@@ -98,6 +141,25 @@ Status validate_geometry(const ImageGeometry& g) {
       }
     }
   }
+  if (g.uneven()) {
+    const std::vector<double>& p = g.slice_positions_mm;
+    if (int64_t(p.size()) != g.dims[2] || p.size() < 3) {
+      return invalid_argument("grid has " + std::to_string(p.size()) + " slice positions for " +
+                              std::to_string(g.dims[2]) + " slices (an unevenly spaced grid needs one per slice, 3 or more)");
+    }
+    if (p[0] != 0) return invalid_argument("grid's first slice position is not 0");
+    for (size_t k = 1; k < p.size(); ++k) {
+      if (!std::isfinite(p[k]) || !(p[k] > p[k - 1])) {
+        return invalid_argument("grid's slice positions must be finite and increasing: slice " + std::to_string(k) +
+                                " at " + std::to_string(p[k]) + " mm after " + std::to_string(p[k - 1]));
+      }
+    }
+    const double mean = p.back() / double(p.size() - 1);
+    if (std::abs(mean - g.spacing_mm[2]) > 1e-9 * mean) {
+      return invalid_argument("grid's k spacing " + std::to_string(g.spacing_mm[2]) +
+                              " mm is not the mean step of its slice positions, " + std::to_string(mean));
+    }
+  }
   if (sheared && g.tilt_degrees() > kMaxTiltDegrees) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
@@ -125,6 +187,13 @@ Status check_grid_size(const ImageGeometry& g, int64_t max_voxels) {
 
 Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b) {
   if (a.dims != b.dims) return invalid_argument("grids differ in size: " + describe(a) + " vs " + describe(b));
+  if (a.uneven() != b.uneven()) return invalid_argument("grids differ: " + describe(a) + " vs " + describe(b));
+  for (size_t k = 0; k < a.slice_positions_mm.size(); ++k) {
+    if (std::abs(a.slice_positions_mm[k] - b.slice_positions_mm[k]) > 1e-4) {
+      return invalid_argument("grids differ in the position of slice " + std::to_string(k) + " by " +
+                              std::to_string(std::abs(a.slice_positions_mm[k] - b.slice_positions_mm[k])) + " mm");
+    }
+  }
   for (int i = 0; i < 3; ++i) {
     if (std::abs(a.spacing_mm[i] - b.spacing_mm[i]) > 1e-6 * std::max(a.spacing_mm[i], b.spacing_mm[i])) {
       return invalid_argument("grids differ in spacing: " + describe(a) + " vs " + describe(b));
@@ -145,11 +214,22 @@ std::string describe(const ImageGeometry& g) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "%lldx%lldx%lld voxels of %gx%gx%g mm", (long long)g.dims[0], (long long)g.dims[1],
                 (long long)g.dims[2], g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2]);
-  if (!g.sheared()) return buf;
+  std::string out = buf;
+  if (g.uneven()) {
+    double least = HUGE_VAL, most = 0;
+    const std::vector<double>& p = g.slice_positions_mm;
+    for (size_t k = 1; k < p.size(); ++k) least = std::min(least, p[k] - p[k - 1]), most = std::max(most, p[k] - p[k - 1]);
+    const double along_normal = g.slice_distance_mm() / g.spacing_mm[2];
+    char uneven[96];
+    std::snprintf(uneven, sizeof uneven, ", unevenly spaced slices %g to %g mm apart", least * along_normal,
+                  most * along_normal);
+    out += uneven;
+  }
+  if (!g.sheared()) return out;
   char tilt[80];
   std::snprintf(tilt, sizeof tilt, ", slices %g mm apart, tilted %.2g degrees", g.slice_distance_mm(),
                 g.tilt_degrees());
-  return buf + std::string(tilt);
+  return out + tilt;
 }
 
 }  // namespace soiq

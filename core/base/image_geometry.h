@@ -10,10 +10,17 @@
 // sheared, its slices still the planes k = const but each one shifted in-plane from the last.
 // Everything here holds for both; the sheared one is kept as it is, never resampled, so that its
 // voxel centres are the series' own.
+//
+// The slices of an unevenly spaced series are not k x spacing apart: slice_positions_mm holds
+// where each one lies along k's axis, and the grid is affine between consecutive slices only. Its
+// "lattice" coordinates (i, j, z) are those of the affine grid of spacing_mm: slice k lies on the
+// plane z = lattice_z(k) = slice_positions_mm[k] / spacing_mm[2], not at z = k. For every evenly
+// spaced grid the lattice is the index space.
 
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/base/status.h"
 #include "core/base/vec3.h"
@@ -25,6 +32,10 @@ struct ImageGeometry {
   Vec3 spacing_mm{1, 1, 1};              // along i, j, k; > 0
   std::array<int64_t, 3> dims{0, 0, 0};  // nx, ny, nz; >= 0
   Mat3 direction = identity3();          // columns: unit directions of i, j, k in LPS
+  // Unevenly spaced series only: the position of each slice along k's axis in mm from slice 0
+  // (0 first, strictly increasing, dims[2] of them); spacing_mm[2] is then their mean step. Empty
+  // for every evenly spaced grid.
+  std::vector<double> slice_positions_mm;
 
   int64_t voxel_count() const { return dims[0] * dims[1] * dims[2]; }
   // True when k leans away from the normal i x j by more than validate_geometry's orthonormality
@@ -35,7 +46,19 @@ struct ImageGeometry {
   // spacing_mm[2] x cos(tilt) when it is.
   double slice_distance_mm() const;
   // The volume of one voxel, a parallelepiped when sheared: spacing x, y and slice_distance_mm().
+  // On an unevenly spaced grid, that of a mean slice: voxel_volume_mm3(k) is slice k's.
   double voxel_volume_mm3() const;
+  bool uneven() const { return !slice_positions_mm.empty(); }
+  // Slice k's voxel volume: its thickness reaches halfway to each neighbour (the end slices as far
+  // outwards as inwards). voxel_volume_mm3() for every k when the grid is evenly spaced.
+  double voxel_volume_mm3(int64_t k) const;
+  // Continuous slice index k -> lattice z, and back: linear between slices, and beyond the ends
+  // along the end steps. Identities unless uneven.
+  double lattice_z(double k) const;
+  double slice_index(double z) const;
+  // The affine part: lattice (i, j, z) <-> LPS. The index maps below for evenly spaced grids.
+  Vec3 lattice_to_physical(const Vec3& ijz) const;
+  Vec3 physical_to_lattice(const Vec3& p_mm) const;
   // The orthonormal frame of the slices, columns (i, j, normal), the normal on k's side of the
   // planes: the direction matrix itself unless sheared.
   Mat3 frame() const;
@@ -50,8 +73,9 @@ struct ImageGeometry {
 
 // OK when spacing is finite and > 0, dims >= 0, values finite, i and j orthonormal and k a unit
 // vector (to 1e-4, as DICOM orientation vectors are often stored with 6 decimals) either
-// perpendicular to both (to 1e-4) or leaning at most kMaxTiltDegrees from their normal.
-// INVALID_ARGUMENT naming the offending field otherwise.
+// perpendicular to both (to 1e-4) or leaning at most kMaxTiltDegrees from their normal, and slice
+// positions, if any, one per slice (at least 3), finite, 0 first, each step > 0 and spacing_mm[2]
+// their mean step (to 1e-9 relative). INVALID_ARGUMENT naming the offending field otherwise.
 Status validate_geometry(const ImageGeometry& g);
 
 // Gantry tilts reach 30 degrees; beyond 60 a "slice stack" is no longer one.

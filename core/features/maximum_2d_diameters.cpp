@@ -49,13 +49,15 @@ double plane_diameter(const PlanePoint* first, const PlanePoint* last, std::vect
   return std::sqrt(best);
 }
 
-// Max over planes of constant index coordinate `axis`.
-double diameter_along(const std::vector<Vec3>& index_coords, const ImageGeometry& grid, int axis) {
+// Max over planes of constant index coordinate `axis`; `vertices_mm` the points in LPS.
+double diameter_along(const std::vector<Vec3>& index_coords, const std::vector<Vec3>& vertices_mm,
+                      const ImageGeometry& grid, int axis) {
   const Vec3& spacing = grid.spacing_mm;
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
-  // On a sheared grid the planes that hold the leaning k axis are not spanned at right angles:
-  // in-plane coordinates come from an orthonormal basis (e1, e2) of the plane instead.
-  const bool sheared = grid.sheared() && axis != 2;
+  // On a sheared grid the planes that hold the leaning k axis are not spanned at right angles, and
+  // on an unevenly spaced one the k index is not proportional to distance: in-plane coordinates
+  // come from the points in mm, on an orthonormal basis (e1, e2) of the plane.
+  const bool in_mm = (grid.sheared() || grid.uneven()) && axis != 2;
   const Mat3& d = grid.direction;
   const Vec3 a_u = spacing[ua] * Vec3{d[0][ua], d[1][ua], d[2][ua]};
   const Vec3 a_v = spacing[va] * Vec3{d[0][va], d[1][va], d[2][va]};
@@ -65,9 +67,8 @@ double diameter_along(const std::vector<Vec3>& index_coords, const ImageGeometry
   std::vector<PlanePoint> points(index_coords.size());
   for (size_t p = 0; p < index_coords.size(); ++p) {
     const Vec3& c = index_coords[p];
-    if (sheared) {
-      const Vec3 q = c[ua] * a_u + c[va] * a_v;
-      points[p] = {std::llround(2 * c[axis]), dot(q, e1), dot(q, e2)};
+    if (in_mm) {
+      points[p] = {std::llround(2 * c[axis]), dot(vertices_mm[p], e1), dot(vertices_mm[p], e2)};
       continue;
     }
     // With an orthonormal direction matrix, in-plane distances in mm are index differences times
@@ -100,9 +101,9 @@ Result<Maximum2DDiameters> maximum_2d_diameters(const TriangleMesh& mesh, const 
     index_coords[p] = grid.physical_to_index(v);
   }
   Maximum2DDiameters out;
-  out.row_mm = diameter_along(index_coords, grid, 0);
-  out.column_mm = diameter_along(index_coords, grid, 1);
-  out.slice_mm = diameter_along(index_coords, grid, 2);
+  out.row_mm = diameter_along(index_coords, mesh.vertices_mm, grid, 0);
+  out.column_mm = diameter_along(index_coords, mesh.vertices_mm, grid, 1);
+  out.slice_mm = diameter_along(index_coords, mesh.vertices_mm, grid, 2);
   return out;
 }
 

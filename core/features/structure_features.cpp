@@ -11,8 +11,10 @@
 #include "core/features/intensity_features.h"
 #include "core/features/marching_cubes_table.h"
 #include "core/features/mask_maximum_2d_diameters.h"
+#include "core/features/mask_surface_mesh.h"
 #include "core/features/mask_surface_shape.h"
 #include "core/features/mask_surface_sweep.h"
+#include "core/features/maximum_2d_diameters.h"
 #include "core/features/surface_shape.h"
 #include "core/features/weighted_intensity.h"
 #include "core/voxelize/coverage_1d.h"
@@ -118,6 +120,32 @@ Status stored_surface_section(const Ask& ask, FeatureReport& report) {
   return ok_status();
 }
 
+// On an unevenly spaced grid the sweep's closed forms (one cube size) do not hold: the same
+// marching-cubes surface is built in mm (mask_surface_mesh.h) and measured as a stored one is.
+Status uneven_mask_surface_section(const Ask& ask, const std::optional<std::string>& prefix, FeatureReport& report) {
+  PartTimer timer(report);
+  const ImageGeometry& grid = ask.input.volume.geometry;
+  SOIQ_ASSIGN_OR_RETURN(const TriangleMesh mesh, timer.run("mask surface mesh", [&] {
+    return mask_surface_mesh(ask.input.volume, marching_cubes_table(), grid.voxel_count());
+  }));
+  if (prefix) {
+    SOIQ_ASSIGN_OR_RETURN(SurfaceShape s, timer.run("mask surface shape", [&] {
+      return surface_shape(mesh, grid.frame(), ask.hull_part(*prefix));
+    }));
+    FeatureSources sources;
+    sources.surface = &s;
+    add_family(report, FeatureFamily::kSurface, sources, ask, *prefix);
+  }
+  if (ask.any_wanted(FeatureFamily::kDiameter2d)) {
+    SOIQ_ASSIGN_OR_RETURN(Maximum2DDiameters d,
+                          timer.run("2d diameters", [&] { return maximum_2d_diameters(mesh, grid); }));
+    FeatureSources sources;
+    sources.diameters_2d = &d;
+    add_family(report, FeatureFamily::kDiameter2d, sources, ask);
+  }
+  return ok_status();
+}
+
 // The mask's marching-cubes surface is never built: its features come from one sweep of the runs
 // (mask_surface_sweep.h), exactly those of marching_cubes(mask) up to rounding. `prefix` is "" when
 // they are the structure's surface features, "mask_" beside a stored surface's; empty optional:
@@ -125,6 +153,7 @@ Status stored_surface_section(const Ask& ask, FeatureReport& report) {
 Status mask_surface_section(const Ask& ask, const std::optional<std::string>& prefix, FeatureReport& report) {
   PartTimer timer(report);
   const ImageGeometry& grid = ask.input.volume.geometry;
+  if (grid.uneven()) return uneven_mask_surface_section(ask, prefix, report);
   SOIQ_ASSIGN_OR_RETURN(const MaskSurfaceSweep sweep,
                         timer.run("mask surface sweep", [&] { return mask_surface_sweep(ask.input.volume); }));
   if (prefix) {

@@ -1,9 +1,11 @@
 #include "core/features/volume_shape.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/geometry/symmetric_eigenvalues.h"
 
@@ -33,6 +35,8 @@ struct IndexMoments {
 struct VolumeSweep {
   IndexMoments moments;
   Vec3 bbox_min_mm, bbox_max_mm;
+  // Unevenly spaced grids only: per slice k, its voxel count and the sums of their i and j.
+  std::vector<std::array<int64_t, 3>> per_slice;
 };
 
 VolumeSweep sweep_runs(const RunLengthVolume& volume) {
@@ -47,6 +51,7 @@ VolumeSweep sweep_runs(const RunLengthVolume& volume) {
   // stores cannot be forwarded), which made this loop several times slower per run.
   Int128 s00 = 0, s11 = 0, s22 = 0, s01 = 0, s02 = 0, s12 = 0;
   int64_t n_total = 0, s0 = 0, s1 = 0, s2 = 0;
+  if (g.uneven()) out.per_slice.assign(size_t(g.dims[2]), {0, 0, 0});
   for (int64_t l = 0; l < lines; ++l) {
     const int64_t first = volume.line_start[l], last = volume.line_start[l + 1];
     if (first == last) continue;
@@ -62,6 +67,10 @@ VolumeSweep sweep_runs(const RunLengthVolume& volume) {
     }
     n_total += n_line;
     s0 += si_line, s1 += n_line * j, s2 += n_line * k;
+    if (!out.per_slice.empty()) {
+      auto& slice = out.per_slice[size_t(k)];
+      slice[0] += n_line, slice[1] += si_line, slice[2] += n_line * j;
+    }
     s00 += sii_line, s11 += Int128(n_line) * j * j, s22 += Int128(n_line) * k * k;
     s01 += Int128(j) * si_line, s02 += Int128(k) * si_line, s12 += Int128(n_line) * j * k;
     // An LPS coordinate is affine in i along the line: its extremes are at the line's first and
@@ -111,6 +120,23 @@ Result<VolumeShape> volume_shape(const RunLengthVolume& volume, CovarianceDiviso
       const Int128 num = m.n * m.ss[a][c] - Int128(m.s[a]) * m.s[c];
       ci[a][c] = ci[c][a] = double(num) / nd / denominator;
     }
+  }
+  if (g.uneven()) {
+    // Slices are not k spacings apart: each voxel weighs its slice's volume, and the moments along
+    // k are taken at the slices' lattice heights (in double: they are not integers).
+    double volume_mm3 = 0, sz = 0, szz = 0, sxz = 0, syz = 0;
+    for (size_t k = 0; k < sweep.per_slice.size(); ++k) {
+      const auto& [n, si, sj] = sweep.per_slice[k];
+      if (n == 0) continue;
+      const double z = g.lattice_z(double(k));
+      volume_mm3 += double(n) * g.voxel_volume_mm3(int64_t(k));
+      sz += double(n) * z, szz += double(n) * z * z, sxz += double(si) * z, syz += double(sj) * z;
+    }
+    out.voxel_volume_mm3 = volume_mm3;
+    const double mean[3] = {double(m.s[0]) / nd, double(m.s[1]) / nd, sz / nd};
+    out.centroid_mm = g.lattice_to_physical({mean[0], mean[1], mean[2]});
+    const double sums[3] = {sxz, syz, szz};
+    for (int a = 0; a < 3; ++a) ci[a][2] = ci[2][a] = (sums[a] - nd * mean[a] * mean[2]) / denominator;
   }
   // LPS covariance A ci A^T, A = direction * diag(spacing).
   Mat3 a_mat{};

@@ -40,15 +40,17 @@ std::array<double, 2> crossing(const IndexMesh& m, int32_t a, int32_t b, double 
   return {lo[0] + t * (hi[0] - lo[0]), lo[1] + t * (hi[1] - lo[1])};
 }
 
-// Appends the cuts of face (a, b, c) with every plane it spans.
-void cut_face(const IndexMesh& m, const std::array<int32_t, 3>& f, int64_t nz, std::vector<Cut>& out) {
+// Appends the cuts of face (a, b, c) with every plane it spans; plane k lies at z = plane_z[k] in
+// the lattice (k itself unless the slices are unevenly spaced).
+void cut_face(const IndexMesh& m, const std::array<int32_t, 3>& f, const std::vector<double>& plane_z,
+              std::vector<Cut>& out) {
   const double z[3] = {m.v[size_t(f[0])][2], m.v[size_t(f[1])][2], m.v[size_t(f[2])][2]};
   const double zmin = std::min({z[0], z[1], z[2]}), zmax = std::max({z[0], z[1], z[2]});
-  // Plane k (perturbed to k + d) is cut iff some vertex has z <= k and some z > k.
-  const int64_t k_first = std::max<int64_t>(0, int64_t(std::ceil(zmin)));
-  const int64_t k_last = std::min<int64_t>(nz - 1, int64_t(std::ceil(zmax)) - 1);
+  // Plane k (perturbed to z_k + d) is cut iff some vertex has z <= z_k and some z > z_k.
+  const int64_t k_first = std::lower_bound(plane_z.begin(), plane_z.end(), zmin) - plane_z.begin();
+  const int64_t k_last = std::lower_bound(plane_z.begin(), plane_z.end(), zmax) - plane_z.begin() - 1;
   for (int64_t k = k_first; k <= k_last; ++k) {
-    const double kd = double(k);
+    const double kd = plane_z[size_t(k)];
     const bool above[3] = {z[0] > kd, z[1] > kd, z[2] > kd};
     // The vertex alone on its side, and the other two in the face's cyclic order.
     int lone = 0;
@@ -116,7 +118,7 @@ Status join_slice(std::vector<Cut>::const_iterator first, std::vector<Cut>::cons
     SliceSection s;
     s.slice = k;
     s.points_mm.reserve(loop.size());
-    for (const auto& p : loop) s.points_mm.push_back(g.index_to_physical({p[0], p[1], double(k)}));
+    for (const auto& p : loop) s.points_mm.push_back(g.lattice_to_physical({p[0], p[1], g.lattice_z(double(k))}));
     out.push_back(std::move(s));
   }
   return ok_status();
@@ -134,9 +136,11 @@ Result<std::vector<SliceSection>> slice_sections(const TriangleMesh& mesh, const
                                "): its sections by the slice planes would not be closed contours; repair it");
   section_cut::IndexMesh m;
   m.v.reserve(mesh.vertices_mm.size());
-  for (const Vec3& p : mesh.vertices_mm) m.v.push_back(geometry.physical_to_index(p));
+  for (const Vec3& p : mesh.vertices_mm) m.v.push_back(geometry.physical_to_lattice(p));
+  std::vector<double> plane_z(size_t(geometry.dims[2]));
+  for (int64_t k = 0; k < geometry.dims[2]; ++k) plane_z[size_t(k)] = geometry.lattice_z(double(k));
   std::vector<section_cut::Cut> cuts;
-  for (const auto& f : mesh.triangles) section_cut::cut_face(m, f, geometry.dims[2], cuts);
+  for (const auto& f : mesh.triangles) section_cut::cut_face(m, f, plane_z, cuts);
   std::sort(cuts.begin(), cuts.end(), [](const section_cut::Cut& a, const section_cut::Cut& b) {
     return a.k != b.k ? a.k < b.k : a.from < b.from;
   });

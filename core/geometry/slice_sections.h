@@ -12,7 +12,8 @@
 //          Holes and separate parts are separate polygons. The rule, chosen so that even-odd
 //          filling of the polygons gives exactly the 1D method's voxels (voxelize_1d.h):
 //          vertices are mapped into index space as the 1D method maps them
-//          (geometry.physical_to_index), and the plane is perturbed to k + d with d -> 0+ and d
+//          (geometry.physical_to_lattice: the index space unless the slices are unevenly spaced,
+//          then the planes lie at z = lattice_z(k)), and the plane is perturbed to k + d with d -> 0+ and d
 //          infinitesimal against the rows' perturbation y = j + e of fill_contours.h (d = e^2,
 //          the 1D method's (j + e, k + e^2)). So a vertex with z <= k is below the plane and one
 //          with z > k above (a comparison of the same doubles the 1D method compares: exact), a

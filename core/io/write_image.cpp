@@ -11,6 +11,7 @@ namespace {
 
 Status write_voxels(const ImageGeometry& g, VoxelType type, const void* voxels, size_t count, const std::string& path) {
   SOIQ_RETURN_IF_ERROR(validate_geometry(g));
+  SOIQ_RETURN_IF_ERROR(check_evenly_spaced(g, "'" + path + "'"));
   if (count != size_t(g.voxel_count())) {
     return invalid_argument("cannot write '" + path + "': " + std::to_string(count) + " voxels for a grid of " +
                             describe(g));
@@ -24,6 +25,14 @@ Status write_voxels(const ImageGeometry& g, VoxelType type, const void* voxels, 
 }
 
 }  // namespace
+
+Status check_evenly_spaced(const ImageGeometry& g, const std::string& what) {
+  if (!g.uneven()) return ok_status();
+  return failed_precondition("cannot write " + what + ": NIfTI, NRRD and MetaImage hold evenly spaced slices only, and " +
+                             describe(g) +
+                             "; export a DICOM SEG (soiq export-seg), which keeps each slice's position, or convert "
+                             "onto a grid of your own (--spacing)");
+}
 
 Status write_mask(const Mask& mask, const std::string& path) {
   return write_voxels(mask.geometry, VoxelType::kUint8, mask.voxels.data(), mask.voxels.size(), path);

@@ -142,12 +142,13 @@ Result<RegionPlan> plan_region(const RunLengthVolume& structure, const RegionSpe
                             std::to_string(spec.radius_mm));
   }
   const ImageGeometry& g = structure.geometry;
-  if (g.sheared()) {
-    // Balls and distance transforms here walk the grid's axes as if at right angles.
+  if (g.sheared() || g.uneven()) {
+    // Balls and distance transforms here walk the grid's axes as if at right angles and evenly
+    // spaced.
     return failed_precondition(std::string(kind_word(spec.kind)) +
-                               " regions measure distances along the grid's axes, which are not at right angles on "
-                               "a gantry-tilted series; use the inside region there, or a grid of your own "
-                               "(--spacing) for the structure");
+                               " regions measure distances along the grid's axes, which are not at right angles or "
+                               "evenly spaced on a gantry-tilted or unevenly spaced series; use the inside region "
+                               "there, or a grid of your own (--spacing) for the structure");
   }
   plan.inside_box = bounding_box(structure);
   if (plan.inside_box.empty) return plan;

@@ -25,14 +25,27 @@ Status check_inputs(const Image& image, const RunLengthVolume& region) {
   return ok_status();
 }
 
-// The affine map from region index to image continuous index: c = offset + m * (i, j, k).
+// The map from region index to image continuous index: affine, c = offset + m * (i, j, k), unless
+// either grid has unevenly spaced slices; then each centre is mapped through LPS on its own.
 struct IndexMap {
   Vec3 offset{};
   Mat3 m{};
+  const ImageGeometry* from = nullptr;  // set: map each voxel through LPS
+  const ImageGeometry* to = nullptr;
+
+  Vec3 at(const Vec3& ijk) const {
+    if (from) return to->physical_to_index(from->index_to_physical(ijk));
+    return offset + mul(m, ijk);
+  }
 };
 
 IndexMap index_map(const ImageGeometry& from, const ImageGeometry& to) {
   IndexMap map;
+  if (from.uneven() || to.uneven()) {
+    map.from = &from;
+    map.to = &to;
+    return map;
+  }
   map.offset = to.physical_to_index(from.origin_mm);
   for (int a = 0; a < 3; ++a) {
     Vec3 unit{0, 0, 0};
@@ -87,7 +100,7 @@ bool sample(const Image& image, const IndexMap& map, bool same_grid, Interpolati
     value = double(image.voxels[size_t(i + dims[0] * (j + dims[1] * k))]);
     return true;
   }
-  const Vec3 c = map.offset + mul(map.m, Vec3{double(i), double(j), double(k)});
+  const Vec3 c = map.at(Vec3{double(i), double(j), double(k)});
   for (int a = 0; a < 3; ++a) {
     if (!(c[size_t(a)] >= -0.5 - kBorderSlack && c[size_t(a)] <= double(dims[size_t(a)]) - 0.5 + kBorderSlack))
       return false;
@@ -179,7 +192,7 @@ Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region
       for (int64_t r = region.line_start[size_t(l)]; r < region.line_start[size_t(l) + 1]; ++r) {
         for (int32_t i = region.runs[size_t(r)].begin; i < region.runs[size_t(r)].end; ++i) {
           // Each centre straight from the map (no incremental stepping), so no drift along long runs.
-          const Vec3 c = map.offset + mul(map.m, Vec3{double(i), j, k});
+          const Vec3 c = map.at(Vec3{double(i), j, k});
           bool inside = true;
           for (int a = 0; a < 3; ++a) {
             inside = inside && c[size_t(a)] >= -0.5 - kBorderSlack &&

@@ -85,6 +85,7 @@ Result<CoverageVolume> coverage_1d(const TriangleMesh& mesh, const ImageGeometry
                             " lines per voxel side, not " + std::to_string(n));
   }
   SOIQ_RETURN_IF_ERROR(validate_geometry(geometry));
+  SOIQ_RETURN_IF_ERROR(scanline::scan_supported(geometry, 0, 2, "coverage fractions"));
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, options.max_voxels));
   if (geometry.dims[0] > INT32_MAX - 2) return invalid_argument("grid rows longer than 2^31 voxels are not supported");
   if (geometry.dims[1] * n > INT32_MAX || geometry.dims[2] * n > INT32_MAX) {

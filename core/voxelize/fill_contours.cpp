@@ -79,7 +79,7 @@ Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, co
   ContourFill out;
   // Distances along the slice normal: on a sheared (tilted) grid the k axis is longer than that.
   const double sz = geometry.slice_distance_mm();
-  const bool sheared = geometry.sheared();
+  const bool sheared = geometry.sheared(), uneven = geometry.uneven();
   const Mat3 frame = geometry.frame();
   const Vec3 normal{frame[0][2], frame[1][2], frame[2][2]};
   std::vector<PlacedContour> placed;
@@ -91,41 +91,49 @@ Result<ContourFill> fill_contours(const std::vector<PlanarContour>& contours, co
     }
     PlacedContour pc;
     pc.u.resize(points.size());
-    std::vector<double> ks(points.size());
+    // Heights along k in the grid's lattice (the index itself unless the slices are unevenly
+    // spaced), where distances along the normal are linear: sz mm per unit.
+    std::vector<double> zs(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
       const Vec3& p = points[i];
       if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
         return invalid_argument("contour " + std::to_string(c) + " has NaN or infinite coordinates");
       }
       pc.u[i] = geometry.physical_to_index(p);
-      ks[i] = pc.u[i][2];
+      zs[i] = uneven ? geometry.physical_to_lattice(p)[2] : pc.u[i][2];
     }
     // The contour's plane: the median of its points along the slice normal, so that a point that
     // strays is measured from where the others lie. Every point must lie on it (a contour is
     // planar); the whole contour then goes to the nearest image plane.
-    std::nth_element(ks.begin(), ks.begin() + ptrdiff_t(ks.size() / 2), ks.end());
-    const double k_mean = ks[ks.size() / 2];
+    std::vector<double> sorted = zs;
+    std::nth_element(sorted.begin(), sorted.begin() + ptrdiff_t(sorted.size() / 2), sorted.end());
+    const double z_mean = sorted[sorted.size() / 2];
     double worst = 0;
-    for (const Vec3& v : pc.u) worst = std::max(worst, std::abs(v[2] - k_mean) * sz);
+    for (const double z : zs) worst = std::max(worst, std::abs(z - z_mean) * sz);
     if (worst > planarity_tolerance_mm) {
       return invalid_argument("contour " + std::to_string(c) + " is not planar: a point lies " + mm(worst) +
                               " from the contour's plane along the slice normal (tolerance " +
                               mm(planarity_tolerance_mm) + ")");
     }
-    const double k_round = std::round(k_mean);
-    pc.offset_mm = (k_mean - k_round) * sz;
+    // The nearest plane, and how far off it the contour is as a share of the step to the next
+    // plane on its side (the spacing, unless uneven).
+    const double k_round = std::round(uneven ? geometry.slice_index(z_mean) : z_mean);
+    const double z_plane = geometry.lattice_z(k_round);
+    const double side = z_mean >= z_plane ? 1 : -1;
+    const double step = uneven ? std::abs(geometry.lattice_z(k_round + side) - z_plane) : 1.0;
+    pc.offset_mm = (z_mean - z_plane) * sz;
+    if (std::abs(z_mean - z_plane) > slice_tolerance_voxels * step) {
+      return invalid_argument("contour " + std::to_string(c) + " lies " + mm(std::abs(pc.offset_mm)) +
+                              " from the nearest image plane (slice " + std::to_string(int64_t(k_round)) +
+                              "), more than " + mm(slice_tolerance_voxels * step * sz) + " (" +
+                              fill_contours_detail::share(slice_tolerance_voxels) +
+                              " of the slice spacing): is it the right reference series?");
+    }
     if (sheared) {
       // A point goes to its plane along the normal, not along the leaning k axis: on its plane the
       // two agree, off it they part by the tilt.
       for (size_t i = 0; i < points.size(); ++i)
-        pc.u[i] = geometry.physical_to_index(points[i] - ((pc.u[i][2] - k_round) * sz) * normal);
-    }
-    if (std::abs(k_mean - k_round) > slice_tolerance_voxels) {
-      return invalid_argument("contour " + std::to_string(c) + " lies " + mm(std::abs(pc.offset_mm)) +
-                              " from the nearest image plane (slice " + std::to_string(int64_t(k_round)) +
-                              "), more than " + mm(slice_tolerance_voxels * sz) + " (" +
-                              fill_contours_detail::share(slice_tolerance_voxels) +
-                              " of the slice spacing): is it the right reference series?");
+        pc.u[i] = geometry.physical_to_index(points[i] - ((zs[i] - z_plane) * sz) * normal);
     }
     if (k_round < 0 || k_round >= double(geometry.dims[2])) {
       ++out.contours_outside_grid;

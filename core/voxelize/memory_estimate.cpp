@@ -66,8 +66,12 @@ struct LineLattice {
 
 LineLattice line_lattice(const ImageGeometry& g) {
   const double sy = g.spacing_mm[1], sz = g.spacing_mm[2];
-  if (!g.sheared()) return {sy * sz, std::min(sy, sz)};
-  const double cell = sy * g.slice_distance_mm();
+  if (!g.sheared() && !g.uneven()) return {sy * sz, std::min(sy, sz)};
+  // Unevenly spaced slices: the closest pair bounds the density of lines.
+  double closest = 1;
+  const std::vector<double>& p = g.slice_positions_mm;
+  for (size_t k = 1; k < p.size(); ++k) closest = std::min(closest, (p[k] - p[k - 1]) / sz);
+  const double cell = sy * g.slice_distance_mm() * closest;
   return {cell, cell / std::sqrt(sy * sy + sz * sz)};
 }
 

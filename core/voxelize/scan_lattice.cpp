@@ -1,5 +1,8 @@
 #include "core/voxelize/scan_lattice.h"
 
+#include <algorithm>
+#include <string>
+
 #include "core/base/parallel_for.h"
 #include "core/base/run_tasks.h"
 
@@ -29,8 +32,14 @@ SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int th
     std::vector<int64_t> mine(size_t(nslabs), 0);
     for (size_t t = begin; t < end; ++t) {
       const double z0 = p.z[size_t(tris[t][0])], z1 = p.z[size_t(tris[t][1])], z2 = p.z[size_t(tris[t][2])];
-      const double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
-      const double hi = std::min(std::floor(std::max({z0, z1, z2})), last_slice);
+      double lo = std::max(std::ceil(std::min({z0, z1, z2})), 0.0);
+      double hi = std::min(std::floor(std::max({z0, z1, z2})), last_slice);
+      if (!p.slice_z.empty()) {
+        // The slices whose planes the triangle's z range holds, ends included.
+        const auto& sz = p.slice_z;
+        lo = double(std::lower_bound(sz.begin(), sz.end(), std::min({z0, z1, z2})) - sz.begin());
+        hi = double(std::upper_bound(sz.begin(), sz.end(), std::max({z0, z1, z2})) - sz.begin()) - 1;
+      }
       const bool any = lo <= hi;
       b.k_first[t] = any ? int32_t(lo) : 1;
       b.k_last[t] = any ? int32_t(hi) : 0;
@@ -73,7 +82,7 @@ ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g
   p.z.resize(n);
   parallel_for(int64_t(n), threads, [&](int64_t begin, int64_t end) {
     for (size_t v = size_t(begin); v < size_t(end); ++v) {
-      const Vec3 u = g.physical_to_index(mesh.vertices_mm[v]);
+      const Vec3 u = g.physical_to_lattice(mesh.vertices_mm[v]);
       p.x[v] = u[size_t(axis)];
       p.y[v] = u[size_t((axis + 1) % 3)];
       p.z[v] = u[size_t((axis + 2) % 3)];
@@ -93,7 +102,18 @@ ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g
   p.ny = g.dims[size_t((axis + 1) % 3)] * lines_per_voxel;
   p.nz = g.dims[size_t((axis + 2) % 3)] * lines_per_voxel;
   p.rule = rule;
+  if (g.uneven() && axis == 0 && lines_per_voxel == 1) {
+    p.slice_z.resize(size_t(g.dims[2]));
+    for (int64_t k = 0; k < g.dims[2]; ++k) p.slice_z[size_t(k)] = g.lattice_z(double(k));
+  }
   return p;
+}
+
+Status scan_supported(const ImageGeometry& g, int axis, int lines_per_voxel, const char* what) {
+  if (!g.uneven() || (axis == 0 && lines_per_voxel == 1)) return ok_status();
+  return failed_precondition(std::string(what) + " is not available on an unevenly spaced series (" + describe(g) +
+                             "): its rows are not evenly spaced along k; the plain conversion is, or a grid of "
+                             "your own (--spacing)");
 }
 
 }  // namespace soiq::scanline

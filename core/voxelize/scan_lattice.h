@@ -23,11 +23,16 @@ namespace soiq::scanline {
 // A mesh in continuous index space of a grid scanned along its first axis: voxel centres at
 // integers, rows are the lines {(x, j, k)}. Coordinates are split per axis (structure of arrays)
 // because the lattice walk reads y and z far more often than x.
+// An unevenly spaced grid's slices are not at integer z: slice_z holds each one's lattice z
+// (ImageGeometry::lattice_z), and rows are the lines {(x, j, slice_z[k])}.
 struct ScanProblem {
   std::vector<double> x, y, z;
   const std::vector<std::array<int32_t, 3>>* triangles = nullptr;
   int64_t nx = 0, ny = 0, nz = 0;
   FillRule rule = FillRule::kNonZero;
+  std::vector<double> slice_z;  // empty: slice k at z = k
+
+  double plane_z(int64_t k) const { return slice_z.empty() ? double(k) : slice_z[size_t(k)]; }
 };
 
 // One directed edge a -> b of a triangle's (y,z) projection. Its edge function at a lattice point
@@ -93,7 +98,9 @@ struct SlabTriangles {
 
 SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int threads);
 
-// The mesh in index space of `g`, scanned along `axis` (0 = i, 1 = j, 2 = k). The other two axes
+// The mesh in index space of `g` (its lattice, for an unevenly spaced grid: then only along i and
+// with one line per voxel, which callers check with scan_supported), scanned along `axis` (0 = i,
+// 1 = j, 2 = k). The other two axes
 // follow cyclically, (axis, axis+1, axis+2), a rotation that keeps the handedness and so the
 // meaning of the crossing signs. With `lines_per_voxel` n > 1 the two cross axes are scaled so that
 // the lattice holds n x n lines per voxel, at the centres of an n x n split of its cross-section:
@@ -101,11 +108,18 @@ SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int th
 ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g, int axis, FillRule rule, int threads,
                                 int lines_per_voxel = 1);
 
+// OK unless `g` is unevenly spaced and the scan would run along another axis than i or sample a
+// voxel by more than one line: the rows of such a grid are not evenly spaced along k, so the
+// voxel centres would not be integers along the scan, nor a voxel's cross-section a square of
+// lines. FAILED_PRECONDITION naming `what` (the method) otherwise.
+Status scan_supported(const ImageGeometry& g, int axis, int lines_per_voxel, const char* what);
+
 // Where row line (j,k) crosses a triangle: x interpolated in double (exact for a line through a
 // vertex), `tolerance` a bound on its error, `normal_x_sign` the exact sign of the triangle
 // normal's x component (+1: the line leaves the surface there), `v` the triangle in index space.
 struct LineHit {
   int64_t j, k;
+  double z;  // the line's lattice z: p.plane_z(k)
   double x, tolerance;
   int normal_x_sign;
   const double (&v)[3][3];
@@ -131,7 +145,7 @@ void for_each_hit(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64
   const double v[3][3] = {{p.x[a], p.y[a], p.z[a]}, {p.x[b], p.y[b], p.z[b]}, {p.x[c], p.y[c], p.z[c]}};
   constexpr double kEps = 1.1102230246251565e-16;
   for (int64_t k = k_lo; k <= k_hi; ++k) {
-    const double pz = double(k);
+    const double pz = p.plane_z(k);
     const double t_ab = ab.slice_term(pz), t_bc = bc.slice_term(pz), t_ca = ca.slice_term(pz);
     for (int64_t j = j_lo; j <= j_hi; ++j) {
       const double py = double(j);
@@ -166,7 +180,7 @@ void for_each_hit(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64
             2 * (num_error + ratio * sum_error) / (std::abs(sum) - sum_error) + 8 * kEps * (std::abs(x) + ratio + 1);
       }
       // All weights positive: counter-clockwise in (y,z), normal along +x, so the line leaves.
-      on_hit(LineHit{j, k, x, tolerance, e_c.sign, v});
+      on_hit(LineHit{j, k, pz, x, tolerance, e_c.sign, v});
     }
   }
 }

@@ -26,14 +26,14 @@ using scanline::triangles_by_slab;
 // error, `normal_x_sign` the exact sign of the normal's x component. When x is within tolerance
 // of an integer, the side of that integer is decided exactly by orient3d: the half-open rule
 // (a centre exactly on an entering crossing is inside) then holds to the last bit.
-int64_t first_centre(const double (&v)[3][3], double x, double tolerance, int normal_x_sign, int64_t j, int64_t k,
+int64_t first_centre(const double (&v)[3][3], double x, double tolerance, int normal_x_sign, int64_t j, double z,
                      int64_t nx) {
   const double nearest = std::nearbyint(x);
   if (std::abs(x - nearest) > tolerance) return clamped_ceil(x, nx);
   // Smallest integer m with x_exact <= m, by bisection over the integers that tolerance admits
   // (one or two predicates in practice). n . ((m,j,k) - a) = n_x (m - x_exact).
   auto at_or_after = [&](double m) {
-    const double q[3] = {m, double(j), double(k)};
+    const double q[3] = {m, double(j), z};
     return orient3d_sign(v[0], v[1], v[2], q) * normal_x_sign >= 0;
   };
   double lo = std::max(std::floor(x - tolerance) - 1, -2.0);           // x_exact > lo
@@ -62,7 +62,7 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   scanline::for_each_hit(p, tri, k_lo, k_hi, [&](const scanline::LineHit& h) {
     out.push_back(
         {h.j + p.ny * (h.k - k0),
-         {first_centre(h.v, h.x, h.tolerance, h.normal_x_sign, h.j, h.k, p.nx), h.normal_x_sign > 0 ? -1 : 1}});
+         {first_centre(h.v, h.x, h.tolerance, h.normal_x_sign, h.j, h.z, p.nx), h.normal_x_sign > 0 ? -1 : 1}});
   });
 }
 
@@ -166,6 +166,7 @@ Result<Voxelization> voxelize_1d(const TriangleMesh& mesh, const ImageGeometry& 
   }
   // Robust mode: fill along each of the three axes; lines that cross an open surface an unbalanced
   // number of times abstain (vote outside); a voxel is kept when two of the three fills agree.
+  SOIQ_RETURN_IF_ERROR(scanline::scan_supported(geometry, 1, 1, "robust conversion (a vote of three axes)"));
   std::array<AxisRuns, 3> fills;
   for (int axis = 0; axis < 3; ++axis) {
     LineRuns r = scan(index_space_problem(mesh, geometry, axis, options.fill_rule, threads), threads, true);

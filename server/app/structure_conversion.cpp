@@ -53,6 +53,7 @@ Result<StructureCoverage> cover_structure(db::Store& store, FeatureEngine& featu
 }
 
 Result<std::string> fraction_nifti_bytes(const CoverageVolume& coverage, bool float32, int64_t max_voxels) {
+  SOIQ_RETURN_IF_ERROR(check_evenly_spaced(coverage.geometry, "the fractions as NIfTI"));
   SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".nii.gz"));
   if (float32) {
     SOIQ_ASSIGN_OR_RETURN(const Image image, to_fraction_image(coverage, max_voxels));
@@ -65,6 +66,7 @@ Result<std::string> fraction_nifti_bytes(const CoverageVolume& coverage, bool fl
 }
 
 Result<std::string> mask_nifti_bytes(const RunLengthVolume& volume, int64_t max_voxels) {
+  SOIQ_RETURN_IF_ERROR(check_evenly_spaced(volume.geometry, "the structure as NIfTI"));
   SOIQ_ASSIGN_OR_RETURN(const Mask mask, to_mask(volume, max_voxels));
   // libnifti writes to a path: a private temporary file, never one a client named.
   SOIQ_ASSIGN_OR_RETURN(TempFile file, TempFile::create(".nii.gz"));

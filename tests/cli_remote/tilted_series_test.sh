@@ -75,7 +75,7 @@ rt_id=$(awk -F, '$1 == "structure" { print $2; exit }' "$tmp/rt.csv")
 same_voxels "$rt_id" rt_back
 
 # Distances in mm along axes that lean: refused, one line, exit 4 (FAILED_PRECONDITION).
-expect 4 "gantry-tilted series; use the inside region" -- "$soiq" features "$id" --series "$series" --image "$series" --features mean --region shell:3
+expect 4 "gantry-tilted or unevenly spaced series; use the inside region" -- "$soiq" features "$id" --series "$series" --image "$series" --features mean --region shell:3
 
 
 finish tilted_series_test

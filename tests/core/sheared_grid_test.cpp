@@ -275,7 +275,7 @@ TEST(ShearedGrid, ShellsAndCoresAreRefusedForWantOfRightAnglesInsideIsNot) {
     auto refused = region(v->volume, RegionSpec{kind, 3});
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.status().code(), StatusCode::kFailedPrecondition);
-    EXPECT_NE(refused.status().message().find("gantry-tilted series; use the inside region"), std::string::npos)
+    EXPECT_NE(refused.status().message().find("gantry-tilted or unevenly spaced series; use the inside region"), std::string::npos)
         << refused.status().message();
   }
 }

@@ -69,14 +69,54 @@ TEST(SliceStack, MissingSliceIsNamedWithItsNeighbours) {
   EXPECT_NE(r.status().message().find("1 missing slice(s) between #2 at (-10, 20, 33) and #4 at (-10, 20, 39)"),
             std::string::npos)
       << r.status().message();
+  // A run of longer steps is a protocol, not a lost file.
+  slices = stack(6, 3);
+  slices[4].position_mm[2] += 3;
+  slices[5].position_mm[2] += 6;
+  r = slice_stack(slices);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  EXPECT_TRUE(r->geometry.uneven());
 }
 
-TEST(SliceStack, IrregularSpacingIsNamed) {
-  auto slices = stack(4, 3);
-  slices[3].position_mm[2] += 1.2;
+// Uneven spacing (a protocol finer in the middle, the end slices further off): each slice where it
+// is, so every voxel centre is its slice's own pixel.
+TEST(SliceStack, UnevenSpacingKeepsEverySlicesPosition) {
+  auto slices = stack(6, 0);
+  const double z[6] = {0, 4, 6.5, 9, 11.5, 16.7};
+  for (int k = 0; k < 6; ++k) slices[k].position_mm[2] = 30 + z[k];
+  std::swap(slices[0], slices[4]);
   auto r = slice_stack(slices);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.status().message().find("irregular slice spacing between #3"), std::string::npos) << r.status().message();
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  const ImageGeometry& g = r->geometry;
+  ASSERT_TRUE(g.uneven());
+  ASSERT_EQ(g.slice_positions_mm.size(), 6u);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(g.slice_positions_mm[size_t(k)], z[k], 1e-12);
+  EXPECT_NEAR(g.spacing_mm[2], 16.7 / 5, 1e-12);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(g.index_to_physical({2, 1, double(k)})[2], 30 + z[k], 1e-12);
+    EXPECT_NEAR(g.physical_to_index({-9, 20.7, 30 + z[k]})[2], k, 1e-12);
+  }
+  // Between slices the index runs linearly: a quarter of the way from 9 to 11.5 mm is k = 3.25.
+  EXPECT_NEAR(g.physical_to_index({-10, 20, 39.625})[2], 3.25, 1e-12);
+  // Voxels reach halfway to each neighbour: slice 1 from 2 to 5.25 mm, the last as far out as in.
+  EXPECT_NEAR(g.voxel_volume_mm3(1), 0.5 * 0.7 * 3.25, 1e-12);
+  EXPECT_NEAR(g.voxel_volume_mm3(5), 0.5 * 0.7 * 5.2, 1e-12);
+  EXPECT_NE(describe(g).find("unevenly spaced slices 2.5 to 5.2 mm apart"), std::string::npos) << describe(g);
+}
+
+TEST(SliceStack, UnevenAndTiltedStackKeepsBoth) {
+  auto slices = stack(5, 0);
+  const double z[5] = {0, 2, 4, 7, 10};
+  for (int k = 0; k < 5; ++k) slices[k].position_mm = slices[k].position_mm + Vec3{0, 0.4 * z[k], z[k]};
+  auto r = slice_stack(slices);
+  ASSERT_TRUE(r.ok()) << r.status().to_string();
+  const ImageGeometry& g = r->geometry;
+  ASSERT_TRUE(g.uneven() && g.sheared());
+  for (int k = 0; k < 5; ++k) {
+    const Vec3 p = g.index_to_physical({1, 2, double(k)});
+    const Vec3 want = slices[k].position_mm + Vec3{0.5, 1.4, 0};
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(p[a], want[a], 1e-12) << "slice " << k;
+  }
 }
 
 TEST(SliceStack, TwoSlicesAtOnePositionAreRefused) {
