@@ -121,7 +121,8 @@ Status check_constant_tilt(const std::vector<SliceInfo>& slices, const std::vect
     if (off > tol)
       return invalid_argument("slice " + s.label + " at " + fmt(s.position_mm) + " is " + fmt(off) +
                               " mm from where one gantry tilt through the first and last slices puts it " +
-                              fmt(expected) + ": the slices are neither stacked along the normal of their planes "
+                              fmt(expected) +
+                              ": the slices are neither stacked along the normal of their planes "
                               "nor tilted by one angle");
   }
   return ok_status();

@@ -145,7 +145,8 @@ Status validate_geometry(const ImageGeometry& g) {
     const std::vector<double>& p = g.slice_positions_mm;
     if (int64_t(p.size()) != g.dims[2] || p.size() < 3) {
       return invalid_argument("grid has " + std::to_string(p.size()) + " slice positions for " +
-                              std::to_string(g.dims[2]) + " slices (an unevenly spaced grid needs one per slice, 3 or more)");
+                              std::to_string(g.dims[2]) +
+                              " slices (an unevenly spaced grid needs one per slice, 3 or more)");
     }
     if (p[0] != 0) return invalid_argument("grid's first slice position is not 0");
     for (size_t k = 1; k < p.size(); ++k) {
@@ -218,7 +219,8 @@ std::string describe(const ImageGeometry& g) {
   if (g.uneven()) {
     double least = HUGE_VAL, most = 0;
     const std::vector<double>& p = g.slice_positions_mm;
-    for (size_t k = 1; k < p.size(); ++k) least = std::min(least, p[k] - p[k - 1]), most = std::max(most, p[k] - p[k - 1]);
+    for (size_t k = 1; k < p.size(); ++k)
+      least = std::min(least, p[k] - p[k - 1]), most = std::max(most, p[k] - p[k - 1]);
     const double along_normal = g.slice_distance_mm() / g.spacing_mm[2];
     char uneven[96];
     std::snprintf(uneven, sizeof uneven, ", unevenly spaced slices %g to %g mm apart", least * along_normal,

@@ -11,7 +11,8 @@ double family_diameter(const PlaneFamily& f, const ImageGeometry& grid) {
   const size_t u = size_t(f.row_axis), v = size_t(f.value_axis);
   double best = 0;
   if (!grid.sheared()) {
-    for (const auto& hull : f.hulls) best = std::max(best, lattice_polygon_diameter(hull, 0.5 * spacing[u], 0.5 * spacing[v]));
+    for (const auto& hull : f.hulls)
+      best = std::max(best, lattice_polygon_diameter(hull, 0.5 * spacing[u], 0.5 * spacing[v]));
     return best;
   }
   const Mat3& d = grid.direction;

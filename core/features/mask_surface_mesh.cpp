@@ -33,8 +33,7 @@ Box box_of(const RunLengthVolume& v) {
 
 }  // namespace
 
-Result<TriangleMesh> mask_surface_mesh(const RunLengthVolume& volume, const CubeCaseTable& cases,
-                                       int64_t max_voxels) {
+Result<TriangleMesh> mask_surface_mesh(const RunLengthVolume& volume, const CubeCaseTable& cases, int64_t max_voxels) {
   const ImageGeometry& g = volume.geometry;
   SOIQ_RETURN_IF_ERROR(validate_geometry(g));
   if (int64_t(volume.line_start.size()) != volume.line_count() + 1)
@@ -59,8 +58,7 @@ Result<TriangleMesh> mask_surface_mesh(const RunLengthVolume& volume, const Cube
       const int64_t l = j + ny * k;
       uint8_t* row = inside.data() + n[0] * ((j - lo[1]) + n[1] * (k - lo[2]));
       for (int64_t r = volume.line_start[size_t(l)]; r < volume.line_start[size_t(l) + 1]; ++r)
-        std::fill(row + (volume.runs[size_t(r)].begin - lo[0]), row + (volume.runs[size_t(r)].end - lo[0]),
-                  uint8_t(1));
+        std::fill(row + (volume.runs[size_t(r)].begin - lo[0]), row + (volume.runs[size_t(r)].end - lo[0]), uint8_t(1));
     }
   }
   auto at = [&](int64_t x, int64_t y, int64_t z) { return inside[size_t(x + n[0] * (y + n[1] * z))]; };
@@ -72,9 +70,8 @@ Result<TriangleMesh> mask_surface_mesh(const RunLengthVolume& volume, const Cube
     const uint64_t key = uint64_t(x2) | (uint64_t(y2) << 21) | (uint64_t(z2) << 42);
     const auto [it, fresh] = index.emplace(key, int32_t(mesh.vertices_mm.size()));
     if (fresh) {
-      mesh.vertices_mm.push_back(g.index_to_physical({double(lo[0]) + 0.5 * double(x2),
-                                                      double(lo[1]) + 0.5 * double(y2),
-                                                      double(lo[2]) + 0.5 * double(z2)}));
+      mesh.vertices_mm.push_back(g.index_to_physical(
+          {double(lo[0]) + 0.5 * double(x2), double(lo[1]) + 0.5 * double(y2), double(lo[2]) + 0.5 * double(z2)}));
     }
     return it->second;
   };

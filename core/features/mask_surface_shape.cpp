@@ -88,7 +88,7 @@ Result<SurfaceShape> mask_surface_shape(const MaskSurfaceSweep& sweep, const Ima
   if (!(volume > 0)) return internal_error("mask surface encloses no volume: the case table is broken");
 
   Vec3 extent{double(sweep.hi[0] - sweep.lo[0] + 1) * s[0], double(sweep.hi[1] - sweep.lo[1] + 1) * s[1],
-                    double(sweep.hi[2] - sweep.lo[2] + 1) * s[2]};
+              double(sweep.hi[2] - sweep.lo[2] + 1) * s[2]};
   const bool sheared = grid.sheared();
   if (hull_part == HullPart::kSkip && !sheared) {
     return surface_shape_from_measures(volume, area, skipped_hull(), std::numeric_limits<double>::quiet_NaN(), extent);

@@ -28,8 +28,8 @@ Status write_voxels(const ImageGeometry& g, VoxelType type, const void* voxels, 
 
 Status check_evenly_spaced(const ImageGeometry& g, const std::string& what) {
   if (!g.uneven()) return ok_status();
-  return failed_precondition("cannot write " + what + ": NIfTI, NRRD and MetaImage hold evenly spaced slices only, and " +
-                             describe(g) +
+  return failed_precondition("cannot write " + what +
+                             ": NIfTI, NRRD and MetaImage hold evenly spaced slices only, and " + describe(g) +
                              "; export a DICOM SEG (soiq export-seg), which keeps each slice's position, or convert "
                              "onto a grid of your own (--spacing)");
 }

@@ -132,8 +132,8 @@ ConversionEstimate coverage_peak_bytes(const SurfaceMeasure& surface, const Imag
   ConversionEstimate e;
   e.lines = mul_add(geometry.dims[1], geometry.dims[2]);
   const LineLattice lattice = line_lattice(geometry);
-  e.crossings = saturating(n * n * surface.area_mm2 / lattice.cell_mm2 + n * 0.5 * surface.perimeter_mm / lattice.unit_mm +
-                           double(surface.triangles));
+  e.crossings = saturating(n * n * surface.area_mm2 / lattice.cell_mm2 +
+                           n * 0.5 * surface.perimeter_mm / lattice.unit_mm + double(surface.triangles));
   const int64_t partial = std::min(voxels(geometry), saturating(touched_voxels(surface, geometry)));
   const int64_t slice_lines = mul_add(geometry.dims[1], int64_t(n * n), 1);
   // Two threads' slices hold disjoint crossings: 24 bytes found (doubled by growth), 16 grouped.

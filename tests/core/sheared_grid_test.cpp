@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "core/base/coverage_volume.h"
+#include "core/features/marching_cubes_table.h"
 #include "core/features/mask_maximum_2d_diameters.h"
 #include "core/features/mask_surface_shape.h"
 #include "core/features/mask_surface_sweep.h"
-#include "core/features/marching_cubes_table.h"
 #include "core/features/maximum_2d_diameters.h"
 #include "core/features/surface_shape.h"
 #include "core/geometry/primitives.h"
@@ -143,7 +143,7 @@ std::vector<Stack> stacks() {
   // Centred on the origin, where the shapes are, whatever the axes.
   for (Stack& s : out) {
     s.first = (-0.5) * (double(s.dims[0] - 1) * s.sx * s.row + double(s.dims[1] - 1) * s.sy * s.col +
-                      double(s.dims[2] - 1) * s.step);
+                        double(s.dims[2] - 1) * s.step);
   }
   return out;
 }
@@ -173,7 +173,8 @@ TEST(ShearedGrid, GeometryMapsEachVoxelCentreToItsSliceAndBack) {
   }
   ImageGeometry too_far = stacks()[2].geometry();  // planes z = const
   const double lean = 61 * kDegree;
-  for (int r = 0; r < 3; ++r) too_far.direction[size_t(r)][2] = std::array<double, 3>{0, std::sin(lean), std::cos(lean)}[size_t(r)];
+  for (int r = 0; r < 3; ++r)
+    too_far.direction[size_t(r)][2] = std::array<double, 3>{0, std::sin(lean), std::cos(lean)}[size_t(r)];
   const Status refused = validate_geometry(too_far);
   EXPECT_EQ(refused.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(refused.message().find("at most 60"), std::string::npos) << refused.message();
@@ -275,7 +276,8 @@ TEST(ShearedGrid, ShellsAndCoresAreRefusedForWantOfRightAnglesInsideIsNot) {
     auto refused = region(v->volume, RegionSpec{kind, 3});
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.status().code(), StatusCode::kFailedPrecondition);
-    EXPECT_NE(refused.status().message().find("gantry-tilted or unevenly spaced series; use the inside region"), std::string::npos)
+    EXPECT_NE(refused.status().message().find("gantry-tilted or unevenly spaced series; use the inside region"),
+              std::string::npos)
         << refused.status().message();
   }
 }
@@ -293,7 +295,8 @@ TEST(ShearedGrid, NiftiKeepsTheShearInItsSformAndReadsBackTheSameGrid) {
   ASSERT_TRUE(back.ok()) << back.status().to_string();
   EXPECT_TRUE(back->geometry.sheared());
   // NIfTI stores its affine in float32: check_same_grid's tolerances are made for that.
-  EXPECT_TRUE(check_same_grid(back->geometry, s.geometry()).ok()) << check_same_grid(back->geometry, s.geometry()).to_string();
+  EXPECT_TRUE(check_same_grid(back->geometry, s.geometry()).ok())
+      << check_same_grid(back->geometry, s.geometry()).to_string();
   const Mask read = mask_from_image(*back);
   EXPECT_EQ(read.voxels, mask->voxels);
 }

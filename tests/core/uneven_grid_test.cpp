@@ -181,9 +181,7 @@ TEST(UnevenGrid, ContourGoesToTheNearestPlaneWithinItsOwnGapOrIsRefused) {
   g.dims = {10, 10, 3};
   g.slice_positions_mm = {0, 2, 7};
   g.spacing_mm = {1, 1, 3.5};
-  auto square = [](double z) {
-    return PlanarContour{{{2.2, 2.2, z}, {6.8, 2.2, z}, {6.8, 6.8, z}, {2.2, 6.8, z}}};
-  };
+  auto square = [](double z) { return PlanarContour{{{2.2, 2.2, z}, {6.8, 2.2, z}, {6.8, 6.8, z}, {2.2, 6.8, z}}}; };
   for (const auto& [z, slice] : std::vector<std::pair<double, int>>{{0.8, 0}, {1.2, 1}, {3.9, 1}, {5.0, 2}}) {
     auto f = fill_contours({square(z)}, g);
     ASSERT_TRUE(f.ok()) << z << ": " << f.status().to_string();
@@ -214,8 +212,8 @@ TEST(UnevenGrid, VolumeFeaturesWeighEachSlicesVoxels) {
   std::vector<Vec3> centres;
   const Vec3 normal = cross(s.row, s.col);
   for (int64_t k = 0; k < g.dims[2]; ++k) {
-    const double below = k > 0 ? dot(s.firsts[size_t(k)] - s.firsts[size_t(k - 1)], normal)
-                               : dot(s.firsts[1] - s.firsts[0], normal);
+    const double below =
+        k > 0 ? dot(s.firsts[size_t(k)] - s.firsts[size_t(k - 1)], normal) : dot(s.firsts[1] - s.firsts[0], normal);
     const double above = k + 1 < g.dims[2] ? dot(s.firsts[size_t(k + 1)] - s.firsts[size_t(k)], normal)
                                            : dot(s.firsts[size_t(k)] - s.firsts[size_t(k - 1)], normal);
     for (int64_t j = 0; j < g.dims[1]; ++j)
@@ -295,7 +293,8 @@ TEST(UnevenGrid, TwoDDiametersAreDistancesInMmWithinEachPlane) {
   ASSERT_TRUE(d.ok());
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<std::pair<int64_t, Vec3>> points;
-    for (const Vec3& p : mesh->vertices_mm) points.push_back({std::llround(2 * g.physical_to_index(p)[size_t(axis)]), p});
+    for (const Vec3& p : mesh->vertices_mm)
+      points.push_back({std::llround(2 * g.physical_to_index(p)[size_t(axis)]), p});
     std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     double best = 0;
     for (size_t a = 0; a < points.size();) {

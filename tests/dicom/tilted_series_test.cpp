@@ -105,10 +105,9 @@ RunLengthVolume pydicom_reading(const std::string& rtstruct, const std::string& 
   EXPECT_FALSE(python.empty()) << "no python3 with pydicom and numpy (scripts/install-deps)";
   const std::string mask = tmp.file("pydicom_mask.u8");
   int status = 0;
-  const std::string log =
-      testing::run_command(python + " " + data_dir("../dicom/rt_struct_even_odd_fill.py") + " " + rtstruct +
-                               " --series " + series_dir + " " + mask,
-                           status);
+  const std::string log = testing::run_command(python + " " + data_dir("../dicom/rt_struct_even_odd_fill.py") + " " +
+                                                   rtstruct + " --series " + series_dir + " " + mask,
+                                               status);
   EXPECT_EQ(status, 0) << log;
   std::ifstream in(mask, std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -247,9 +246,9 @@ TEST(TiltedSeries, StsCtResampledOntoAShearedStackEqualsPydicomsFill) {
   const std::string ct = data_dir("sts/STS_002/dicom/CT");
   const std::string image = tmp.file("image");
   int status = 0;
-  const std::string tilt = testing::run_command(python + " " + data_dir("../dicom/shear_series.py") + " " + ct +
-                                                    "/image " + image + " 0.37 0.21 " + ct + "/mask",
-                                                status);
+  const std::string tilt = testing::run_command(
+      python + " " + data_dir("../dicom/shear_series.py") + " " + ct + "/image " + image + " 0.37 0.21 " + ct + "/mask",
+      status);
   ASSERT_EQ(status, 0) << tilt;
   const Imported study = import_study({image});
   ASSERT_NE(study.structure, nullptr);
