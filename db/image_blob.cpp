@@ -30,7 +30,17 @@ std::string canonical_geometry_text(const ImageGeometry& g) {
                 g.origin_mm[0], g.origin_mm[1], g.origin_mm[2], g.spacing_mm[0], g.spacing_mm[1], g.spacing_mm[2],
                 g.dims[0], g.dims[1], g.dims[2], d[0][0], d[0][1], d[0][2], d[1][0], d[1][1], d[1][2], d[2][0], d[2][1],
                 d[2][2]);
-  return buf;
+  // Only an unevenly spaced grid says where its slices are: every other image keeps its sha256.
+  std::string out = buf;
+  if (g.uneven()) {
+    out += "slices";
+    for (const double p : g.slice_positions_mm) {
+      std::snprintf(buf, sizeof buf, " %.17g", p);
+      out += buf;
+    }
+    out += '\n';
+  }
+  return out;
 }
 
 // Version 2: this magic, the Adler-32 of the raw voxel bytes (little-endian uint32), then the voxels'

@@ -4,7 +4,8 @@
 // than the zlib of version 1: a cold query decodes each study's image. Version 1 blobs still decode.
 // The geometry lives in the series record (SeriesRecord::geometry), not in the blob; the sha256 is
 // over the geometry's canonical text (describe-independent: origin, spacing, dims, direction as
-// %.17g) and the raw voxel bytes, so the same image on another grid is a different image.
+// %.17g, and an unevenly spaced grid's slice positions) and the raw voxel bytes, so the same image
+// on another grid is a different image.
 //
 // decode_image(encode_image(img).blob, img.geometry) == img exactly.
 // Errors: DATA_LOSS for a truncated or corrupt blob or one whose size does not match the geometry.

@@ -71,7 +71,9 @@ Status add_shared_groups(DcmSegmentation& seg, const ImageGeometry& g, const std
   const std::string slice = frame_ds(g.slice_distance_mm());
   if (c.good()) c = measures.setPixelSpacing((frame_ds(g.spacing_mm[1]) + "\\" + frame_ds(g.spacing_mm[0])).c_str());
   if (c.good()) c = measures.setSliceThickness(slice.c_str());
-  if (c.good()) c = measures.setSpacingBetweenSlices(slice.c_str());
+  // An unevenly spaced series has no one spacing (the attribute is optional): each frame's Image
+  // Position (Patient) says where it is, and the thickness above is the mean step.
+  if (c.good() && !g.uneven()) c = measures.setSpacingBetweenSlices(slice.c_str());
   if (c.good()) c = seg.addForAllFrames(measures);
   if (c.bad()) return seg_export_error("shared functional groups", c);
   const std::string organization = organization_uid.empty() ? new_uid(SITE_INSTANCE_UID_ROOT) : organization_uid;

@@ -9,7 +9,10 @@ namespace soiq::dicom {
 namespace {
 
 // The mask of `v` cropped to the bounding box of its voxels: marching cubes pads by one voxel of
-// zeros anyway, so the surface is the same as on the full grid, at a fraction of the cost.
+// zeros anyway, so the surface is the same as on the full grid, at a fraction of the cost. On an
+// unevenly spaced grid the box keeps one more slice of the grid on each side (where it has one),
+// so that the surface between the outermost inside slices and their neighbours lies where the
+// grid's slices are, not where the crop would extend its own.
 Mask cropped_mask(const RunLengthVolume& v) {
   const auto& d = v.geometry.dims;
   int64_t lo[3] = {std::numeric_limits<int64_t>::max(), d[1], d[2]}, hi[3] = {-1, -1, -1};
@@ -28,9 +31,8 @@ Mask cropped_mask(const RunLengthVolume& v) {
     m.geometry.dims = {0, 0, 0};
     return m;
   }
-  m.geometry.origin_mm = v.geometry.index_to_physical(
-      {static_cast<double>(lo[0]), static_cast<double>(lo[1]), static_cast<double>(lo[2])});
-  m.geometry.dims = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
+  if (v.geometry.uneven()) lo[2] = std::max<int64_t>(lo[2] - 1, 0), hi[2] = std::min(hi[2] + 1, d[2] - 1);
+  m.geometry = sub_grid(v.geometry, {lo[0], lo[1], lo[2]}, {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1});
   const auto& c = m.geometry.dims;
   m.voxels.assign(static_cast<size_t>(c[0] * c[1] * c[2]), 0);
   for (int64_t k = lo[2]; k <= hi[2]; ++k)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "client/cli/row_printer.h"
+#include "client/cli/show_records.h"
 
 namespace soiq::cli {
 namespace {
@@ -21,7 +22,7 @@ std::string series_detail(const v1::Series& s) {
   std::string d = s.modality();
   if (g.dims_size() == 3 && g.spacing_size() == 3) {
     d += " " + std::to_string(g.dims(0)) + "x" + std::to_string(g.dims(1)) + "x" + std::to_string(g.dims(2)) +
-         spacing_text(g.spacing(0), g.spacing(1), g.spacing(2));
+         spacing_text(g.spacing(0), g.spacing(1), g.spacing(2)) + geometry_notes(g);
   }
   return d + ", study " + s.study_uid();
 }

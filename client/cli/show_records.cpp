@@ -2,7 +2,10 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace soiq::cli {
 
@@ -21,7 +24,23 @@ void line(const char* key, const std::string& value) { std::printf("%-22s %s\n",
 std::string geometry_text(const soiq::v1::ImageGeometry& geo) {
   if (geo.dims_size() != 3 || geo.spacing_size() != 3) return "no geometry";
   return std::to_string(geo.dims(0)) + "x" + std::to_string(geo.dims(1)) + "x" + std::to_string(geo.dims(2)) +
-         " voxels of " + g(geo.spacing(0)) + "x" + g(geo.spacing(1)) + "x" + g(geo.spacing(2)) + " mm";
+         " voxels of " + g(geo.spacing(0)) + "x" + g(geo.spacing(1)) + "x" + g(geo.spacing(2)) + " mm" +
+         geometry_notes(geo);
+}
+
+std::string geometry_notes(const soiq::v1::ImageGeometry& geo) {
+  std::string out;
+  if (geo.slice_positions_size() > 0) out += ", slices unevenly spaced";
+  if (geo.direction_size() != 9) return out;
+  // The angle between k and the normal of the slices (i x j).
+  const double i[3] = {geo.direction(0), geo.direction(3), geo.direction(6)};
+  const double j[3] = {geo.direction(1), geo.direction(4), geo.direction(7)};
+  const double k[3] = {geo.direction(2), geo.direction(5), geo.direction(8)};
+  const double n[3] = {i[1] * j[2] - i[2] * j[1], i[2] * j[0] - i[0] * j[2], i[0] * j[1] - i[1] * j[0]};
+  const double c = std::abs(n[0] * k[0] + n[1] * k[1] + n[2] * k[2]);
+  const double degrees = std::acos(std::min(1.0, c)) * 180 / std::numbers::pi;
+  if (degrees > 0.01) out += ", tilted " + g(degrees) + " degrees";
+  return out;
 }
 
 std::string record_json(const google::protobuf::Message& message) {

@@ -12,6 +12,8 @@ namespace soiq::cli {
 
 // "64x64x48 voxels of 2x2x2 mm"; "no geometry" when dims are missing.
 std::string geometry_text(const soiq::v1::ImageGeometry& g);
+// ", slices unevenly spaced" and ", tilted N degrees" (gantry tilt) where they apply, else "".
+std::string geometry_notes(const soiq::v1::ImageGeometry& g);
 
 void print_patient(const soiq::v1::Patient& p);
 void print_study(const soiq::v1::Study& s);

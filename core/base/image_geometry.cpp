@@ -211,6 +211,25 @@ Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b) {
   return ok_status();
 }
 
+ImageGeometry sub_grid(const ImageGeometry& g, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& dims) {
+  ImageGeometry out = g;
+  out.origin_mm = g.index_to_physical({double(lo[0]), double(lo[1]), double(lo[2])});
+  out.dims = dims;
+  if (!g.uneven()) return out;
+  out.slice_positions_mm.clear();
+  const std::vector<double>& p = g.slice_positions_mm;
+  const size_t first = size_t(std::clamp<int64_t>(lo[2], 0, int64_t(p.size()) - 1));
+  const size_t n = size_t(std::max<int64_t>(dims[2], 0));
+  if (n >= 3 && first + n <= p.size()) {
+    for (size_t k = 0; k < n; ++k) out.slice_positions_mm.push_back(p[first + k] - p[first]);
+    out.slice_positions_mm[0] = 0;
+    out.spacing_mm[2] = out.slice_positions_mm.back() / double(n - 1);
+  } else if (n == 2 && first + 1 < p.size()) {
+    out.spacing_mm[2] = p[first + 1] - p[first];
+  }
+  return out;
+}
+
 std::string describe(const ImageGeometry& g) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "%lldx%lldx%lld voxels of %gx%gx%g mm", (long long)g.dims[0], (long long)g.dims[1],
@@ -229,8 +248,12 @@ std::string describe(const ImageGeometry& g) {
   }
   if (!g.sheared()) return out;
   char tilt[80];
-  std::snprintf(tilt, sizeof tilt, ", slices %g mm apart, tilted %.2g degrees", g.slice_distance_mm(),
-                g.tilt_degrees());
+  if (g.uneven()) {
+    std::snprintf(tilt, sizeof tilt, ", tilted %.2g degrees", g.tilt_degrees());
+  } else {
+    std::snprintf(tilt, sizeof tilt, ", slices %g mm apart, tilted %.2g degrees", g.slice_distance_mm(),
+                  g.tilt_degrees());
+  }
   return out + tilt;
 }
 

@@ -96,4 +96,11 @@ Status check_same_grid(const ImageGeometry& a, const ImageGeometry& b);
 // "107x107x107 voxels of 1x1x1 mm"
 std::string describe(const ImageGeometry& g);
 
+// The part of `g` of `dims` voxels from voxel `lo` (a crop): the same voxel centres, voxel
+// lo + (i,j,k) of `g` at (i,j,k). An unevenly spaced grid keeps its slices' positions from slice
+// lo[2] on, or becomes evenly spaced when the part holds fewer than 3 slices. Beyond the part's
+// outermost slices the two extend differently unless those are `g`'s own end slices: a caller
+// that reads past them (marching cubes' padding) keeps one more slice of `g` on each side.
+ImageGeometry sub_grid(const ImageGeometry& g, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& dims);
+
 }  // namespace soiq

@@ -234,6 +234,11 @@ CREATE INDEX instances_series ON instances(series_pk, slice);
 CREATE INDEX instances_file ON instances(file_sha256);
 )sql";
 
+// Version 8: SQLite's version 12, the slice positions of an unevenly spaced series.
+constexpr char kSchemaV8[] = R"sql(
+ALTER TABLE series ADD COLUMN slice_positions text COLLATE "C" NOT NULL DEFAULT '';
+)sql";
+
 // Version 5: SQLite's version 9, no stored byte unchecked: surface blobs in version 3 and cached
 // values with their checksum (db/sql/checksum_stored_bytes.h, the same step). No table changes.
 Status checksum_stored_bytes_step(PgConnection& c) {
@@ -250,7 +255,8 @@ struct Step {
 // Append new steps here; never edit a released one.
 const std::vector<Step>& steps() {
   static const std::vector<Step> kSteps = {
-      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step}, {kSchemaV6}, {kSchemaV7},
+      {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step},
+      {kSchemaV6}, {kSchemaV7}, {kSchemaV8},
   };
   return kSteps;
 }

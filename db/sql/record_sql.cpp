@@ -1,5 +1,8 @@
 #include "db/sql/record_sql.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace soiq::db {
 
 std::string select_sql(std::initializer_list<std::string_view> column_lists,
@@ -33,6 +36,30 @@ std::vector<std::string> split_uid_list(const std::string& joined) {
     if (end == std::string::npos) return out;
     start = end + 1;
   }
+}
+
+std::string join_positions(const std::vector<double>& positions) {
+  std::string out;
+  char buf[32];
+  for (size_t i = 0; i < positions.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "%.17g", positions[i]);
+    if (i) out += ' ';
+    out += buf;
+  }
+  return out;
+}
+
+std::vector<double> split_positions(const std::string& joined) {
+  std::vector<double> out;
+  const char* at = joined.c_str();
+  while (*at != '\0') {
+    char* end = nullptr;
+    const double v = std::strtod(at, &end);
+    if (end == at) break;
+    out.push_back(v);
+    at = end;
+  }
+  return out;
 }
 
 }  // namespace soiq::db

@@ -47,8 +47,9 @@ inline constexpr char kSeriesColumns[] = R"sql(
   se.series_uid, st.study_uid, se.modality, se.origin_x, se.origin_y, se.origin_z, se.spacing_x,
   se.spacing_y, se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11,
   se.d12, se.d20, se.d21, se.d22, se.image_sha256, se.frame_of_reference_uid, se.sop_class_uid,
-  se.slice_instance_uids, se.series_number, se.description, se.window_center, se.window_width)sql";
-inline constexpr int kSeriesColumnCount = 29;
+  se.slice_instance_uids, se.series_number, se.description, se.window_center, se.window_width,
+  se.slice_positions)sql";
+inline constexpr int kSeriesColumnCount = 30;
 
 // The row count of each table, in the order of Counts' fields; the instances' apart (a store of an
 // older schema, opened read only, has no instance tables).
@@ -87,6 +88,12 @@ std::string select_sql(std::initializer_list<std::string_view> column_lists,
 // A list of UIDs as one column: joined with '\\' (DICOM's value separator; no UID contains it).
 std::string join_uid_list(const std::vector<std::string>& uids);
 std::vector<std::string> split_uid_list(const std::string& joined);  // "" -> {}
+
+// An unevenly spaced series' slice positions (ImageGeometry::slice_positions_mm) as one column:
+// %.17g each (exact), space-separated; "" for every evenly spaced one. A value that does not
+// parse ends the list, which validate_geometry then refuses (one per slice).
+std::string join_positions(const std::vector<double>& positions);
+std::vector<double> split_positions(const std::string& joined);
 
 // Each reads its columns starting at `col` from a row with text, int64, real and optional_real by
 // column: a SQLite statement (sqlite_statement.h) or a PostgreSQL result's row (PgRow).
@@ -161,6 +168,7 @@ SeriesRecord read_series(const Row& row, int col) {
   s.description = row.text(col + 26);
   s.window_center = row.real(col + 27);
   s.window_width = row.real(col + 28);
+  s.geometry.slice_positions_mm = split_positions(row.text(col + 29));
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "db/sql/record_sql.h"
 #include "db/sql/sql_store.h"
 #include "db/sql/sql_store_writes.h"
 
@@ -23,7 +24,8 @@ constexpr char kSurfaceStructuresSql[] = R"sql(
 constexpr char kNextImageSql[] = R"sql(
   SELECT b.sha256, b.blob, se.series_uid,
          se.origin_x, se.origin_y, se.origin_z, se.spacing_x, se.spacing_y, se.spacing_z,
-         se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, se.d12, se.d20, se.d21, se.d22
+         se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, se.d12, se.d20, se.d21, se.d22,
+         se.slice_positions
   FROM image_blobs b
   LEFT JOIN series se ON se.pk = (SELECT min(pk) FROM series WHERE image_sha256 = b.sha256)
   WHERE b.sha256 > ?1 ORDER BY b.sha256 LIMIT 1)sql";
@@ -87,6 +89,7 @@ Status read_image(SqlSession& c, const std::string& after, std::vector<StoredIte
     g.dims[a] = q.int64(9 + a);
     for (int b = 0; b < 3; ++b) g.direction[a][b] = q.real(12 + 3 * a + b);
   }
+  g.slice_positions_mm = split_positions(q.text(21));
   return ok_status();
 }
 

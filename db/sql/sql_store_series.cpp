@@ -78,9 +78,9 @@ constexpr char kUpsertSeriesSql[] = R"sql(
   INSERT INTO series(series_uid, study_pk, modality, origin_x, origin_y, origin_z, spacing_x, spacing_y, spacing_z,
                      dim_x, dim_y, dim_z, d00, d01, d02, d10, d11, d12, d20, d21, d22, image_sha256,
                      frame_of_reference_uid, sop_class_uid, slice_instance_uids, series_number, description,
-                     window_center, window_width)
+                     window_center, window_width, slice_positions)
   VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22,
-          ?23, ?24, ?25, ?26, ?27, ?28, ?29)
+          ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30)
   ON CONFLICT(series_uid) DO UPDATE SET
     study_pk = excluded.study_pk, modality = excluded.modality,
     origin_x = excluded.origin_x, origin_y = excluded.origin_y, origin_z = excluded.origin_z,
@@ -92,7 +92,8 @@ constexpr char kUpsertSeriesSql[] = R"sql(
     image_sha256 = excluded.image_sha256, frame_of_reference_uid = excluded.frame_of_reference_uid,
     sop_class_uid = excluded.sop_class_uid, slice_instance_uids = excluded.slice_instance_uids,
     series_number = excluded.series_number, description = excluded.description,
-    window_center = excluded.window_center, window_width = excluded.window_width)sql";
+    window_center = excluded.window_center, window_width = excluded.window_width,
+    slice_positions = excluded.slice_positions)sql";
 
 Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t study_pk) {
   SOIQ_ASSIGN_OR_RETURN(SqlStatement up, c.prepare(kUpsertSeriesSql));
@@ -116,6 +117,7 @@ Status upsert_series_row(SqlSession& c, const SeriesRecord& series, int64_t stud
   up.bind(27, series.description);
   up.bind(28, series.window_center);
   up.bind(29, series.window_width);
+  up.bind(30, join_positions(g.slice_positions_mm));
   return up.run();
 }
 

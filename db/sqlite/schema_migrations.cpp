@@ -303,6 +303,12 @@ CREATE INDEX instances_series ON instances(series_pk, slice);
 CREATE INDEX instances_file ON instances(file_sha256);
 )sql";
 
+// Version 12: where each slice of an unevenly spaced series lies (ImageGeometry::slice_positions_mm,
+// db/sql/record_sql.h join_positions); "" for the evenly spaced series every older store holds.
+constexpr char kSchemaV12[] = R"sql(
+ALTER TABLE series ADD COLUMN slice_positions TEXT NOT NULL DEFAULT '';
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -317,6 +323,7 @@ const std::vector<Migration>& migrations() {
       {9, kSchemaV9, sqlite_checksum_stored_bytes},
       {10, kSchemaV10},
       {11, kSchemaV11},
+      {12, kSchemaV12},
   };
   return kMigrations;
 }

@@ -35,6 +35,7 @@ v1::ImageGeometry to_proto(const ImageGeometry& g) {
   }
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) p.add_direction(g.direction[r][c]);
+  for (const double z : g.slice_positions_mm) p.add_slice_positions(z);
   return p;
 }
 

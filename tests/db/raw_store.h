@@ -34,6 +34,11 @@ void drop_instances(const Raw& raw) {
 }
 
 template <typename Raw>
+void drop_slice_positions(const Raw& raw) {
+  raw.run("ALTER TABLE series DROP COLUMN slice_positions");
+}
+
+template <typename Raw>
 void drop_windows(const Raw& raw) {
   raw.run("ALTER TABLE series DROP COLUMN window_center");
   raw.run("ALTER TABLE series DROP COLUMN window_width");
@@ -44,6 +49,7 @@ struct RawSqlite {
   static constexpr int kBeforeChecksums = 8;
   static constexpr int kWindows = 10;
   static constexpr int kInstances = 11;
+  static constexpr int kSlicePositions = 12;
   explicit RawSqlite(const TempDir& dir) : location(dir.file("store.db")) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -71,6 +77,7 @@ struct RawSqlite {
   }
 
   void set_schema_version(int v) const {
+    if (v < kSlicePositions) drop_slice_positions(*this);
     if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);
     run("PRAGMA user_version = " + std::to_string(v));
@@ -84,6 +91,7 @@ struct RawPostgres {
   static constexpr int kBeforeChecksums = 4;
   static constexpr int kWindows = 6;
   static constexpr int kInstances = 7;
+  static constexpr int kSlicePositions = 8;
   explicit RawPostgres(const TempDir&) : location(fresh_postgres_database()) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -109,6 +117,7 @@ struct RawPostgres {
   }
 
   void set_schema_version(int v) const {
+    if (v < kSlicePositions) drop_slice_positions(*this);
     if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);
     run("UPDATE soiq_schema SET version = " + std::to_string(v));

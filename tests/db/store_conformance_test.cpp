@@ -4,6 +4,7 @@
 // backend's own tests.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <set>
 #include <string>
@@ -104,6 +105,37 @@ TYPED_TEST(StoreConformance, ASeriesIsReplacedByItsUidWithItsNewImage) {
   ASSERT_TRUE(listed.ok());
   ASSERT_EQ(listed->size(), 1u);
   EXPECT_EQ((*listed)[0].sha256, again.series.sha256);
+}
+
+// A gantry-tilted, unevenly spaced series keeps its grid exactly: the leaning k axis, and where
+// each slice lies (the image decodes on it, its sha256 covering them).
+TYPED_TEST(StoreConformance, AnIrregularSeriesKeepsItsSlicePositionsAndTilt) {
+  NewSeries s = new_series("P1", "S1", "S1.9", 1.5f);
+  Image image;
+  image.geometry = s.series.geometry;
+  image.geometry.dims = {3, 2, 4};
+  image.geometry.slice_positions_mm = {0, 1.25, 3.75, 8.75};
+  image.geometry.spacing_mm[2] = image.geometry.slice_positions_mm.back() / 3;
+  const double lean = 0.2588190451025208;  // sin 15 degrees
+  image.geometry.direction = {{{1, 0, 0}, {0, 1, lean}, {0, 0, std::sqrt(1 - lean * lean)}}};
+  image.voxels.assign(24, 1.5f);
+  ASSERT_TRUE(validate_geometry(image.geometry).ok()) << validate_geometry(image.geometry).to_string();
+  auto encoded = encode_image(image);
+  ASSERT_TRUE(encoded.ok());
+  EXPECT_NE(encoded->sha256, new_series("P1", "S1", "S1.9", 1.5f).series.sha256);
+  s.series.geometry = image.geometry;
+  s.series.sha256 = encoded->sha256;
+  s.image_blob = encoded->blob;
+  ASSERT_TRUE(this->store().put_series(s).ok());
+  Result<std::vector<SeriesRecord>> listed = this->store().list_series("S1");
+  ASSERT_TRUE(listed.ok());
+  ASSERT_EQ(listed->size(), 1u);
+  EXPECT_EQ((*listed)[0].geometry, image.geometry);
+  Result<std::string> blob = this->store().get_image_blob("S1.9");
+  ASSERT_TRUE(blob.ok());
+  auto decoded = decode_image(*blob, (*listed)[0].geometry);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().to_string();
+  EXPECT_EQ(decoded->voxels, image.voxels);
 }
 
 TYPED_TEST(StoreConformance, CountsListEachModalityOfTheSeriesOnceInOrder) {

@@ -34,10 +34,12 @@ inline TriangleMesh tetrahedron(double offset) {
   return m;
 }
 
-// The SQL that takes a store of the latest schema back to version 10's tables, to version 9's, 7's,
-// 6's, 4's and 3's, for the tests of older files' migration (each test then drops what its own
+// The SQL that takes a store of the latest schema back to version 11's tables, to version 10's, 9's,
+// 7's, 6's, 4's and 3's, for the tests of older files' migration (each test then drops what its own
 // older version lacked too).
-#define SOIQ_BACK_TO_SCHEMA_V10 "DROP TABLE instances; DROP TABLE instance_files; "
+#define SOIQ_BACK_TO_SCHEMA_V11 "ALTER TABLE series DROP COLUMN slice_positions; "
+inline constexpr char kBackToSchemaV11[] = SOIQ_BACK_TO_SCHEMA_V11;
+#define SOIQ_BACK_TO_SCHEMA_V10 SOIQ_BACK_TO_SCHEMA_V11 "DROP TABLE instances; DROP TABLE instance_files; "
 inline constexpr char kBackToSchemaV10[] = SOIQ_BACK_TO_SCHEMA_V10;
 #define SOIQ_BACK_TO_SCHEMA_V9 \
   SOIQ_BACK_TO_SCHEMA_V10      \
@@ -65,6 +67,7 @@ inline constexpr char kBackToSchemaV4[] = SOIQ_BACK_TO_SCHEMA_V4;
 inline constexpr char kBackToSchemaV3[] = SOIQ_BACK_TO_SCHEMA_V4
     "ALTER TABLE structures DROP COLUMN surface_perimeter_bound_mm; "
     "ALTER TABLE structures DROP COLUMN surface_area_bound_mm2; ";
+#undef SOIQ_BACK_TO_SCHEMA_V11
 #undef SOIQ_BACK_TO_SCHEMA_V4
 #undef SOIQ_BACK_TO_SCHEMA_V6
 #undef SOIQ_BACK_TO_SCHEMA_V7
