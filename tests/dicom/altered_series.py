@@ -1,20 +1,18 @@
-#!/ usr / bin / env python3
-""
-    "A real image series altered into the stacks soiq must keep as they are, for soiq's tests, as a new
-    series(new Series and SOP Instance UIDs derived from the old ones) in the same study :
+#!/usr/bin/env python3
+"""A real image series altered into the stacks soiq must keep as they are, for soiq's tests, as a new
+series (new Series and SOP Instance UIDs derived from the old ones and the alteration) in the same
+study:
 
-    --shear DI DJ slice k keeps its plane and orientation,
-    but its first pixel moves in - plane by h x(DI, DJ) pixels,
-    h its height above the first slice in original slice
-    spacings(k before any thinning; a gantry tilt of atan(| shift | / spacing)),
-    and its pixels are resampled there bilinearly from the original slice
-    : the same anatomy on other voxel centres.--thin FIRST LAST of the slices FIRST..LAST(in order along the normal),
-    every other one is left out,
-    FIRST + 1 first : an unevenly spaced stack,
-    finer outside that range.
+--shear DI DJ     slice k keeps its plane and orientation, but its first pixel moves in-plane by
+                  h x (DI, DJ) pixels, h its height above the first slice in original slice
+                  spacings (k before any thinning; a gantry tilt of atan(|shift| / spacing)), and
+                  its pixels are resampled there bilinearly from the original slice: the same
+                  anatomy on other voxel centres.
+--thin FIRST LAST of the slices FIRST..LAST (in order along the normal), every other one is left
+                  out, FIRST + 1 first: an unevenly spaced stack, finer outside that range.
 
-    Other files(an RT Structure Set,
-                from OTHER_DIR...) are written beside the images with every reference to the old UIDs renamed; contours on a plane whose slice was left out are left out
+Other files (an RT Structure Set, from OTHER_DIR...) are written beside the images with every
+reference to the old UIDs renamed; contours on a plane whose slice was left out are left out
 with it (they would lie on no image plane), and the rest lie on the planes the slices kept.
 
 usage: altered_series.py IN_DIR OUT_DIR [--shear DI DJ] [--thin FIRST LAST] [OTHER_DIR...]
@@ -85,6 +83,7 @@ def main():
             thin, i = (int(args[i + 1]), int(args[i + 2])), i + 3
         else:
             others_dirs, i = others_dirs + [args[i]], i + 1
+    how = " ".join(a for a in args[2:] if a not in others_dirs)
     os.makedirs(dst, exist_ok=True)
     images, others = [], []
     for directory in [src] + others_dirs:
@@ -95,7 +94,7 @@ def main():
     uids = {}
     for _, ds in images + others:
         for old in (ds.SeriesInstanceUID, ds.SOPInstanceUID):
-            uids[str(old)] = renamed(old, " ".join(args[2:]))
+            uids[str(old)] = renamed(old, how)
     o = np.array([float(v) for v in images[0][1].ImageOrientationPatient])
     row, col = o[:3], o[3:]
     normal = np.cross(row, col)
