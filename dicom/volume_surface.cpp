@@ -14,34 +14,17 @@ namespace {
 // so that the surface between the outermost inside slices and their neighbours lies where the
 // grid's slices are, not where the crop would extend its own.
 Mask cropped_mask(const RunLengthVolume& v) {
-  const auto& d = v.geometry.dims;
-  int64_t lo[3] = {std::numeric_limits<int64_t>::max(), d[1], d[2]}, hi[3] = {-1, -1, -1};
-  for (int64_t k = 0; k < d[2]; ++k)
-    for (int64_t j = 0; j < d[1]; ++j) {
-      const int64_t l = j + d[1] * k;
-      if (v.line_start[l] == v.line_start[l + 1]) continue;
-      lo[0] = std::min<int64_t>(lo[0], v.runs[v.line_start[l]].begin);
-      hi[0] = std::max<int64_t>(hi[0], v.runs[v.line_start[l + 1] - 1].end - 1);
-      lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
-      lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
-    }
+  VoxelBox box = voxel_box(v);
   Mask m;
   m.geometry = v.geometry;
-  if (hi[0] < 0) {
+  if (box.empty) {
     m.geometry.dims = {0, 0, 0};
     return m;
   }
-  if (v.geometry.uneven()) lo[2] = std::max<int64_t>(lo[2] - 1, 0), hi[2] = std::min(hi[2] + 1, d[2] - 1);
-  m.geometry = sub_grid(v.geometry, {lo[0], lo[1], lo[2]}, {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1});
-  const auto& c = m.geometry.dims;
-  m.voxels.assign(static_cast<size_t>(c[0] * c[1] * c[2]), 0);
-  for (int64_t k = lo[2]; k <= hi[2]; ++k)
-    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
-      const int64_t l = j + d[1] * k;
-      uint8_t* row = m.voxels.data() + c[0] * ((j - lo[1]) + c[1] * (k - lo[2]));
-      for (int64_t r = v.line_start[l]; r < v.line_start[l + 1]; ++r)
-        std::fill(row + (v.runs[r].begin - lo[0]), row + (v.runs[r].end - lo[0]), uint8_t{1});
-    }
+  if (v.geometry.uneven())
+    box.lo[2] = std::max<int64_t>(box.lo[2] - 1, 0), box.hi[2] = std::min(box.hi[2] + 1, v.geometry.dims[2] - 1);
+  m.geometry = sub_grid(v.geometry, box.lo, box.dims());
+  m.voxels = box_mask(v, box);
   return m;
 }
 

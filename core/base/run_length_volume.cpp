@@ -35,6 +35,42 @@ void fill_dense(const RunLengthVolume& v, uint8_t* out) {
   }
 }
 
+VoxelBox voxel_box(const RunLengthVolume& v) {
+  VoxelBox b;
+  const int64_t ny = v.geometry.dims[1];
+  for (int64_t l = 0; l < v.line_count(); ++l) {
+    const int64_t first = v.line_start[size_t(l)], last = v.line_start[size_t(l) + 1];
+    if (first == last) continue;
+    const std::array<int64_t, 3> lo{v.runs[size_t(first)].begin, l % ny, l / ny};
+    const std::array<int64_t, 3> hi{v.runs[size_t(last) - 1].end - 1, l % ny, l / ny};
+    for (size_t a = 0; a < 3; ++a) {
+      b.lo[a] = b.empty ? lo[a] : std::min(b.lo[a], lo[a]);
+      b.hi[a] = b.empty ? hi[a] : std::max(b.hi[a], hi[a]);
+    }
+    b.empty = false;
+  }
+  return b;
+}
+
+std::vector<uint8_t> box_mask(const RunLengthVolume& v, const VoxelBox& box) {
+  const std::array<int64_t, 3> n = box.dims();
+  std::vector<uint8_t> out(size_t(std::max<int64_t>(n[0], 0) * std::max<int64_t>(n[1], 0) * std::max<int64_t>(n[2], 0)),
+                           0);
+  const auto& d = v.geometry.dims;
+  for (int64_t k = std::max<int64_t>(box.lo[2], 0); k <= std::min(box.hi[2], d[2] - 1); ++k) {
+    for (int64_t j = std::max<int64_t>(box.lo[1], 0); j <= std::min(box.hi[1], d[1] - 1); ++j) {
+      const int64_t l = j + d[1] * k;
+      uint8_t* row = out.data() + n[0] * ((j - box.lo[1]) + n[1] * (k - box.lo[2]));
+      for (int64_t r = v.line_start[size_t(l)]; r < v.line_start[size_t(l) + 1]; ++r) {
+        const int64_t b = std::max<int64_t>(v.runs[size_t(r)].begin, box.lo[0]);
+        const int64_t e = std::min<int64_t>(v.runs[size_t(r)].end, box.hi[0] + 1);
+        if (b < e) std::memset(row + (b - box.lo[0]), 1, size_t(e - b));
+      }
+    }
+  }
+  return out;
+}
+
 Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels, int threads) {
   SOIQ_RETURN_IF_ERROR(check_grid_size(v.geometry, max_voxels));
   Mask m;

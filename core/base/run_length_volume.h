@@ -4,6 +4,7 @@
 // voxel indices i that are inside. Canonical: two RunLengthVolumes hold the same voxels iff their
 // runs are equal, so comparison is exact and cheap.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -44,6 +45,19 @@ Result<Mask> to_mask(const RunLengthVolume& v, int64_t max_voxels = kDefaultMaxV
 
 // Fills `out` (nx*ny*nz bytes, zeroed by the caller) with 1 for inside voxels. O(runs + inside).
 void fill_dense(const RunLengthVolume& v, uint8_t* out);
+
+// Inclusive index bounds of a volume's inside voxels; `empty` when there are none. O(lines).
+struct VoxelBox {
+  std::array<int64_t, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+  bool empty = true;
+  std::array<int64_t, 3> dims() const { return {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1}; }
+};
+VoxelBox voxel_box(const RunLengthVolume& v);
+
+// The inside voxels of `box` as 0/1 bytes, i fastest over the box (box.dims() voxels; zero where
+// the box reaches beyond the grid, as a padded box does). The caller bounds the box's size.
+// O(box voxels).
+std::vector<uint8_t> box_mask(const RunLengthVolume& v, const VoxelBox& box);
 
 // Runs of the nonzero voxels of a dense mask. O(voxels).
 RunLengthVolume from_mask(const Mask& m);

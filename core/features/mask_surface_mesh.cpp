@@ -2,72 +2,34 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <unordered_map>
 #include <vector>
 
 namespace soiq {
-namespace {
-
-// The inclusive voxel bounding box of the runs; lo > hi when there is no voxel.
-struct Box {
-  std::array<int64_t, 3> lo{std::numeric_limits<int64_t>::max(), std::numeric_limits<int64_t>::max(),
-                            std::numeric_limits<int64_t>::max()};
-  std::array<int64_t, 3> hi{-1, -1, -1};
-};
-
-Box box_of(const RunLengthVolume& v) {
-  Box b;
-  const int64_t ny = v.geometry.dims[1];
-  for (int64_t l = 0; l < v.line_count(); ++l) {
-    const int64_t first = v.line_start[size_t(l)], last = v.line_start[size_t(l) + 1];
-    if (first == last) continue;
-    const int64_t j = l % ny, k = l / ny;
-    b.lo[0] = std::min<int64_t>(b.lo[0], v.runs[size_t(first)].begin);
-    b.hi[0] = std::max<int64_t>(b.hi[0], v.runs[size_t(last - 1)].end - 1);
-    b.lo[1] = std::min(b.lo[1], j), b.hi[1] = std::max(b.hi[1], j);
-    b.lo[2] = std::min(b.lo[2], k), b.hi[2] = std::max(b.hi[2], k);
-  }
-  return b;
-}
-
-}  // namespace
 
 Result<TriangleMesh> mask_surface_mesh(const RunLengthVolume& volume, const CubeCaseTable& cases, int64_t max_voxels) {
   const ImageGeometry& g = volume.geometry;
   SOIQ_RETURN_IF_ERROR(validate_geometry(g));
   if (int64_t(volume.line_start.size()) != volume.line_count() + 1)
     return invalid_argument("volume's line starts do not match its grid " + describe(g));
-  const Box b = box_of(volume);
-  if (b.hi[0] < 0) return invalid_argument("the surface of an empty mask is undefined");
+  const VoxelBox b = voxel_box(volume);
+  if (b.empty) return invalid_argument("the surface of an empty mask is undefined");
   // The box padded by one voxel of outside on every side: cubes reach one voxel beyond the mask.
-  std::array<int64_t, 3> lo, n;
-  double voxels = 1;
-  for (size_t a = 0; a < 3; ++a) {
-    lo[a] = b.lo[a] - 1;
-    n[a] = b.hi[a] - b.lo[a] + 3;
-    voxels *= double(n[a]);
-  }
+  VoxelBox padded = b;
+  for (size_t a = 0; a < 3; ++a) --padded.lo[a], ++padded.hi[a];
+  const std::array<int64_t, 3> lo = padded.lo, n = padded.dims();
+  const double voxels = double(n[0]) * double(n[1]) * double(n[2]);
   if (voxels > double(max_voxels))
     return resource_exhausted("the mask's bounding box of " + std::to_string(int64_t(voxels)) +
                               " voxels exceeds the limit of " + std::to_string(max_voxels));
-  std::vector<uint8_t> inside(size_t(voxels), 0);
-  const int64_t ny = g.dims[1];
-  for (int64_t k = b.lo[2]; k <= b.hi[2]; ++k) {
-    for (int64_t j = b.lo[1]; j <= b.hi[1]; ++j) {
-      const int64_t l = j + ny * k;
-      uint8_t* row = inside.data() + n[0] * ((j - lo[1]) + n[1] * (k - lo[2]));
-      for (int64_t r = volume.line_start[size_t(l)]; r < volume.line_start[size_t(l) + 1]; ++r)
-        std::fill(row + (volume.runs[size_t(r)].begin - lo[0]), row + (volume.runs[size_t(r)].end - lo[0]), uint8_t(1));
-    }
-  }
+  const std::vector<uint8_t> inside = box_mask(volume, padded);
   auto at = [&](int64_t x, int64_t y, int64_t z) { return inside[size_t(x + n[0] * (y + n[1] * z))]; };
 
-  // Vertices keyed by their doubled coordinates in the padded box (each below 2^21).
+  // Vertices keyed by their doubled coordinates in the padded box: below 8 x its voxels < 2^63.
   TriangleMesh mesh;
   std::unordered_map<uint64_t, int32_t> index;
   auto vertex = [&](int64_t x2, int64_t y2, int64_t z2) {
-    const uint64_t key = uint64_t(x2) | (uint64_t(y2) << 21) | (uint64_t(z2) << 42);
+    const uint64_t key = uint64_t(x2 + 2 * n[0] * (y2 + 2 * n[1] * z2));
     const auto [it, fresh] = index.emplace(key, int32_t(mesh.vertices_mm.size()));
     if (fresh) {
       mesh.vertices_mm.push_back(g.index_to_physical(

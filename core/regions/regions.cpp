@@ -14,30 +14,6 @@
 namespace soiq {
 namespace {
 
-// Inclusive index bounds of the inside voxels; `empty` when there are none.
-struct IndexBox {
-  std::array<int64_t, 3> lo{0, 0, 0}, hi{-1, -1, -1};
-  bool empty = true;
-  std::array<int64_t, 3> dims() const { return {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1}; }
-};
-
-IndexBox bounding_box(const RunLengthVolume& v) {
-  IndexBox b;
-  const int64_t ny = v.geometry.dims[1];
-  for (int64_t l = 0; l < v.line_count(); ++l) {
-    const int64_t first = v.line_start[size_t(l)], last = v.line_start[size_t(l) + 1];
-    if (first == last) continue;
-    const std::array<int64_t, 3> lo{v.runs[size_t(first)].begin, l % ny, l / ny};
-    const std::array<int64_t, 3> hi{v.runs[size_t(last) - 1].end - 1, l % ny, l / ny};
-    for (int a = 0; a < 3; ++a) {
-      b.lo[size_t(a)] = b.empty ? lo[size_t(a)] : std::min(b.lo[size_t(a)], lo[size_t(a)]);
-      b.hi[size_t(a)] = b.empty ? hi[size_t(a)] : std::max(b.hi[size_t(a)], hi[size_t(a)]);
-    }
-    b.empty = false;
-  }
-  return b;
-}
-
 Status check_structure(const RunLengthVolume& v) {
   SOIQ_RETURN_IF_ERROR(validate_geometry(v.geometry));
   const std::string bad = "structure's run table does not match its grid (" + describe(v.geometry) + ")";
@@ -128,8 +104,8 @@ namespace {
 // What both region() and cheapest_region_method() work out before building anything.
 struct RegionPlan {
   double r = 0;         // the radius, clamped to what the grid can tell apart
-  IndexBox inside_box;  // of the structure
-  IndexBox box;         // grown by r, clipped to the grid
+  VoxelBox inside_box;  // of the structure
+  VoxelBox box;         // grown by r, clipped to the grid
   RegionMethod cheapest = RegionMethod::kRuns;
 };
 
@@ -150,7 +126,7 @@ Result<RegionPlan> plan_region(const RunLengthVolume& structure, const RegionSpe
                                "evenly spaced on a gantry-tilted or unevenly spaced series; use the inside region "
                                "there, or a grid of your own (--spacing) for the structure");
   }
-  plan.inside_box = bounding_box(structure);
+  plan.inside_box = voxel_box(structure);
   if (plan.inside_box.empty) return plan;
   // No two voxel centres of the grid are farther apart than its diagonal: a larger radius selects
   // exactly what twice the diagonal does, and r * r then stays finite.
@@ -197,7 +173,7 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
   const ImageGeometry& g = structure.geometry;
   if (plan.inside_box.empty) return empty_volume(g);
   const double r = plan.r;
-  const IndexBox& box = plan.box;
+  const VoxelBox& box = plan.box;
   const std::array<int64_t, 3> bd = box.dims();
   if (double(bd[0]) * double(bd[1]) * double(bd[2]) > double(options.max_box_voxels)) {
     char buf[256];
@@ -216,17 +192,7 @@ Result<RunLengthVolume> region(const RunLengthVolume& structure, const RegionSpe
 
   // Dense inside flags of the box.
   const int64_t ny = g.dims[1];
-  std::vector<uint8_t> inside(size_t(bd[0] * bd[1] * bd[2]), 0);
-  for (int64_t k = box.lo[2]; k <= box.hi[2]; ++k) {
-    for (int64_t j = box.lo[1]; j <= box.hi[1]; ++j) {
-      const int64_t l = j + ny * k;
-      uint8_t* row = inside.data() + bd[0] * ((j - box.lo[1]) + bd[1] * (k - box.lo[2]));
-      for (int64_t r_i = structure.line_start[size_t(l)]; r_i < structure.line_start[size_t(l) + 1]; ++r_i) {
-        const Run& run = structure.runs[size_t(r_i)];
-        std::fill(row + (run.begin - box.lo[0]), row + (run.end - box.lo[0]), uint8_t(1));
-      }
-    }
-  }
+  std::vector<uint8_t> inside = box_mask(structure, box);
 
   // Shell: distances to the inside voxels; core: to the outside ones.
   std::vector<uint8_t> outside;

@@ -4,12 +4,6 @@
 // rule on the voxel axes, sharing nothing with ImageGeometry::physical_to_index), and against the
 // marching-cubes surface built in mm.
 #include <gtest/gtest.h>
-#include <vtkCellArray.h>
-#include <vtkImageStencilData.h>
-#include <vtkNew.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkPolyDataToImageStencil.h>
 
 #include <cmath>
 #include <filesystem>
@@ -33,6 +27,7 @@
 #include "core/regions/regions.h"
 #include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/voxelize_1d.h"
+#include "tests/core/vtk_stencil_oracle.h"
 
 namespace soiq {
 namespace {
@@ -64,60 +59,8 @@ struct Stack {
   }
 };
 
-double det(const Mat3& m) {
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
-
 // p -> (i, j, k) by Cramer's rule on the voxel axes.
-Vec3 to_index(const Stack& s, const Vec3& p) {
-  const Mat3 a = s.axes();
-  const Vec3 d = p - s.first;
-  const double whole = det(a);
-  Vec3 out{};
-  for (int c = 0; c < 3; ++c) {
-    Mat3 m = a;
-    for (int r = 0; r < 3; ++r) m[size_t(r)][size_t(c)] = d[size_t(r)];
-    out[size_t(c)] = det(m) / whole;
-  }
-  return out;
-}
-
-// VTK's stencil of the mesh mapped into index space (unit spacing, origin 0): the voxels whose
-// centres it puts inside.
-std::vector<uint8_t> vtk_stencil(const TriangleMesh& mesh, const Stack& s) {
-  vtkNew<vtkPoints> points;
-  for (const Vec3& v : mesh.vertices_mm) {
-    const Vec3 u = to_index(s, v);
-    points->InsertNextPoint(u[0], u[1], u[2]);
-  }
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : mesh.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    polys->InsertNextCell(3, ids);
-  }
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  vtkNew<vtkPolyDataToImageStencil> stencil;
-  stencil->SetInputData(poly);
-  stencil->SetOutputOrigin(0, 0, 0);
-  stencil->SetOutputSpacing(1, 1, 1);
-  stencil->SetOutputWholeExtent(0, int(s.dims[0] - 1), 0, int(s.dims[1] - 1), 0, int(s.dims[2] - 1));
-  stencil->SetTolerance(0);
-  stencil->Update();
-  vtkImageStencilData* data = stencil->GetOutput();
-  std::vector<uint8_t> mask(size_t(s.dims[0] * s.dims[1] * s.dims[2]), 0);
-  for (int k = 0; k < int(s.dims[2]); ++k) {
-    for (int j = 0; j < int(s.dims[1]); ++j) {
-      int iter = 0, r1 = 0, r2 = 0;
-      while (data->GetNextExtent(r1, r2, 0, int(s.dims[0] - 1), j, k, iter)) {
-        for (int i = r1; i <= r2; ++i) mask[size_t(i + s.dims[0] * (j + s.dims[1] * k))] = 1;
-      }
-    }
-  }
-  return mask;
-}
+Vec3 to_index(const Stack& s, const Vec3& p) { return testing::cramer_solve(s.axes(), p - s.first); }
 
 Vec3 unit(const Vec3& v) { return (1 / norm(v)) * v; }
 
@@ -160,7 +103,7 @@ TEST(ShearedGrid, GeometryMapsEachVoxelCentreToItsSliceAndBack) {
     const ImageGeometry g = s.geometry();
     ASSERT_TRUE(validate_geometry(g).ok()) << s.name << ": " << validate_geometry(g).to_string();
     ASSERT_TRUE(g.sheared()) << s.name;
-    EXPECT_NEAR(g.voxel_volume_mm3(), std::abs(det(s.axes())), 1e-12) << s.name;
+    EXPECT_NEAR(g.voxel_volume_mm3(), std::abs(testing::det3(s.axes())), 1e-12) << s.name;
     for (const Vec3 ijk : {Vec3{0, 0, 0}, Vec3{3, 7, 5}, Vec3{10.25, 2.5, 9.75}}) {
       const Vec3 p = s.first + ijk[0] * s.sx * s.row + ijk[1] * s.sy * s.col + ijk[2] * s.step;
       const Vec3 there = g.index_to_physical(ijk), back = g.physical_to_index(p), oracle = to_index(s, p);
@@ -187,7 +130,8 @@ TEST(ShearedGrid, OneDMethodEqualsVtkStencilOnTheSeriesOwnVoxelCentres) {
       ASSERT_TRUE(v.ok()) << v.status().to_string();
       auto ours = to_mask(v->volume);
       ASSERT_TRUE(ours.ok());
-      const std::vector<uint8_t> vtk = vtk_stencil(mesh, s);
+      const std::vector<uint8_t> vtk = testing::vtk_stencil(
+          mesh, [&](const Vec3& p) { return to_index(s, p); }, s.dims);
       int64_t differ = 0, inside = 0;
       for (size_t n = 0; n < vtk.size(); ++n) {
         differ += ours->voxels[n] != vtk[n];

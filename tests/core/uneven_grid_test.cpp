@@ -4,12 +4,6 @@
 // plane rule between unequal gaps, the volume features against sums over every voxel centre, the
 // mask's surface features against VTK's marching cubes in mm, and what such a grid refuses.
 #include <gtest/gtest.h>
-#include <vtkCellArray.h>
-#include <vtkImageStencilData.h>
-#include <vtkNew.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkPolyDataToImageStencil.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +26,7 @@
 #include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/fill_contours.h"
 #include "core/voxelize/voxelize_1d.h"
+#include "tests/core/vtk_stencil_oracle.h"
 
 namespace soiq {
 namespace {
@@ -61,57 +56,19 @@ struct Stack {
   }
 };
 
-double det(const Mat3& m) {
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
-
 // p -> (i, j, h) in the grid of slice k alone: axes sx row, sy col and the unit normal, origin
 // slice k's first pixel (Cramer's rule), so the slice is the plane h = 0.
 Vec3 to_slice_index(const Stack& s, size_t k, const Vec3& p) {
   const Vec3 n = cross(s.row, s.col);
   Mat3 a{};
-  for (int r = 0; r < 3; ++r) a[size_t(r)] = {s.sx * s.row[size_t(r)], s.sy * s.col[size_t(r)], n[size_t(r)]};
-  const Vec3 d = p - s.firsts[k];
-  Vec3 out{};
-  for (int c = 0; c < 3; ++c) {
-    Mat3 m = a;
-    for (int r = 0; r < 3; ++r) m[size_t(r)][size_t(c)] = d[size_t(r)];
-    out[size_t(c)] = det(m) / det(a);
-  }
-  return out;
+  for (size_t r = 0; r < 3; ++r) a[r] = {s.sx * s.row[r], s.sy * s.col[r], n[r]};
+  return testing::cramer_solve(a, p - s.firsts[k]);
 }
 
 // VTK's stencil of the mesh on slice k alone: the mesh mapped into that slice's grid and cut by
 // its plane h = 0.
 std::vector<uint8_t> vtk_slice(const TriangleMesh& mesh, const Stack& s, size_t k) {
-  vtkNew<vtkPoints> points;
-  for (const Vec3& v : mesh.vertices_mm) {
-    const Vec3 u = to_slice_index(s, k, v);
-    points->InsertNextPoint(u[0], u[1], u[2]);
-  }
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : mesh.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    polys->InsertNextCell(3, ids);
-  }
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  vtkNew<vtkPolyDataToImageStencil> stencil;
-  stencil->SetInputData(poly);
-  stencil->SetOutputOrigin(0, 0, 0);
-  stencil->SetOutputSpacing(1, 1, 1);
-  stencil->SetOutputWholeExtent(0, int(s.nx - 1), 0, int(s.ny - 1), 0, 0);
-  stencil->SetTolerance(0);
-  stencil->Update();
-  std::vector<uint8_t> mask(size_t(s.nx * s.ny), 0);
-  for (int j = 0; j < int(s.ny); ++j) {
-    int iter = 0, r1 = 0, r2 = 0;
-    while (stencil->GetOutput()->GetNextExtent(r1, r2, 0, int(s.nx - 1), j, 0, iter))
-      for (int i = r1; i <= r2; ++i) mask[size_t(i + s.nx * j)] = 1;
-  }
-  return mask;
+  return testing::vtk_stencil(mesh, [&](const Vec3& p) { return to_slice_index(s, k, p); }, {s.nx, s.ny, 1});
 }
 
 // A CT protocol finer through the middle (axial), and the same irregular steps on an oblique,
