@@ -163,6 +163,11 @@ constexpr char kSqliteTableExistsSql[] = R"sql(
   SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?1)sql";
 constexpr char kPostgresTableExistsSql[] = R"sql(
   SELECT count(*) FROM pg_catalog.pg_tables WHERE schemaname = current_schema() AND tablename = ?1)sql";
+constexpr char kSqliteColumnExistsSql[] = R"sql(
+  SELECT count(*) FROM pragma_table_info(?1) WHERE name = ?2)sql";
+constexpr char kPostgresColumnExistsSql[] = R"sql(
+  SELECT count(*) FROM information_schema.columns
+  WHERE table_schema = current_schema() AND table_name = ?1 AND column_name = ?2)sql";
 
 }  // namespace
 
@@ -170,6 +175,15 @@ Result<bool> table_exists(SqlSession& c, const std::string& table) {
   SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(c.dialect() == SqlDialect::kPostgres ? kPostgresTableExistsSql
                                                                                        : kSqliteTableExistsSql));
   q.bind(1, table);
+  SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
+  return row && q.int64(0) > 0;
+}
+
+Result<bool> column_exists(SqlSession& c, const std::string& table, const std::string& column) {
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(c.dialect() == SqlDialect::kPostgres ? kPostgresColumnExistsSql
+                                                                                       : kSqliteColumnExistsSql));
+  q.bind(1, table);
+  q.bind(2, column);
   SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
   return row && q.int64(0) > 0;
 }

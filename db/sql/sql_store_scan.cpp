@@ -20,15 +20,17 @@ constexpr char kSurfaceStructuresSql[] = R"sql(
   SELECT id FROM structures WHERE surface_sha256 = ?1 ORDER BY id)sql";
 
 // The image with the first series that holds it, whose grid the blob is decoded on (the sha256
-// covers the grid, so every series that holds it has the same).
-constexpr char kNextImageSql[] = R"sql(
-  SELECT b.sha256, b.blob, se.series_uid,
-         se.origin_x, se.origin_y, se.origin_z, se.spacing_x, se.spacing_y, se.spacing_z,
-         se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, se.d12, se.d20, se.d21, se.d22,
-         se.slice_positions
-  FROM image_blobs b
-  LEFT JOIN series se ON se.pk = (SELECT min(pk) FROM series WHERE image_sha256 = b.sha256)
-  WHERE b.sha256 > ?1 ORDER BY b.sha256 LIMIT 1)sql";
+// covers the grid, so every series that holds it has the same). A store of a schema before the
+// slice positions (opened read only, not migrated) has only evenly spaced series.
+#define SOIQ_NEXT_IMAGE_SQL(slice_positions)                                                                       \
+  "SELECT b.sha256, b.blob, se.series_uid, se.origin_x, se.origin_y, se.origin_z, se.spacing_x, se.spacing_y, "    \
+  "se.spacing_z, se.dim_x, se.dim_y, se.dim_z, se.d00, se.d01, se.d02, se.d10, se.d11, se.d12, se.d20, se.d21, "   \
+  "se.d22, " slice_positions                                                                                       \
+  " FROM image_blobs b LEFT JOIN series se ON se.pk = (SELECT min(pk) FROM series WHERE image_sha256 = b.sha256) " \
+  "WHERE b.sha256 > ?1 ORDER BY b.sha256 LIMIT 1"
+constexpr char kNextImageSql[] = SOIQ_NEXT_IMAGE_SQL("se.slice_positions");
+constexpr char kNextImageBeforePositionsSql[] = SOIQ_NEXT_IMAGE_SQL("''");
+#undef SOIQ_NEXT_IMAGE_SQL
 
 constexpr char kNextValuesSql[] = R"sql(
   SELECT key, entry, surface_sha256, value FROM feature_cache
@@ -72,7 +74,8 @@ Status read_surface(SqlSession& c, const std::string& after, std::vector<StoredI
 }
 
 Status read_image(SqlSession& c, const std::string& after, std::vector<StoredItem>& out) {
-  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(kNextImageSql));
+  SOIQ_ASSIGN_OR_RETURN(const bool positions, column_exists(c, "series", "slice_positions"));
+  SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(positions ? kNextImageSql : kNextImageBeforePositionsSql));
   q.bind(1, after);
   SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
   if (!row) return ok_status();

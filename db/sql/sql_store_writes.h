@@ -72,5 +72,7 @@ Status delete_instance_file_if_orphan(SqlSession& c, const std::string& sha256);
 // the tables of later schema versions (instances, instance_files) may be missing from it: the
 // reads that run on such a store (soiq-admin verify's scan and digests) read them as empty.
 Result<bool> table_exists(SqlSession& c, const std::string& table);
+// Likewise for a column a later version added to an older table (series.slice_positions).
+Result<bool> column_exists(SqlSession& c, const std::string& table, const std::string& column);
 
 }  // namespace soiq::db
