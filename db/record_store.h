@@ -15,6 +15,7 @@
 #include "core/base/image_geometry.h"
 #include "core/base/status.h"
 #include "db/store_records.h"
+#include "db/structure_object.h"
 
 namespace soiq::db {
 
@@ -177,10 +178,11 @@ enum class BlobKind { kImage, kSurface, kInstanceFile };
 
 // DICOMweb's view of the store (QIDO-RS, server/http/). Its DICOM series are the image series
 // imported from DICOM (those with a SOP class; an image uploaded as a file has no DICOM identity)
-// and, for every structure converted on such a series, the SEG soiq writes of it on demand
-// (server/app/structure_seg.h): one series of one instance per structure. Results are in the order
-// the store keeps (studies by when they were first stored; series by study, then images, then
-// structures), so offset and limit page consistently while nothing is added or removed.
+// and, for every structure converted on such a series, the objects soiq writes of it on demand
+// (structure_object.h: its SEG, then its RT Structure Set), each one series of one instance.
+// Results are in the order the store keeps (studies by when they were first stored; series by
+// study, then images, then structures by id, each structure's objects together), so offset and
+// limit page consistently while nothing is added or removed.
 inline constexpr int64_t kMaxSearchLimit = 1000;
 
 // Every condition given must hold; empty ones do not filter.
@@ -194,7 +196,7 @@ struct StudySearch {
   std::string study_date_from, study_date_to;  // YYYYMMDD, inclusive
   std::string accession_number;                // exact
   std::string study_id;                        // exact
-  std::string modality;                        // of one of its DICOM series ("SEG": a structure's)
+  std::string modality;                        // of one of its DICOM series ("SEG", "RTSTRUCT": a structure's)
   int64_t offset = 0;                          // >= 0
   int64_t limit = 100;                         // 1..kMaxSearchLimit
 };
@@ -203,16 +205,17 @@ struct StudyHit {
   StudyRecord study;
   PatientRecord patient;
   std::vector<std::string> modalities;  // of its DICOM series, sorted, each once
-  int64_t series_count = 0;             // its DICOM series
+  int64_t series_count = 0;             // its DICOM series (a structure's objects each one)
   int64_t instance_count = 0;           // their instances (an image series': its slices)
 };
 
 struct SeriesSearch {
-  std::vector<std::string> study_uids;  // any of them
-  std::string patient_id;               // exact, or a GLOB
-  std::string series_uid;               // an image series (excludes structures)
-  std::optional<int64_t> structure_id;  // a structure's SEG series (excludes image series)
-  std::string modality;                 // "SEG": structures only
+  std::vector<std::string> study_uids;    // any of them
+  std::string patient_id;                 // exact, or a GLOB
+  std::string series_uid;                 // an image series (excludes structures)
+  std::optional<int64_t> structure_id;    // a structure's series (excludes image series)
+  std::optional<StructureObject> object;  // only this object's series of structures (excludes images)
+  std::string modality;                   // "SEG", "RTSTRUCT": that object of structures only
   int64_t offset = 0;
   int64_t limit = 100;
 };
@@ -220,8 +223,9 @@ struct SeriesSearch {
 struct SeriesHit {
   StudyRecord study;
   PatientRecord patient;
-  SeriesRecord series;                       // the image series; for a structure, the series it was converted on
-  std::optional<StructureRecord> structure;  // set for a structure's SEG series
+  SeriesRecord series;                             // the image series; for a structure, the series it was converted on
+  std::optional<StructureRecord> structure;        // set for a structure's series
+  StructureObject object = StructureObject::kSeg;  // which of the structure's objects the series is
 };
 
 // What remove deletes: one structure, or a patient with all of its studies, series and structures.

@@ -13,8 +13,8 @@
 namespace soiq::db {
 namespace {
 
-// A DICOM series of a study: an image series imported from DICOM (it has a SOP class), or a
-// structure converted on one (its SEG).
+// A DICOM series of a study: an image series imported from DICOM (it has a SOP class), or one of
+// the objects of a structure converted on one (structure_object.h).
 constexpr char kDicomImage[] = "se.sop_class_uid <> ''";
 
 Status validate_paging(int64_t offset, int64_t limit) {
@@ -86,7 +86,7 @@ void study_conditions(SqlConditions& where, const StudySearch& s) {
   }
   if (!s.accession_number.empty()) where.equal("st.accession_number", s.accession_number);
   if (!s.study_id.empty()) where.equal("st.study_id", s.study_id);
-  if (s.modality == "SEG") {
+  if (structure_object_of_modality(s.modality)) {
     where.literal(
         "EXISTS (SELECT 1 FROM structures ms JOIN series se ON se.series_uid = ms.source_series_uid "
         "WHERE ms.study_pk = st.pk AND " +
@@ -103,7 +103,8 @@ constexpr char kStudyPageFromSql[] = R"sql(
   JOIN patients p ON p.pk = st.patient_pk
   WHERE true)sql";
 
-// A study's image series by modality, and its structures' SEG series, for a page of studies.
+// A study's image series by modality, and its structures (each a series per object), for a page of
+// studies.
 constexpr char kStudyImageCountsSql[] = R"sql(
   SELECT se.study_pk, se.modality, count(*), CAST(sum(se.dim_z) AS bigint)
   FROM series se
@@ -160,9 +161,17 @@ Result<std::vector<StudyHit>> SqlStore::search_studies(const StudySearch& s) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
         if (!row) break;
         StudyHit& h = hits[index.at(q.int64(0))];
-        h.modalities.push_back(images ? q.text(1) : "SEG");
-        h.series_count += q.int64(images ? 2 : 1);
-        h.instance_count += q.int64(images ? 3 : 1);
+        if (images) {
+          h.modalities.push_back(q.text(1));
+          h.series_count += q.int64(2);
+          h.instance_count += q.int64(3);
+          continue;
+        }
+        for (const StructureObject o : kStructureObjects) {
+          h.modalities.push_back(structure_object_modality(o));
+          h.series_count += q.int64(1);
+          h.instance_count += q.int64(1);
+        }
       }
     }
     return ok_status();
@@ -184,18 +193,21 @@ Status validate_series_search(const SeriesSearch& s) {
   return validate_text(s.modality, "modality", kMaxIdBytes);
 }
 
-// The keys of a page of DICOM series: kind 0 an image series' pk, kind 1 a structure's id. Each half
-// of the UNION takes its own conditions (" AND …") after its WHERE.
+// The keys of a page of DICOM series: kind 0 an image series' pk, kind 1 or 2 (object_kind) one
+// of a structure's objects by the structure's id, a row per object. Each half of the UNION takes
+// its own conditions (" AND …") after its WHERE; `part` puts a study's images before its
+// structures, whose objects stay together.
 constexpr char kSeriesKeysImagesSql[] = R"sql(
-  SELECT st.pk AS study_pk, CAST(0 AS bigint) AS kind, se.pk AS item
+  SELECT st.pk AS study_pk, CAST(0 AS bigint) AS part, se.pk AS item, CAST(0 AS bigint) AS kind
   FROM series se
   JOIN studies st ON st.pk = se.study_pk
   JOIN patients p ON p.pk = st.patient_pk
   WHERE se.sop_class_uid <> '')sql";
 constexpr char kSeriesKeysStructuresSql[] = R"sql(
   UNION ALL
-  SELECT st.pk, CAST(1 AS bigint), s.id
+  SELECT st.pk, CAST(1 AS bigint), s.id, k.kind
   FROM structures s
+  CROSS JOIN (SELECT CAST(1 AS bigint) AS kind UNION ALL SELECT CAST(2 AS bigint)) k
   JOIN series se ON se.series_uid = s.source_series_uid
   JOIN studies st ON st.pk = s.study_pk
   JOIN patients p ON p.pk = st.patient_pk
@@ -214,6 +226,10 @@ constexpr char kStructureSeriesByIdSql[] = R"sql(
   JOIN series se ON se.series_uid = s.source_series_uid
   WHERE s.id IN ()sql";
 
+// A structure object's kind in the keys' rows (kSeriesKeysStructuresSql), and back.
+int64_t object_kind(StructureObject o) { return o == StructureObject::kSeg ? 1 : 2; }
+StructureObject object_of_kind(int64_t kind) { return kind == 1 ? StructureObject::kSeg : StructureObject::kRtStruct; }
+
 }  // namespace
 
 Result<std::vector<SeriesHit>> SqlStore::search_series(const SeriesSearch& s) {
@@ -222,8 +238,9 @@ Result<std::vector<SeriesHit>> SqlStore::search_series(const SeriesSearch& s) {
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     hits.clear();
     SqlConditions where(c.dialect());
-    const bool images = !s.structure_id && s.modality != "SEG";
-    const bool structures = s.series_uid.empty() && (s.modality.empty() || s.modality == "SEG");
+    const std::optional<StructureObject> modality_object = structure_object_of_modality(s.modality);
+    const bool images = !s.structure_id && !s.object && !modality_object;
+    const bool structures = s.series_uid.empty() && (s.modality.empty() || modality_object);
     auto common = [&] {
       if (!s.study_uids.empty()) where.any_equal("st.study_uid", s.study_uids);
       patient_id_condition(where, s.patient_id);
@@ -231,20 +248,22 @@ Result<std::vector<SeriesHit>> SqlStore::search_series(const SeriesSearch& s) {
     common();
     if (!images) where.literal("false");
     if (!s.series_uid.empty()) where.equal("se.series_uid", s.series_uid);
-    if (!s.modality.empty() && s.modality != "SEG") where.equal("se.modality", s.modality);
+    if (!s.modality.empty() && !modality_object) where.equal("se.modality", s.modality);
     const std::string image_conditions = where.take_sql();
     common();
     if (!structures) where.literal("false");
     if (s.structure_id) where.literal("s.id = " + std::to_string(*s.structure_id));  // a number, not text
+    for (const std::optional<StructureObject>& o : {modality_object, s.object})
+      if (o) where.literal("k.kind = " + std::to_string(object_kind(*o)));
     const std::string structure_conditions = where.take_sql();
 
     std::vector<std::pair<int, int64_t>> keys;  // (kind, key) in the page's order
     {
       SOIQ_ASSIGN_OR_RETURN(
-          SqlStatement q,
-          c.prepare("SELECT h.kind, h.item FROM (" + std::string(kSeriesKeysImagesSql) + image_conditions +
-                    kSeriesKeysStructuresSql + structure_conditions + ") h ORDER BY h.study_pk, h.kind, h.item LIMIT " +
-                    std::to_string(s.limit) + " OFFSET " + std::to_string(s.offset)));
+          SqlStatement q, c.prepare("SELECT h.kind, h.item FROM (" + std::string(kSeriesKeysImagesSql) +
+                                    image_conditions + kSeriesKeysStructuresSql + structure_conditions +
+                                    ") h ORDER BY h.study_pk, h.part, h.item, h.kind LIMIT " + std::to_string(s.limit) +
+                                    " OFFSET " + std::to_string(s.offset)));
       where.bind(q);
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
@@ -253,31 +272,36 @@ Result<std::vector<SeriesHit>> SqlStore::search_series(const SeriesSearch& s) {
       }
     }
     hits.resize(keys.size());
-    for (const int kind : {0, 1}) {
+    // Images, then structures: a structure with both objects on the page is read once for both.
+    for (const bool structure : {false, true}) {
       std::vector<int64_t> ks;
-      std::map<int64_t, size_t> at;
+      std::map<int64_t, std::vector<size_t>> at;
       for (size_t i = 0; i < keys.size(); ++i) {
-        if (keys[i].first != kind) continue;
-        at[keys[i].second] = i;
-        ks.push_back(keys[i].second);
+        if ((keys[i].first != 0) != structure) continue;
+        std::vector<size_t>& places = at[keys[i].second];
+        if (places.empty()) ks.push_back(keys[i].second);
+        places.push_back(i);
+        if (structure) hits[i].object = object_of_kind(keys[i].first);
       }
       if (ks.empty()) continue;
       const std::string sql =
-          kind == 0 ? select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "se.pk"},
-                                 {kImageSeriesByPkSql, key_list(ks.size()), ")"})
-                    : select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "s.id", kStructureColumns},
-                                 {kStructureSeriesByIdSql, key_list(ks.size()), ")"});
+          !structure ? select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "se.pk"},
+                                  {kImageSeriesByPkSql, key_list(ks.size()), ")"})
+                     : select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "s.id", kStructureColumns},
+                                  {kStructureSeriesByIdSql, key_list(ks.size()), ")"});
       SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql));
       for (size_t i = 0; i < ks.size(); ++i) q.bind(int(i + 1), ks[i]);
       constexpr int kKey = kSeriesColumnCount + kStudyColumnCount + kPatientColumnCount;
       while (true) {
         SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
         if (!row) break;
-        SeriesHit& h = hits[at.at(q.int64(kKey))];
-        h.series = read_series(q, 0);
-        h.study = read_study(q, kSeriesColumnCount);
-        h.patient = read_patient(q, kSeriesColumnCount + kStudyColumnCount);
-        if (kind == 1) h.structure = read_structure(q, kKey + 1);
+        for (const size_t i : at.at(q.int64(kKey))) {
+          SeriesHit& h = hits[i];
+          h.series = read_series(q, 0);
+          h.study = read_study(q, kSeriesColumnCount);
+          h.patient = read_patient(q, kSeriesColumnCount + kStudyColumnCount);
+          if (structure) h.structure = read_structure(q, kKey + 1);
+        }
       }
     }
     return ok_status();

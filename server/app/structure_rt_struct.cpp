@@ -37,9 +37,15 @@ std::string roi_name(const db::StructureRecord& s) {
 
 }  // namespace rt_struct_building
 
+std::string rt_struct_series_description(const std::string& name) {
+  return rt_struct_building::check_series_description(name).ok() && !name.empty()
+             ? name
+             : dicom::RtStructWriteOptions{}.series_description;
+}
+
 Result<BudgetedRtStruct> structure_rt_struct(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
                                              const std::vector<int64_t>& ids, const std::string& series_description,
-                                             const StructureSegUids* uids, const std::function<Status()>& stop) {
+                                             const StructureObjectUids* uids, const std::function<Status()>& stop) {
   namespace b = rt_struct_building;
   SOIQ_RETURN_IF_ERROR(b::check_series_description(series_description));
   SOIQ_ASSIGN_OR_RETURN(const StructuresOnSeries on,

@@ -8,7 +8,7 @@
 //
 // Inputs   ids: 1..kMaxRtStructStructures distinct structure ids, all imported from DICOM on the
 //          same series. series_description: "" for write_rt_struct's default. uids: the Series
-//          and SOP Instance UIDs to write (DICOMweb's stable ones, structure_seg_uids.h), with
+//          and SOP Instance UIDs to write (DICOMweb's stable ones, structure_object_uids.h), with
 //          the structure's creation time as the Structure Set Date/Time; nullptr: new ones, now.
 // Output   The written RT Structure Set, ROI n = ids[n-1], named as the structure.
 // Errors   as structures_on_series.h (INVALID_ARGUMENT, NOT_FOUND, FAILED_PRECONDITION);
@@ -30,7 +30,7 @@
 #include "dicom/rt_struct_export.h"
 #include "server/app/feature_engine.h"
 #include "server/app/memory_budget.h"
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object_uids.h"
 
 namespace soiq::server {
 
@@ -44,7 +44,11 @@ struct BudgetedRtStruct {
 
 Result<BudgetedRtStruct> structure_rt_struct(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
                                              const std::vector<int64_t>& ids, const std::string& series_description,
-                                             const StructureSegUids* uids = nullptr,
+                                             const StructureObjectUids* uids = nullptr,
                                              const std::function<Status()>& stop = {});
+
+// The Series Description of the RT Structure Set of one structure as DICOMweb lists and writes it:
+// its name when that is a valid LO value, else write_rt_struct's default.
+std::string rt_struct_series_description(const std::string& structure_name);
 
 }  // namespace soiq::server

@@ -115,7 +115,8 @@ std::string seg_series_description(const std::string& name) {
 
 Result<BudgetedSeg> structure_seg(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
                                   const std::vector<int64_t>& ids, const std::string& series_description,
-                                  const StructureSegUids* uids, const std::function<Status()>& stop, int oversample) {
+                                  const StructureObjectUids* uids, const std::function<Status()>& stop,
+                                  int oversample) {
   if (oversample < 0 || oversample > kMaxLinesPerVoxel)
     return invalid_argument("oversample must be 0 (a binary SEG) or 1 to " + std::to_string(kMaxLinesPerVoxel) +
                             " (a FRACTIONAL SEG of coverage fractions), not " + std::to_string(oversample));

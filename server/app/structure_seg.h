@@ -9,7 +9,7 @@
 // Inputs   ids: 1..kMaxSegStructures distinct structure ids, all imported from DICOM and all
 //          converted on the same series. series_description: "" for write_seg's default.
 //          uids: the Series and SOP Instance UIDs to write (DICOMweb's stable ones,
-//          structure_seg_uids.h); nullptr: new ones. oversample: 0 a binary SEG, 1..8 a fractional
+//          structure_object_uids.h); nullptr: new ones. oversample: 0 a binary SEG, 1..8 a fractional
 //          one (always with new UIDs, so that it and the binary SEG of the same structures can
 //          both live in a PACS).
 // Output   The written SEG, segment n = ids[n-1], labelled with the structure's name.
@@ -39,7 +39,7 @@
 #include "dicom/seg_export.h"
 #include "server/app/feature_engine.h"
 #include "server/app/memory_budget.h"
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object_uids.h"
 
 namespace soiq::server {
 
@@ -53,7 +53,7 @@ struct BudgetedSeg {
 
 Result<BudgetedSeg> structure_seg(db::Store& store, FeatureEngine& features, MemoryBudget& budget,
                                   const std::vector<int64_t>& ids, const std::string& series_description,
-                                  const StructureSegUids* uids = nullptr, const std::function<Status()>& stop = {},
+                                  const StructureObjectUids* uids = nullptr, const std::function<Status()>& stop = {},
                                   int oversample = 0);
 
 // The Series Description of the SEG of one structure as DICOMweb lists and writes it: its name when

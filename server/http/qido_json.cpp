@@ -3,15 +3,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "server/app/structure_seg.h"
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object.h"
+#include "server/app/structure_object_uids.h"
 
 namespace soiq::server::http {
 namespace {
 
 using nlohmann::json;
-
-constexpr char kSegSopClass[] = "1.2.840.10008.5.1.4.1.1.66.4";
 
 // Builds one result object, adding an attribute only when the query's level returns it by default
 // or the query asked for it.
@@ -95,7 +93,7 @@ void study_attributes(QidoResultObject& r, const db::StudyRecord& st, const db::
 }  // namespace
 
 std::string series_uid_of(const db::SeriesHit& h) {
-  return h.structure ? structure_seg_uids(*h.structure).series_uid : h.series.series_uid;
+  return h.structure ? structure_object_uids(*h.structure, h.object).series_uid : h.series.series_uid;
 }
 
 int64_t instance_count_of(const db::SeriesHit& h) {
@@ -105,7 +103,7 @@ int64_t instance_count_of(const db::SeriesHit& h) {
 
 std::string instance_uid_of(const InstanceRef& i) {
   const db::SeriesHit& h = *i.series;
-  if (h.structure) return structure_seg_uids(*h.structure).sop_instance_uid;
+  if (h.structure) return structure_object_uids(*h.structure, h.object).sop_instance_uid;
   return i.k >= 0 && i.k < int64_t(h.series.slice_instance_uids.size()) ? h.series.slice_instance_uids[size_t(i.k)]
                                                                         : "";
 }
@@ -132,11 +130,13 @@ json series_json(const db::SeriesHit& h, const std::string& base_url, const Qido
   r.always(tags::kStudyInstanceUid, "UI", h.study.study_uid);
   r.always(tags::kPatientId, "LO", h.patient.patient_id);
   r.always(tags::kSeriesInstanceUid, "UI", uid);
-  r.always(tags::kModality, "CS", h.structure ? "SEG" : h.series.modality);
   if (h.structure) {
-    r.number(tags::kSeriesNumber, "IS", 900);
-    r.text(tags::kSeriesDescription, "LO", seg_series_description(h.structure->name));
+    const StructureObjectListing listed = structure_object_listing(*h.structure, h.object);
+    r.always(tags::kModality, "CS", listed.modality);
+    r.number(tags::kSeriesNumber, "IS", listed.series_number);
+    r.text(tags::kSeriesDescription, "LO", listed.series_description);
   } else {
+    r.always(tags::kModality, "CS", h.series.modality);
     r.number(tags::kSeriesNumber, "IS", h.series.series_number, h.series.series_number > 0);
     r.text(tags::kSeriesDescription, "LO", h.series.description);
   }
@@ -155,12 +155,20 @@ json instance_json(const InstanceRef& i, const std::string& base_url, const Qido
   const std::string uid = instance_uid_of(i);
   r.always(tags::kStudyInstanceUid, "UI", h.study.study_uid);
   r.always(tags::kSeriesInstanceUid, "UI", series_uid);
-  r.always(tags::kModality, "CS", h.structure ? "SEG" : h.series.modality);
-  r.text(tags::kSopClassUid, "UI", h.structure ? kSegSopClass : h.series.sop_class_uid);
+  if (h.structure) {
+    const StructureObjectListing listed = structure_object_listing(*h.structure, h.object);
+    r.always(tags::kModality, "CS", listed.modality);
+    r.text(tags::kSopClassUid, "UI", listed.sop_class_uid);
+  } else {
+    r.always(tags::kModality, "CS", h.series.modality);
+    r.text(tags::kSopClassUid, "UI", h.series.sop_class_uid);
+  }
   r.always(tags::kSopInstanceUid, "UI", uid);
   r.number(tags::kInstanceNumber, "IS", i.k + 1);
-  r.number(tags::kRows, "US", h.series.geometry.dims[1]);
-  r.number(tags::kColumns, "US", h.series.geometry.dims[0]);
+  if (!h.structure || h.object == db::StructureObject::kSeg) {  // an RT Structure Set has no pixels
+    r.number(tags::kRows, "US", h.series.geometry.dims[1]);
+    r.number(tags::kColumns, "US", h.series.geometry.dims[0]);
+  }
   r.always(tags::kInstanceAvailability, "CS", h.structure ? "ONLINE" : "UNAVAILABLE");
   if (h.structure)
     r.always(tags::kRetrieveUrl, "UR",

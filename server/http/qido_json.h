@@ -11,8 +11,9 @@
 // Output   what the query's level returns by default (dicomweb_attributes.h), plus what was asked
 //          for; series results also carry StudyInstanceUID and PatientID, instance results the
 //          Study and Series UIDs and the Modality.
-//          A structure's SEG series is Modality SEG with its stable UIDs (structure_seg_uids.h),
-//          described as the structure's name; an image series, whose DICOM instances soiq does not
+//          A structure's SEG and RT Structure Set series are Modality SEG and RTSTRUCT with their
+//          stable UIDs (structure_object_uids.h), SOP class, number and description as written
+//          (server/app/structure_object.h); an image series, whose DICOM instances soiq does not
 //          keep, has InstanceAvailability UNAVAILABLE and no RetrieveURL.
 // Cost     linear in the hits; thread-safe.
 
@@ -27,14 +28,14 @@ namespace soiq::server::http {
 nlohmann::json study_json(const db::StudyHit& h, const std::string& base_url, const QidoQuery& q);
 nlohmann::json series_json(const db::SeriesHit& h, const std::string& base_url, const QidoQuery& q);
 
-// One instance of a series: an image series' slice k (0-based), or the SEG of a structure (k = 0).
+// One instance of a series: an image series' slice k (0-based), or a structure's object (k = 0).
 struct InstanceRef {
   const db::SeriesHit* series = nullptr;
   int64_t k = 0;
 };
 nlohmann::json instance_json(const InstanceRef& i, const std::string& base_url, const QidoQuery& q);
 
-// The series' and its instances' UIDs as DICOMweb gives them (the SEG's stable ones for a
+// The series' and its instances' UIDs as DICOMweb gives them (the object's stable ones for a
 // structure).
 std::string series_uid_of(const db::SeriesHit& h);
 std::string instance_uid_of(const InstanceRef& i);

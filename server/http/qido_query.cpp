@@ -7,7 +7,7 @@
 #include "core/base/field_rules.h"
 #include "db/age_years.h"
 #include "db/validate_records.h"
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object_uids.h"
 
 namespace soiq::server::http {
 namespace {
@@ -233,10 +233,11 @@ Result<QidoQuery> parse_qido(QidoLevel level, const std::string& path_study_uid,
   if (!series_uid.empty()) {
     SOIQ_RETURN_IF_ERROR(db::validate_text(series_uid, "SeriesInstanceUID", db::kMaxIdBytes));
     q.series_uid_asked = series_uid;
-    // A structure's SEG series is found by the structure id its UID carries (the handler checks the
-    // whole UID); any other UID names an image series.
-    if (const auto parsed = parse_structure_seg_uid(series_uid); parsed && !parsed->instance) {
+    // A structure's SEG or RT Structure Set series is found by the structure id and object its
+    // UID carries (the handler checks the whole UID); any other UID names an image series.
+    if (const auto parsed = parse_structure_object_uid(series_uid); parsed && !parsed->instance) {
       s.structure_id = parsed->structure_id;
+      s.object = parsed->object;
     } else {
       s.series_uid = series_uid;
     }

@@ -1,12 +1,14 @@
 // WADO-RS rendered and thumbnail resources (PS3.18 10.4.1.1.3, 10.4.1.1.4) of what soiqd's
-// DICOMweb lists: each structure's SEG (one instance: drawn as the structure over its source
-// slice; a frame: the slice that frame lies on) and the image series kept as voxels (an instance:
-// its slice; a series: its middle slice). A study's thumbnail is its first SEG's, else its first
-// image series'. One picture per request: a frame list of more than one is refused.
+// DICOMweb lists: each structure's SEG and RT Structure Set (one instance: drawn as the structure
+// over its source slice; a SEG's frame: the slice that frame lies on) and the image series kept as
+// voxels (an instance: its slice; a series: its middle slice). A study's thumbnail is its first
+// structure's, else its first image series'. One picture per request: a frame list of more than
+// one is refused.
 #include <algorithm>
 
+#include "server/app/structure_object.h"
+#include "server/app/structure_object_uids.h"
 #include "server/app/structure_render.h"
-#include "server/app/structure_seg_uids.h"
 #include "server/http/http_handlers.h"
 #include "server/http/rendered_params.h"
 
@@ -20,21 +22,6 @@ HttpReply picture_reply(RenderedPicture&& picture) {
   return r;
 }
 
-// The structure whose SEG `series_uid` (and `instance_uid`, when given) names in `study_uid`, or
-// nullopt when the uid is not a SEG of soiq's form.
-Result<std::optional<db::StructureRecord>> seg_of(const AppEngines& e, const std::string& study_uid,
-                                                  const std::string& series_uid, const std::string& instance_uid) {
-  const std::optional<ParsedSegUid> parsed = parse_structure_seg_uid(series_uid);
-  if (!parsed || parsed->instance) return std::optional<db::StructureRecord>();
-  Result<db::StructureRecord> s = e.store.get_structure(parsed->structure_id);
-  if (!s.ok() && s.status().code() != StatusCode::kNotFound) return s.status();
-  const bool found = s.ok() && s->study_uid == study_uid && structure_seg_uids(*s).series_uid == series_uid;
-  if (!found) return not_found("series '" + series_uid + "' not found in study '" + study_uid + "'");
-  if (!instance_uid.empty() && structure_seg_uids(*s).sop_instance_uid != instance_uid)
-    return not_found("instance '" + instance_uid + "' not found in series '" + series_uid + "'");
-  return std::optional<db::StructureRecord>(*s);
-}
-
 Result<int64_t> frame_number(const std::string& frames) {
   if (frames.find(',') != std::string::npos)
     return invalid_argument("one frame per rendered request: ask for frames '" + frames + "' one at a time");
@@ -44,21 +31,25 @@ Result<int64_t> frame_number(const std::string& frames) {
   return std::stoll(frames);
 }
 
-// The picture of one SEG (a structure) or one image series of the study.
+// The picture of one of a structure's objects or one image series of the study.
 Result<RenderedPicture> draw_series(const AppEngines& e, const std::string& study_uid, const std::string& series_uid,
                                     const std::string& instance_uid, std::optional<int64_t> frame, RenderAsk ask,
                                     const HttpRequest& req) {
-  SOIQ_ASSIGN_OR_RETURN(const std::optional<db::StructureRecord> seg, seg_of(e, study_uid, series_uid, instance_uid));
-  if (seg) {
-    // Over the image its SEG derives from, in the plane of that image's slices, so frame n is
-    // drawn on the slice frame n references.
-    ask.image = seg->source_series_uid;
-    if (!seg->source_series_uid.empty()) {
-      SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord source, e.store.get_series(seg->source_series_uid));
+  SOIQ_ASSIGN_OR_RETURN(const std::optional<StructureObjectRef> object,
+                        find_structure_object(e.store, study_uid, series_uid, instance_uid));
+  if (object) {
+    if (frame && object->object == db::StructureObject::kRtStruct)
+      return not_found("instance '" + instance_uid + "' is an RT Structure Set: it has no frames");
+    const db::StructureRecord& s = object->structure;
+    // Over the image its object derives from, in the plane of that image's slices, so a SEG's
+    // frame n is drawn on the slice frame n references.
+    ask.image = s.source_series_uid;
+    if (!s.source_series_uid.empty()) {
+      SOIQ_ASSIGN_OR_RETURN(const db::SeriesRecord source, e.store.get_series(s.source_series_uid));
       ask.plane = stacking_plane(source.geometry);
     }
     ask.seg_frame = frame;
-    return render_structure(e.store, e.features, e.pool, seg->id, ask, stop_when_client_gone(req));
+    return render_structure(e.store, e.features, e.pool, s.id, ask, stop_when_client_gone(req));
   }
   Result<db::SeriesRecord> series = e.store.get_series(series_uid);
   if (!series.ok() && series.status().code() != StatusCode::kNotFound) return series.status();
@@ -76,7 +67,7 @@ Result<RenderedPicture> draw_series(const AppEngines& e, const std::string& stud
   return render_series_slice(e.store, e.features, e.budget, e.pool, series_uid, k, ask);
 }
 
-// A study's thumbnail: its first SEG's, else its first image series'.
+// A study's thumbnail: its first structure's, else its first image series'.
 Result<RenderedPicture> draw_study(const AppEngines& e, const std::string& study_uid, const RenderAsk& ask,
                                    const HttpRequest& req) {
   SOIQ_RETURN_IF_ERROR(e.store.get_study(study_uid).status());
@@ -89,8 +80,8 @@ Result<RenderedPicture> draw_study(const AppEngines& e, const std::string& study
     if (h.structure && (chosen == nullptr || !chosen->structure)) chosen = &h;
   if (chosen == nullptr && !hits.empty()) chosen = &hits.front();
   if (chosen == nullptr) return not_found("study '" + study_uid + "' has no series to draw");
-  const std::string uid =
-      chosen->structure ? structure_seg_uids(*chosen->structure).series_uid : chosen->series.series_uid;
+  const std::string uid = chosen->structure ? structure_object_uids(*chosen->structure, chosen->object).series_uid
+                                            : chosen->series.series_uid;
   return draw_series(e, study_uid, uid, "", std::nullopt, ask, req);
 }
 

@@ -14,7 +14,7 @@
 
 #include "proto/text/query_columns.h"
 #include "server/api/query_request.h"
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object_uids.h"
 #include "server/http/http_handlers.h"
 #include "server/http/soiq_query_args.h"
 
@@ -50,7 +50,9 @@ ordered_json row_json(const QueryRow& r, const proto_text::QueryColumns& columns
                       {"name", r.structure.name},
                       {"laterality", r.structure.laterality}};
   // The SEG QIDO lists for a structure imported from DICOM, for the page's viewer link ({seg_series}).
-  row["seg_series_uid"] = r.structure.source_series_uid.empty() ? "" : structure_seg_uids(r.structure).series_uid;
+  row["seg_series_uid"] = r.structure.source_series_uid.empty()
+                              ? ""
+                              : structure_object_uids(r.structure, db::StructureObject::kSeg).series_uid;
   for (size_t k = 0; k < columns.value_at.size(); ++k) {
     const std::string& name = columns.header[first_feature + k];
     const size_t at = columns.value_at[k];

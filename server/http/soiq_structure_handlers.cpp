@@ -6,9 +6,9 @@
 #include "server/app/grid_choice.h"
 #include "server/app/stored_surface_bytes.h"
 #include "server/app/structure_conversion.h"
+#include "server/app/structure_object_uids.h"
 #include "server/app/structure_render.h"
 #include "server/app/structure_seg.h"
-#include "server/app/structure_seg_uids.h"
 #include "server/http/http_handlers.h"
 #include "server/http/rendered_params.h"
 
@@ -53,7 +53,7 @@ Result<HttpReply> picture(const HandlerContext& c, int64_t id, bool thumbnail, c
 Result<HttpReply> seg(const HandlerContext& c, int64_t id, const HttpRequest& req) {
   const AppEngines& e = c.engines;
   SOIQ_ASSIGN_OR_RETURN(const db::StructureRecord s, e.store.get_structure(id));
-  const StructureSegUids uids = structure_seg_uids(s);
+  const StructureObjectUids uids = structure_object_uids(s, db::StructureObject::kSeg);
   std::optional<BudgetedSeg> written;
   auto work = [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(BudgetedSeg w,

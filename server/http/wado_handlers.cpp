@@ -1,12 +1,13 @@
-// WADO-RS (PS3.18 10.4) for the DICOM soiq has to give: the SEG of each structure imported from
-// DICOM, written on demand (server/app/structure_seg.h) with the stable UIDs QIDO lists
-// (structure_seg_uids.h), and the original instances of image series that soiqd kept at import
-// (wado_images.h). A study's retrieval and metadata hold both.
+// WADO-RS (PS3.18 10.4) for the DICOM soiq has to give: the SEG and the RT Structure Set of each
+// structure imported from DICOM, written on demand (server/app/structure_object.h) with the stable
+// UIDs QIDO lists (structure_object_uids.h), and the original instances of image series that
+// soiqd kept at import (wado_images.h). A study's retrieval and metadata hold them all.
 #include <nlohmann/json.hpp>
 
 #include "dicom/dicom_json_metadata.h"
+#include "server/app/structure_object.h"
+#include "server/app/structure_object_uids.h"
 #include "server/app/structure_seg.h"
-#include "server/app/structure_seg_uids.h"
 #include "server/http/http_handlers.h"
 #include "server/http/multipart.h"
 #include "server/http/wado_images.h"
@@ -16,37 +17,22 @@ namespace {
 
 constexpr char kExplicitVrLittleEndian[] = "1.2.840.10008.1.2.1";
 
-// The structure whose SEG series `series_uid` is, in study `study_uid`.
-Result<db::StructureRecord> seg_structure(const AppEngines& e, const std::string& study_uid,
-                                          const std::string& series_uid) {
-  const auto parsed = parse_structure_seg_uid(series_uid);
-  if (!parsed || parsed->instance)
-    return not_found("series '" + series_uid + "' not found in study '" + study_uid + "'");
-  Result<db::StructureRecord> s = e.store.get_structure(parsed->structure_id);
-  if (!s.ok() && s.status().code() != StatusCode::kNotFound) return s.status();
-  if (!s.ok() || s->study_uid != study_uid || structure_seg_uids(*s).series_uid != series_uid)
-    return not_found("series '" + series_uid + "' not found in study '" + study_uid +
-                     "' (a structure whose surface changed has new UIDs: query the study's series again)");
-  return *s;
-}
-
-// The SEGs of `structures`, as Part 10 files, each with its share of the budget, into `reply.held`.
-// One task on soiqd's worker pool for them all: waiting for a worker while holding SEGs could
-// leave the workers waiting for the budget those SEGs hold. A wait for the budget while holding
+// The structures' objects, as Part 10 files, each with its share of the budget, into `reply.held`.
+// One task on soiqd's worker pool for them all: waiting for a worker while holding objects could
+// leave the workers waiting for the budget those objects hold. A wait for the budget while holding
 // gives up after 30 s (memory_budget.h); a client that has gone stops it.
-Result<std::vector<std::string>> segs_of(const AppEngines& e, const std::vector<db::StructureRecord>& structures,
-                                         const HttpRequest& req, HttpReply& reply) {
+Result<std::vector<std::string>> files_of(const AppEngines& e, const std::vector<StructureObjectRef>& objects,
+                                          const HttpRequest& req, HttpReply& reply) {
   const std::function<Status()> client_here = stop_when_client_gone(req);
   std::vector<std::string> files;
   auto work = [&]() -> Status {
-    for (const db::StructureRecord& s : structures) {
-      const StructureSegUids uids = structure_seg_uids(s);
+    for (const StructureObjectRef& o : objects) {
       const auto stop = stop_when_held_too_long(client_here, !reply.held.empty(), 30000,
-                                                "the study's SEGs do not fit the memory budget together while other "
-                                                "work holds it; retrieve them series by series");
-      SOIQ_ASSIGN_OR_RETURN(BudgetedSeg written, structure_seg(e.store, e.features, e.budget, {s.id},
-                                                               seg_series_description(s.name), &uids, stop));
-      files.push_back(std::move(written.seg.bytes));
+                                                "the study's SEGs and RT Structure Sets do not fit the memory budget "
+                                                "together while other work holds it; retrieve them series by series");
+      SOIQ_ASSIGN_OR_RETURN(WrittenStructureObject written,
+                            write_structure_object(e.store, e.features, e.budget, o, stop));
+      files.push_back(std::move(written.bytes));
       reply.held.push_back(std::move(written.held));
     }
     return ok_status();
@@ -55,31 +41,33 @@ Result<std::vector<std::string>> segs_of(const AppEngines& e, const std::vector<
   return files;
 }
 
-// The structures of what the path names: one series, or every SEG series of a study.
-Result<std::vector<db::StructureRecord>> structures_of(const AppEngines& e, const std::string& study_uid,
-                                                       const std::string& series_uid, const std::string& instance_uid) {
+// The structure objects of what the path names: one series, or every structure's SEG and RT
+// Structure Set series in a study (a structure's together, as QIDO lists them).
+Result<std::vector<StructureObjectRef>> objects_of(const AppEngines& e, const std::string& study_uid,
+                                                   const std::string& series_uid, const std::string& instance_uid) {
   if (!series_uid.empty()) {
-    SOIQ_ASSIGN_OR_RETURN(db::StructureRecord s, seg_structure(e, study_uid, series_uid));
-    if (!instance_uid.empty() && structure_seg_uids(s).sop_instance_uid != instance_uid)
-      return not_found("instance '" + instance_uid + "' not found in series '" + series_uid + "'");
-    return std::vector<db::StructureRecord>{s};
+    SOIQ_ASSIGN_OR_RETURN(const std::optional<StructureObjectRef> o,
+                          find_structure_object(e.store, study_uid, series_uid, instance_uid));
+    if (!o) return not_found("series '" + series_uid + "' not found in study '" + study_uid + "'");
+    return std::vector<StructureObjectRef>{*o};
   }
   db::SeriesSearch search;
   search.study_uids = {study_uid};
-  search.modality = "SEG";
+  search.object = db::StructureObject::kSeg;  // one hit per structure
   search.limit = kMaxSegStructures + 1;
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesHit> hits, e.store.search_series(search));
   if (int64_t(hits.size()) > kMaxSegStructures)
     return resource_exhausted("study '" + study_uid + "' has more than " + std::to_string(kMaxSegStructures) +
                               " SEG series; retrieve them series by series");
-  std::vector<db::StructureRecord> out;
-  for (const db::SeriesHit& h : hits) out.push_back(*h.structure);
+  std::vector<StructureObjectRef> out;
+  for (const db::SeriesHit& h : hits)
+    for (const db::StructureObject o : db::kStructureObjects) out.push_back({*h.structure, o});
   return out;
 }
 
-// True for a series uid that names an image series rather than a structure's SEG.
+// True for a series uid that names an image series rather than one of a structure's objects.
 bool is_image_series(const std::string& series_uid) {
-  const auto parsed = parse_structure_seg_uid(series_uid);
+  const auto parsed = parse_structure_object_uid(series_uid);
   return !parsed || parsed->instance;
 }
 
@@ -116,9 +104,10 @@ Result<HttpReply> wado_image(const HandlerContext& c, WadoWhat what, const std::
   return internal_error("unknown WADO-RS resource");
 }
 
-std::string instance_url(const HandlerContext& c, const db::StructureRecord& s) {
-  const StructureSegUids uids = structure_seg_uids(s);
-  return c.base_url + "/studies/" + s.study_uid + "/series/" + uids.series_uid + "/instances/" + uids.sop_instance_uid;
+std::string instance_url(const HandlerContext& c, const StructureObjectRef& o) {
+  const StructureObjectUids uids = structure_object_uids(o.structure, o.object);
+  return c.base_url + "/studies/" + o.structure.study_uid + "/series/" + uids.series_uid + "/instances/" +
+         uids.sop_instance_uid;
 }
 
 }  // namespace
@@ -134,6 +123,11 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
     return not_acceptable_dicom();
   if (!series_uid.empty() && is_image_series(series_uid))
     return wado_image(c, what, study_uid, series_uid, instance_uid, frames, req);
+  // Frames and bulk data name an instance, so the series UID is a structure object's here.
+  const std::optional<ParsedStructureUid> object = parse_structure_object_uid(series_uid);
+  if ((what == WadoWhat::kFrames || bulk) && object && object->object == db::StructureObject::kRtStruct)
+    return not_found("instance '" + instance_uid +
+                     "' is an RT Structure Set: it has no pixel data or frames; retrieve the instance or its metadata");
   if (what == WadoWhat::kFrames)
     return Status(
         StatusCode::kUnimplemented,
@@ -144,15 +138,15 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
     SOIQ_RETURN_IF_ERROR(c.engines.store.get_study(study_uid).status());
     SOIQ_ASSIGN_OR_RETURN(images, kept_study_instances(c.engines, study_uid));
   }
-  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::StructureRecord> structures,
-                        structures_of(c.engines, study_uid, series_uid, instance_uid));
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<StructureObjectRef> structures,
+                        objects_of(c.engines, study_uid, series_uid, instance_uid));
   if (images.empty() && structures.empty())
     return not_found("study '" + study_uid +
                      "' has neither an image series whose DICOM instances soiqd kept nor a structure imported from "
                      "DICOM, so no DICOM to send");
-  // Each SEG's bytes stay counted in the budget until the answer holding them is written.
+  // Each object's bytes stay counted in the budget until the answer holding them is written.
   HttpReply r;
-  SOIQ_ASSIGN_OR_RETURN(std::vector<std::string> files, segs_of(c.engines, structures, req, r));
+  SOIQ_ASSIGN_OR_RETURN(std::vector<std::string> files, files_of(c.engines, structures, req, r));
   if (metadata) {
     std::string body = "[";
     for (const db::InstanceRecord& i : images)
@@ -164,7 +158,7 @@ Result<HttpReply> wado(const HandlerContext& c, WadoWhat what, const std::string
     }
     r.content_type = "application/dicom+json";
     r.body = body + "]";
-    r.held.clear();  // the SEGs go with this function; their JSON is small
+    r.held.clear();  // the objects go with this function; their JSON is small
     return r;
   }
   if (what == WadoWhat::kInstances) {

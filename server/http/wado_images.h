@@ -4,7 +4,8 @@
 // Endian when the client asks for it), their metadata (DICOM JSON with the SOP Instance UIDs the
 // SEGs soiq writes reference) and their frames uncompressed (dicom/instance_frames.h). What a
 // viewer such as OHIF needs to open a series from soiqd alone. wado_handlers.cpp routes here every
-// series that is not a structure's SEG, and a study's retrieval and metadata take both.
+// series that is not a structure's SEG or RT Structure Set, and a study's retrieval and metadata
+// take both.
 //
 // Memory: a series or study is sent one instance at a time (chunked, each written before the next
 // is read), each file's bytes reserved in the budget before it is read; metadata is small.
@@ -36,7 +37,8 @@ enum class InstanceSyntax { kAsStored, kExplicitLittleEndian, kNotAcceptable };
 InstanceSyntax instance_syntax(const HttpRequest& req);
 
 // A multipart/related answer of application/dicom parts: the kept instances, then `extra` (soiq's
-// SEGs, Explicit VR Little Endian), streamed when the request allows (GET), else whole.
+// SEGs and RT Structure Sets, Explicit VR Little Endian), streamed when the request allows (GET),
+// else whole.
 Result<HttpReply> send_instances(const HandlerContext& c, const std::vector<db::InstanceRecord>& instances,
                                  std::vector<std::string> extra, InstanceSyntax syntax, const HttpRequest& req);
 

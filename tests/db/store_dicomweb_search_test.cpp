@@ -70,14 +70,17 @@ class StoreDicomwebSearch : public testing::StoreTest<Backend> {
     return uids;
   }
 
-  // "series uid" for an image series, "#<structure id>" for a structure's SEG.
+  // "series uid" for an image series, "#<structure id>" for a structure's SEG, "#<id>/rt" for its
+  // RT Structure Set.
   std::vector<std::string> series(const SeriesSearch& s) {
     Result<std::vector<SeriesHit>> hits = this->store_->search_series(s);
     EXPECT_TRUE(hits.ok()) << hits.status().to_string();
     std::vector<std::string> out;
     if (hits.ok())
       for (const SeriesHit& h : *hits)
-        out.push_back(h.structure ? "#" + std::to_string(h.structure->id) : h.series.series_uid);
+        out.push_back(!h.structure ? h.series.series_uid
+                                   : "#" + std::to_string(h.structure->id) +
+                                         (h.object == StructureObject::kRtStruct ? "/rt" : ""));
     return out;
   }
 
@@ -94,9 +97,9 @@ TYPED_TEST(StoreDicomwebSearch, EveryStudyInTheOrderStoredWithItsDicomSeriesCoun
   const StudyHit& a = (*all)[0];
   EXPECT_EQ(a.study.study_uid, "1.1");
   EXPECT_EQ(a.patient.patient_name, "Doe^John");
-  EXPECT_EQ(a.modalities, (Uids{"CT", "SEG"}));  // the uploaded PT is no DICOM series
-  EXPECT_EQ(a.series_count, 2);                  // the CT and the GTV's SEG
-  EXPECT_EQ(a.instance_count, 3);                // two slices and one SEG
+  EXPECT_EQ(a.modalities, (Uids{"CT", "RTSTRUCT", "SEG"}));  // the uploaded PT is no DICOM series
+  EXPECT_EQ(a.series_count, 3);                              // the CT, the GTV's SEG and its RT Structure Set
+  EXPECT_EQ(a.instance_count, 4);                            // two slices, one SEG and one RT Structure Set
   EXPECT_EQ(a.study.structure_count, 2);
   const StudyHit& b = (*all)[1];
   EXPECT_EQ(b.study.study_uid, "2.1");
@@ -120,6 +123,7 @@ TYPED_TEST(StoreDicomwebSearch, StudiesByIdentifiersDatesAndModality) {
   EXPECT_EQ(this->studies({.study_date_to = "20991231"}), (Uids{"1.1", "2.1"}));
   EXPECT_EQ(this->studies({.modality = "CT"}), (Uids{"1.1"}));
   EXPECT_EQ(this->studies({.modality = "SEG"}), (Uids{"1.1"}));
+  EXPECT_EQ(this->studies({.modality = "RTSTRUCT"}), (Uids{"1.1"}));
   EXPECT_EQ(this->studies({.modality = "MR"}), (Uids{"2.1"}));
   EXPECT_EQ(this->studies({.modality = "PT"}), (Uids{}));  // uploaded: not a DICOM series
 }
@@ -143,23 +147,34 @@ TYPED_TEST(StoreDicomwebSearch, OffsetAndLimitPageTheSameOrder) {
   EXPECT_EQ(this->studies({.offset = 2, .limit = 2}), (Uids{"3.1"}));
   EXPECT_EQ(this->studies({.offset = 3, .limit = 2}), (Uids{}));
   EXPECT_EQ(this->series({.offset = 1, .limit = 1}), (Uids{"#" + std::to_string(this->gtv_)}));
+  // A structure's two series may fall on two pages.
+  EXPECT_EQ(this->series({.offset = 2, .limit = 2}), (Uids{"#" + std::to_string(this->gtv_) + "/rt", "2.1.1"}));
 }
 
-TYPED_TEST(StoreDicomwebSearch, SeriesAreImagesFromDicomThenStructureSegs) {
+TYPED_TEST(StoreDicomwebSearch, SeriesAreImagesFromDicomThenStructureSegsAndRtStructureSets) {
   const std::string gtv = "#" + std::to_string(this->gtv_);
-  EXPECT_EQ(this->series({}), (Uids{"1.1.1", gtv, "2.1.1"}));
+  const std::string gtv_rt = gtv + "/rt";
+  EXPECT_EQ(this->series({}), (Uids{"1.1.1", gtv, gtv_rt, "2.1.1"}));
   EXPECT_EQ(this->series({.study_uids = {"2.1"}}), (Uids{"2.1.1"}));
-  EXPECT_EQ(this->series({.patient_id = "P1"}), (Uids{"1.1.1", gtv}));
+  EXPECT_EQ(this->series({.patient_id = "P1"}), (Uids{"1.1.1", gtv, gtv_rt}));
   EXPECT_EQ(this->series({.modality = "SEG"}), (Uids{gtv}));
+  EXPECT_EQ(this->series({.modality = "RTSTRUCT"}), (Uids{gtv_rt}));
   EXPECT_EQ(this->series({.modality = "CT"}), (Uids{"1.1.1"}));
   EXPECT_EQ(this->series({.series_uid = "1.1.1"}), (Uids{"1.1.1"}));
   EXPECT_EQ(this->series({.series_uid = "1.1.2"}), (Uids{}));  // uploaded, no DICOM identity
-  EXPECT_EQ(this->series({.structure_id = this->gtv_}), (Uids{gtv}));
+  EXPECT_EQ(this->series({.structure_id = this->gtv_}), (Uids{gtv, gtv_rt}));
+  EXPECT_EQ(this->series({.structure_id = this->gtv_, .object = StructureObject::kRtStruct}), (Uids{gtv_rt}));
+  EXPECT_EQ(this->series({.object = StructureObject::kSeg}), (Uids{gtv}));
+  EXPECT_EQ(this->series({.object = StructureObject::kSeg, .modality = "RTSTRUCT"}), (Uids{}));
+  EXPECT_EQ(this->series({.object = StructureObject::kSeg, .modality = "CT"}), (Uids{}));
   EXPECT_EQ(this->series({.structure_id = this->uploaded_}), (Uids{}));
 
   Result<std::vector<SeriesHit>> seg = this->store_->search_series({.structure_id = this->gtv_});
   ASSERT_TRUE(seg.ok());
-  ASSERT_EQ(seg->size(), 1u);
+  ASSERT_EQ(seg->size(), 2u);
+  EXPECT_EQ((*seg)[0].object, StructureObject::kSeg);
+  EXPECT_EQ((*seg)[1].object, StructureObject::kRtStruct);
+  EXPECT_EQ((*seg)[1].structure->name, "GTV");
   const SeriesHit& h = (*seg)[0];
   EXPECT_EQ(h.structure->name, "GTV");
   EXPECT_EQ(h.series.series_uid, "1.1.1");  // converted on the CT

@@ -1,7 +1,9 @@
 // soiqd's DICOMweb driven by dicomweb-client, the DICOMweb library of OHIF, as a web viewer would:
 // QIDO-RS with paging and includefield, WADO-RS of a structure's SEG (whose voxels must be those
-// `soiq export-seg` writes), its metadata, and STOW-RS of a series that soiq then holds.
-// Run by run_test.sh, which starts soiqd and passes SOIQ_DICOMWEB, SOIQ_DATA and SOIQ_EXPORTED_SEG.
+// `soiq export-seg` writes), its metadata, its RT Structure Set beside it (written to SOIQ_OUT for
+// run_test.sh to judge with pydicom), and STOW-RS of a series that soiq then holds.
+// Run by run_test.sh, which starts soiqd and passes SOIQ_DICOMWEB, SOIQ_DATA, SOIQ_EXPORTED_SEG and
+// SOIQ_OUT.
 'use strict';
 const test = require('node:test');
 const assert = require('node:assert/strict');
@@ -54,7 +56,7 @@ test('WADO-RS gives the SEG of a structure with the voxels soiq export-seg write
   const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
   const studyInstanceUID = value(study, '0020000D');
   const series = await client.searchForSeries({ studyInstanceUID });
-  assert.deepEqual(series.map((s) => value(s, '00080060')), ['CT', 'SEG']);
+  assert.deepEqual(series.map((s) => value(s, '00080060')), ['CT', 'SEG', 'RTSTRUCT']);
   const seriesInstanceUID = value(series[1], '0020000E');
   const instances = await client.retrieveSeries({ studyInstanceUID, seriesInstanceUID });
   assert.equal(instances.length, 1);
@@ -63,6 +65,28 @@ test('WADO-RS gives the SEG of a structure with the voxels soiq export-seg write
   const metadata = await client.retrieveSeriesMetadata({ studyInstanceUID, seriesInstanceUID });
   assert.equal(value(metadata[0], '0020000E'), seriesInstanceUID);
   assert.match(metadata[0]['7FE00010'].BulkDataURI, /\/bulkdata$/);
+  fs.writeFileSync(path.join(process.env.SOIQ_OUT, 'seg.dcm'), Buffer.from(instances[0]));
+});
+
+test('WADO-RS gives the RT Structure Set of the structure beside its SEG', async () => {
+  const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
+  const studyInstanceUID = value(study, '0020000D');
+  const [series] = await client.searchForSeries({ studyInstanceUID, queryParams: { Modality: 'RTSTRUCT' } });
+  const seriesInstanceUID = value(series, '0020000E');
+  assert.equal(value(series, '00080060'), 'RTSTRUCT');
+  const [listed] = await client.searchForInstances({ studyInstanceUID, seriesInstanceUID });
+  assert.equal(value(listed, '00080016'), '1.2.840.10008.5.1.4.1.1.481.3');
+  const instances = await client.retrieveSeries({ studyInstanceUID, seriesInstanceUID });
+  assert.equal(instances.length, 1);
+  const sopInstanceUID = value(listed, '00080018');
+  const again = await client.retrieveInstance({ studyInstanceUID, seriesInstanceUID, sopInstanceUID });
+  assert.ok(Buffer.from(again).equals(Buffer.from(instances[0])), 'the RT Structure Set differs the second time');
+  const [metadata] = await client.retrieveInstanceMetadata({ studyInstanceUID, seriesInstanceUID, sopInstanceUID });
+  assert.equal(value(metadata, '00080060'), 'RTSTRUCT');
+  assert.equal(value(value(metadata, '30060020'), '30060026'), 'GTV_Mass_CT');
+  const all = await client.retrieveStudyMetadata({ studyInstanceUID });
+  assert.equal(all.filter((m) => value(m, '00080060') === 'RTSTRUCT').length, 1);
+  fs.writeFileSync(path.join(process.env.SOIQ_OUT, 'rtstruct.dcm'), Buffer.from(instances[0]));
 });
 
 // The size of a PNG from its IHDR, or of a JPEG from its first start-of-frame marker. dicomweb-client
@@ -112,5 +136,5 @@ test('STOW-RS stores a series that QIDO-RS then lists', async () => {
   const stored = JSON.parse(Buffer.from(response).toString())['00081199'].Value;
   assert.equal(stored.length, datasets.length);
   const [study] = await client.searchForStudies({ queryParams: { PatientID: 'STS_002' } });
-  assert.deepEqual(study['00080061'].Value, ['CT', 'PT', 'SEG']);
+  assert.deepEqual(study['00080061'].Value, ['CT', 'PT', 'RTSTRUCT', 'SEG']);
 });

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # curl against a real soiqd --http: each bad request gets its HTTP status and a JSON error body whose
-# message names the problem, and nothing of a refused request is stored.
+# message names the problem, and nothing of a refused request is stored; a structure's RT Structure
+# Set retrieved beside its SEG, judged by dciodvfy and by pydicom against the SEG's voxels.
 #   run_test.sh SOIQ SOIQD
 set -euo pipefail
 soiq=$1
@@ -146,6 +147,56 @@ expect 400 "quality must be a whole number in 1..100" "$seg/rendered?quality=0"
 expect 400 "one frame per rendered request" "$seg/instances/$seg_instance/frames/1,2/rendered"
 expect 404 "frames 1.." "$seg/instances/$seg_instance/frames/99999/rendered"
 expect 404 "not found" "$ct/instances/1.2.3.4/rendered"
+
+# The GTV's RT Structure Set, listed beside its SEG: retrieved as DICOM, the same object twice,
+# one dciodvfy finds no error in, whose contours filled by pydicom are the SEG's voxels.
+read -r rt_series rt_name < <(/usr/bin/python3 -c '
+import json, sys
+series = json.load(open(sys.argv[1]))
+mods = [s["00080060"]["Value"][0] for s in series]
+at = mods.index("SEG")
+assert mods[at + 1] == "RTSTRUCT", mods
+print(series[at + 1]["0020000E"]["Value"][0], series[at + 1]["0008103E"]["Value"][0])' \
+  <(curl -s "$base/studies/$sts_study/series?includefield=SeriesDescription"))
+rt=$base/studies/$sts_study/series/$rt_series
+# part FILE OUT: the one application/dicom part of a multipart/related answer.
+part() {
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import sys
+body = open(sys.argv[1], "rb").read()
+boundary = body[:body.index(b"\r\n")]
+parts = [p for p in body.split(boundary)[1:] if not p.startswith(b"--")]
+assert len(parts) == 1, len(parts)
+head, _, data = parts[0].partition(b"\r\n\r\n")
+assert b"application/dicom" in head, head
+open(sys.argv[2], "wb").write(data[:-2])  # the CRLF before the next boundary
+PY
+}
+for what in "$rt" "$seg"; do
+  got=$(curl -s -o "$tmp/answer" -w '%{http_code} %{content_type}' -H 'Accept: multipart/related; type="application/dicom"' "$what")
+  [[ "$got" == "200 multipart/related; type=\"application/dicom\""* ]] || { echo "FAIL: $what: $got"; failures=$((failures + 1)); }
+  part "$tmp/answer" "$tmp/$([ "$what" = "$rt" ] && echo rt || echo seg).dcm"
+done
+rt_instance=$(curl -s "$rt/instances" | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); assert d[0]["00080016"]["Value"][0] == "1.2.840.10008.5.1.4.1.1.481.3"; print(d[0]["00080018"]["Value"][0])')
+curl -s -o "$tmp/again" "$rt/instances/$rt_instance"
+part "$tmp/again" "$tmp/rt-again.dcm"
+cmp -s "$tmp/rt.dcm" "$tmp/rt-again.dcm" || { echo "FAIL: the RT Structure Set retrieved twice differs"; failures=$((failures + 1)); }
+dciodvfy "$tmp/rt.dcm" >"$tmp/dciodvfy.log" 2>&1 || true
+if ! grep -q "RTStructureSet" "$tmp/dciodvfy.log" || grep "^Error" "$tmp/dciodvfy.log"; then
+  echo "FAIL: dciodvfy on the RT Structure Set: $(cat "$tmp/dciodvfy.log")"
+  failures=$((failures + 1))
+fi
+/usr/bin/python3 "$here/../dicomweb_orthanc/rt_struct_matches_seg.py" "$tmp/rt.dcm" "$tmp/seg.dcm" \
+  "$data/sts/STS_002/dicom/CT/image" "$rt_name" >"$tmp/rt.check" 2>&1 ||
+  { echo "FAIL: the RT Structure Set against the SEG: $(tail -3 "$tmp/rt.check")"; failures=$((failures + 1)); }
+metadata=$(curl -s "$rt/metadata" | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin)[0]; print(d["00080060"]["Value"][0], d["30060020"]["Value"][0]["30060026"]["Value"][0])')
+[ "$metadata" = "RTSTRUCT $rt_name" ] || { echo "FAIL: the RT Structure Set's metadata: $metadata"; failures=$((failures + 1)); }
+expect 404 "instance '1.2.3' not found" "$rt/instances/1.2.3"
+expect 404 "is an RT Structure Set: it has no pixel data or frames" "$rt/instances/$rt_instance/frames/1"
+expect 404 "is an RT Structure Set" "$rt/instances/$rt_instance/bulkdata"
+expect 406 "not acceptable" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=1.2.840.10008.1.2.4.50' "$rt"
+expect 404 "not found in study '1.2.3'" "$base/studies/1.2.3/series/$rt_series"
+expect_file 200 image/jpeg $jpeg "$rt/rendered"
 expect 406 "not acceptable" -H 'Accept: image/gif' "$seg/rendered"
 gtv=$(curl -s "$root/soiq/v1/query?name=GTV*" | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)["rows"][0]["id"])')
 expect_file 200 image/jpeg $jpeg "$root/soiq/v1/structures/$gtv/thumbnail"

@@ -116,14 +116,15 @@ for folder, modality in ((ct_dir, "CT"), (mr_dir, "MR")):
     status, _, _ = get(url, {"Accept": 'multipart/related; type="application/dicom"; transfer-syntax=1.2.840.10008.1.2.4.50'})
     check(status == 406, f"{modality} series as JPEG baseline: {status}, not 406")
 
-# The study's metadata holds both series and the GTV SEGs soiq writes, whose frames reference the
-# CT's own SOP Instance UIDs.
+# The study's metadata holds both series and the GTV SEGs and RT Structure Sets soiq writes; the
+# SEG's frames reference the CT's own SOP Instance UIDs.
 ct_files = originals(ct_dir)
 study = pydicom.dcmread(BytesIO(next(iter(ct_files.values())))).StudyInstanceUID
 everything = json_get(f"{base}/studies/{study}/metadata")
 segs = [m for m in everything if value(m, "00080060") == "SEG"]
-check(len(everything) == len(ct_files) + len(originals(mr_dir)) + len(segs) and len(segs) >= 1,
-      f"study metadata: {len(everything)} items")
+rt_structs = [m for m in everything if value(m, "00080060") == "RTSTRUCT"]
+check(len(everything) == len(ct_files) + len(originals(mr_dir)) + len(segs) + len(rt_structs) and len(segs) >= 1
+      and len(rt_structs) == len(segs), f"study metadata: {len(everything)} items")
 seg_series = value(segs[0], "0020000E")
 status, headers, body = get(f"{base}/studies/{study}/series/{seg_series}")
 seg = pydicom.dcmread(BytesIO(parts(headers, body)[0][2]))

@@ -1,6 +1,6 @@
 // QIDO-RS through a real soiqd --http, over real HTTP (cpp-httplib's client): STS_002 and the
 // pydicom CT and MR samples imported from DICOM, listed as studies, series and instances; paging, includefield, name
-// matching, the SEG series of each structure, and the errors a client gets.
+// matching, the SEG and RT Structure Set series of each structure, and the errors a client gets.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -24,17 +24,19 @@ TEST_F(DicomwebTest, StudiesSeriesAndInstancesOfImportedPatients) {
   const json& sts2 = studies[0];
   EXPECT_EQ(value(sts2, "00100020"), "STS_002");
   EXPECT_EQ(value(sts2, "00100010"), "STS_002");  // the files' Patient's Name, kept
-  EXPECT_EQ(sts2["00080061"]["Value"], json({"CT", "PT", "SEG"}));
-  EXPECT_EQ(value(sts2, "00201206"), "4");  // CT, PT and a SEG per structure
+  EXPECT_EQ(sts2["00080061"]["Value"], json({"CT", "PT", "RTSTRUCT", "SEG"}));
+  EXPECT_EQ(value(sts2, "00201206"), "6");  // CT, PT and a SEG and an RT Structure Set per structure
   EXPECT_EQ(value(sts2, "00080005"), "ISO_IR 192");
   const std::string study = value(sts2, kStudyUid);
   EXPECT_EQ(value(sts2, "00081190"),
             "http://127.0.0.1:" + std::to_string(server_->http_port()) + "/dicom-web/studies/" + study);
 
-  // Series: the images, then a SEG per structure, each SEG findable by its UID.
+  // Series: the images, then a SEG and an RT Structure Set per structure, each findable by its UID.
   const json series = get("/dicom-web/studies/" + study + "/series");
-  ASSERT_EQ(series.size(), 4u);
-  EXPECT_EQ(values(series, "00080060"), (std::vector<std::string>{"CT", "PT", "SEG", "SEG"}));
+  ASSERT_EQ(series.size(), 6u);
+  EXPECT_EQ(values(series, "00080060"), (std::vector<std::string>{"CT", "PT", "SEG", "RTSTRUCT", "SEG", "RTSTRUCT"}));
+  EXPECT_EQ(value(series[3], "0008103E"), value(series[2], "0008103E"));  // the structure's name
+  EXPECT_EQ(value(series[3], "00200011"), "901");
   for (const json& s : series) {
     const json again = get("/dicom-web/series?SeriesInstanceUID=" + value(s, kSeriesUid));
     ASSERT_EQ(again.size(), 1u);
@@ -60,6 +62,22 @@ TEST_F(DicomwebTest, StudiesSeriesAndInstancesOfImportedPatients) {
   ASSERT_EQ(seg.size(), 1u);
   EXPECT_EQ(value(seg[0], "00080016"), "1.2.840.10008.5.1.4.1.1.66.4");
   EXPECT_EQ(get("/dicom-web/instances?SOPInstanceUID=" + value(seg[0], kSopUid)).size(), 1u);
+
+  // An RT Structure Set series likewise, of the RT Structure Set Storage SOP class.
+  const json rt = get("/dicom-web/studies/" + study + "/series/" + value(series[3], kSeriesUid) + "/instances");
+  ASSERT_EQ(rt.size(), 1u);
+  EXPECT_EQ(value(rt[0], "00080016"), "1.2.840.10008.5.1.4.1.1.481.3");
+  EXPECT_EQ(value(rt[0], "00080060"), "RTSTRUCT");
+  EXPECT_NE(value(rt[0], kSopUid), value(seg[0], kSopUid));
+  EXPECT_EQ(get("/dicom-web/instances?SOPInstanceUID=" + value(rt[0], kSopUid)).size(), 1u);
+
+  // Modality filters pick either object; counts and paging include both.
+  EXPECT_EQ(get("/dicom-web/studies/" + study + "/series?Modality=RTSTRUCT").size(), 2u);
+  EXPECT_EQ(get("/dicom-web/studies/" + study + "/series?Modality=SEG").size(), 2u);
+  EXPECT_EQ(values(get("/dicom-web/studies/" + study + "/series?offset=3&limit=2"), kSeriesUid),
+            (std::vector<std::string>{value(series[3], kSeriesUid), value(series[4], kSeriesUid)}));
+  EXPECT_EQ(get("/dicom-web/studies/" + study + "/instances?Modality=RTSTRUCT").size(), 2u);
+  EXPECT_EQ(get("/dicom-web/studies?ModalitiesInStudy=RTSTRUCT").size(), 1u);
 }
 
 TEST_F(DicomwebTest, PagesCoverEveryStudyOnceInOneOrder) {

@@ -1,6 +1,7 @@
 // WADO-RS through a real soiqd --http: a structure's SEG retrieved as DICOM, its metadata and its
-// Pixel Data; the voxels are those the import converted and those ExportSeg writes; what soiq cannot
-// send is refused saying why (tests/dicomweb_instances judges the image instances it keeps).
+// Pixel Data; the voxels are those the import converted and those ExportSeg writes; its RT
+// Structure Set retrieved, with the contours ExportRtStruct writes; what soiq cannot send is
+// refused saying why (tests/dicomweb_instances judges the image instances it keeps).
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -83,16 +84,85 @@ TEST_F(DicomwebTest, ASegRetrievedIsTheStructuresVoxelsAndTheExportsPixels) {
   EXPECT_EQ(parts_of(one).at(0), parts[0]);
   httplib::Result whole_study = http_->Get(("/dicom-web/studies/" + study).c_str());
   ASSERT_TRUE(whole_study);
-  EXPECT_EQ(parts_of(whole_study).size(), 49u);  // the CT's 48 kept instances and the SEG
+  EXPECT_EQ(parts_of(whole_study).size(), 50u);  // the CT's 48 kept instances, the SEG and the RTSTRUCT
   httplib::Result bulk = http_->Get((url + "/instances/" + sop + "/bulkdata").c_str());
   ASSERT_TRUE(bulk);
   EXPECT_EQ(parts_of(bulk).at(0), *pixels);
 }
 
+// The RT Structure Set's contours in its DICOM JSON: (ROI name, contour count) per ROI.
+std::vector<std::pair<std::string, size_t>> rois_of(const json& metadata) {
+  std::vector<std::pair<std::string, size_t>> out;
+  const json& names = metadata["30060020"]["Value"];
+  const json& contours = metadata["30060039"]["Value"];
+  for (size_t i = 0; i < names.size() && i < contours.size(); ++i)
+    out.emplace_back(value(names[i], "30060026"), contours[i]["30060040"]["Value"].size());
+  return out;
+}
+
+TEST_F(DicomwebTest, AnRtStructureSetRetrievedIsTheStructuresContoursAsExported) {
+  Result<v1::ImportDicomResponse> imported = client_->import_dicom({test_data("sts/STS_002/dicom/CT")});
+  ASSERT_TRUE(imported.ok()) << imported.status().to_string();
+  ASSERT_EQ(imported->structures_size(), 1);
+  const v1::ImportedStructure& gtv = imported->structures(0);
+  const json series = get("/dicom-web/series?Modality=RTSTRUCT");
+  ASSERT_EQ(series.size(), 1u);
+  const std::string study = value(series[0], kStudyUid);
+  const std::string rt_uid = value(series[0], kSeriesUid);
+  const std::string url = "/dicom-web/studies/" + study + "/series/" + rt_uid;
+  EXPECT_NE(rt_uid, value(get("/dicom-web/series?Modality=SEG")[0], kSeriesUid));
+
+  httplib::Result r = http_->Get(url.c_str(), {{"Accept", "multipart/related; type=\"application/dicom\""}});
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type").rfind("multipart/related; type=\"application/dicom\"", 0), 0u);
+  const std::vector<std::string> parts = parts_of(r);
+  ASSERT_EQ(parts.size(), 1u);
+
+  // Its metadata: an RT Structure Set of the GTV, with the contours ExportRtStruct writes.
+  const json metadata = get(url + "/metadata");
+  ASSERT_EQ(metadata.size(), 1u);
+  EXPECT_EQ(value(metadata[0], "00080060"), "RTSTRUCT");
+  EXPECT_EQ(value(metadata[0], "00080016"), "1.2.840.10008.5.1.4.1.1.481.3");
+  EXPECT_EQ(value(metadata[0], kSeriesUid), rt_uid);
+  const std::string sop = value(metadata[0], kSopUid);
+  EXPECT_EQ(sop, value(get(url + "/instances")[0], kSopUid));
+  v1::ExportRtStructRequest req;
+  req.add_structure_ids(gtv.structure().id());
+  Result<v1::RtStructInfo> exported = client_->export_rt_struct(req, dir_.file("exported.dcm"));
+  ASSERT_TRUE(exported.ok()) << exported.status().to_string();
+  const auto rois = rois_of(metadata[0]);
+  ASSERT_EQ(rois.size(), 1u);
+  EXPECT_EQ(rois[0].first, gtv.structure().name());
+  EXPECT_EQ(int64_t(rois[0].second), exported->contours());
+  EXPECT_GT(exported->contours(), 0);
+
+  // The same object byte for byte by instance, and again; the study's metadata holds it.
+  httplib::Result one = http_->Get((url + "/instances/" + sop).c_str());
+  ASSERT_TRUE(one);
+  EXPECT_EQ(one->status, 200);
+  EXPECT_EQ(parts_of(one).at(0), parts[0]);
+  EXPECT_EQ(parts_of(http_->Get(url.c_str())).at(0), parts[0]);
+  const json study_metadata = get("/dicom-web/studies/" + study + "/metadata");
+  EXPECT_EQ(study_metadata.size(), 50u);  // the CT's 48 instances, the SEG and the RT Structure Set
+  EXPECT_EQ(values(study_metadata, "00080060").back(), "RTSTRUCT");
+
+  // What it cannot give, as the SEG's paths say it.
+  get(url + "/instances/1.2.3", 404);
+  get(url + "/instances/" + sop + "/frames/1", 404);
+  get(url + "/instances/" + sop + "/bulkdata", 404);
+  get("/dicom-web/studies/1.2.3/series/" + rt_uid, 404);
+  httplib::Result other_syntax =
+      http_->Get(url.c_str(),
+                 {{"Accept", "multipart/related; type=\"application/dicom\"; transfer-syntax=1.2.840.10008.1.2.4.50"}});
+  ASSERT_TRUE(other_syntax);
+  EXPECT_EQ(other_syntax->status, 406);
+}
+
 TEST_F(DicomwebTest, WhatSoiqCannotSendIsRefusedSayingWhy) {
   ASSERT_TRUE(client_->import_dicom({test_data("sts/STS_002/dicom/CT")}).ok());
   const json series = get("/dicom-web/series");
-  ASSERT_EQ(series.size(), 2u);  // the CT, then the GTV's SEG
+  ASSERT_EQ(series.size(), 3u);  // the CT, then the GTV's SEG and RT Structure Set
   const std::string study = value(series[0], kStudyUid);
   const std::string ct = "/dicom-web/studies/" + study + "/series/" + value(series[0], kSeriesUid);
   const json image = get(ct + "/instances/1.2.3/metadata", 404);

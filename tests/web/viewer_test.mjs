@@ -220,9 +220,10 @@ describe('OHIF reads soiqd', () => {
     await row.first().waitFor({ timeout: 90_000 });
     assert.equal(await row.count(), 1, "the study is not one row of OHIF's list");
     const text = await row.innerText();
-    assert.match(text, /\bCT\\SEG\b/, `the row's modalities: ${text}`);
+    assert.match(text, /\bCT\\RTSTRUCT\\SEG\b/, `the row's modalities: ${text}`);
     assert.match(text, new RegExp(`\\b${value(study, '00201208')}\\b`), `the row's instance count: ${text}`);
-    // Selected, the row shows the patient ID and the study's series (the CT and the GTV's SEG).
+    // Selected, the row shows the patient ID and the study's series (the CT and the GTV's SEG and
+    // RT Structure Set).
     await row.click();
     for (const want of [value(study, '00100020'), ...series.map((s) => value(s, '0008103E'))])
       await page.getByText(want, { exact: true }).first().waitFor({ timeout: 30_000 });

@@ -1,5 +1,6 @@
 // QIDO-RS results as the DICOM JSON Model (server/http/qido_json.h): values, empty attributes, person
-// name groups, what includefield adds, and what an image series (no DICOM kept) says of itself.
+// name groups, what includefield adds, what an image series (no DICOM kept) says of itself, and a
+// structure's SEG and RT Structure Set series and instances.
 #include "server/http/qido_json.h"
 
 #include <gtest/gtest.h>
@@ -69,6 +70,39 @@ TEST(QidoJson, ImageSeriesAreUnavailableAndStructuresAreSegs) {
   EXPECT_EQ(s["00080056"]["Value"][0], "ONLINE");
   EXPECT_EQ(s["0020000E"]["Value"][0], series_uid_of(seg));
   EXPECT_EQ(s["00081190"]["Value"][0], "http://h/dicom-web/studies/1.2/series/" + series_uid_of(seg));
+}
+
+TEST(QidoJson, AStructuresRtStructureSetIsItsOwnSeriesAndInstance) {
+  db::SeriesHit seg;
+  seg.study.study_uid = "1.2";
+  seg.series.series_uid = "1.2.3";
+  seg.series.geometry.dims = {4, 3, 2};
+  seg.structure = db::StructureRecord{};
+  seg.structure->id = 5;
+  seg.structure->name = "GTV";
+  db::SeriesHit rt = seg;
+  rt.object = db::StructureObject::kRtStruct;
+  QidoQuery all;
+  all.include_all = true;  // SeriesDescription too
+  const json s = series_json(rt, "http://h/dicom-web", all);
+  EXPECT_EQ(s["00080060"]["Value"][0], "RTSTRUCT");
+  EXPECT_EQ(s["0008103E"]["Value"][0], "GTV");
+  EXPECT_EQ(s["00200011"]["Value"][0], 901);
+  EXPECT_EQ(s["00201209"]["Value"][0], 1);
+  EXPECT_EQ(s["00080056"]["Value"][0], "ONLINE");
+  EXPECT_NE(series_uid_of(rt), series_uid_of(seg));
+  EXPECT_EQ(s["0020000E"]["Value"][0], series_uid_of(rt));
+  EXPECT_EQ(s["00081190"]["Value"][0], "http://h/dicom-web/studies/1.2/series/" + series_uid_of(rt));
+
+  const json ri = instance_json({&rt, 0}, "http://h/dicom-web", {});
+  EXPECT_EQ(ri["00080060"]["Value"][0], "RTSTRUCT");
+  EXPECT_EQ(ri["00080016"]["Value"][0], "1.2.840.10008.5.1.4.1.1.481.3");
+  EXPECT_EQ(ri["00080018"]["Value"][0], instance_uid_of({&rt, 0}));
+  EXPECT_FALSE(ri.contains("00280010"));  // no Rows: an RT Structure Set has no pixels
+  const json si = instance_json({&seg, 0}, "http://h/dicom-web", {});
+  EXPECT_EQ(si["00080016"]["Value"][0], "1.2.840.10008.5.1.4.1.1.66.4");
+  EXPECT_EQ(si["00280010"]["Value"][0], 3);
+  EXPECT_NE(instance_uid_of({&rt, 0}), instance_uid_of({&seg, 0}));
 }
 
 }  // namespace

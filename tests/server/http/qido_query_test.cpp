@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "server/app/structure_seg_uids.h"
+#include "server/app/structure_object_uids.h"
 
 namespace soiq::server::http {
 namespace {
@@ -97,18 +97,26 @@ TEST(QidoQuery, SeriesAndInstancesBelowAPath) {
   EXPECT_EQ(q->series.modality, "SEG");
   // A StudyInstanceUID key naming another study than the path: nothing matches.
   EXPECT_TRUE(parse_qido(QidoLevel::kSeries, "1.2", "", {{"StudyInstanceUID", "1.3"}}, false)->matches_nothing);
-  // An image series by UID; a SEG series by the structure id its UID carries.
+  // An image series by UID; a SEG or RT Structure Set series by the structure id and object its
+  // UID carries.
   EXPECT_EQ(parse_qido(QidoLevel::kInstance, "1.2", "1.2.3", {}, false)->series.series_uid, "1.2.3");
   db::StructureRecord s;
   s.id = 42;
   s.surface.sha256 = std::string(64, 'a');
-  const std::string seg = structure_seg_uids(s).series_uid;
+  const std::string seg = structure_object_uids(s, db::StructureObject::kSeg).series_uid;
   Result<QidoQuery> by_seg = parse_qido(QidoLevel::kInstance, "1.2", seg, {{"SOPInstanceUID", "9.9"}}, false);
   ASSERT_TRUE(by_seg.ok());
   EXPECT_EQ(by_seg->series.structure_id, 42);
   EXPECT_EQ(by_seg->series.series_uid, "");
   EXPECT_EQ(by_seg->series_uid_asked, seg);
   EXPECT_EQ(by_seg->sop_instance_uid, "9.9");
+  EXPECT_EQ(by_seg->series.object, db::StructureObject::kSeg);
+  const std::string rt = structure_object_uids(s, db::StructureObject::kRtStruct).series_uid;
+  Result<QidoQuery> by_rt = parse_qido(QidoLevel::kSeries, "1.2", rt, {}, false);
+  ASSERT_TRUE(by_rt.ok());
+  EXPECT_EQ(by_rt->series.structure_id, 42);
+  EXPECT_EQ(by_rt->series.object, db::StructureObject::kRtStruct);
+  EXPECT_EQ(by_rt->series_uid_asked, rt);
   refusal(parse_qido(QidoLevel::kSeries, "", "", {{"SOPInstanceUID", "1"}}, false));
 }
 
