@@ -31,11 +31,17 @@ struct SurfaceFeatures {
   std::vector<CachedFeature> entries;
 };
 
+// Which features precompute computed for a structure (soiqd --precompute on|weighted). Each set
+// holds the ones before it, so the stored number orders them: a structure stored with a smaller set
+// than soiqd's now is queued again (requeue_precompute), one with a larger set keeps its values.
+enum class PrecomputedSet { kDefault = 0, kWithWeighted = 1 };
+
 // What soiqd's precompute worker found for one structure it took from the queue.
 struct Precomputed {
   int64_t structure_id = 0;
-  std::string surface_sha256;   // the surface the values belong to
-  int definitions_version = 0;  // feature_definitions_version() they were computed under
+  std::string surface_sha256;                     // the surface the values belong to
+  int definitions_version = 0;                    // feature_definitions_version() they were computed under
+  PrecomputedSet set = PrecomputedSet::kDefault;  // what was computed (an image that failed included)
   // By stored_feature_names(); nullopt (or NaN) when the structure has no such value.
   std::vector<std::optional<double>> values;
   std::vector<CachedFeature> cache_entries;  // every value computed, for the feature cache
@@ -59,8 +65,10 @@ class FeatureStore {
   // whose surface is no longer `surface_sha256` (replaced meanwhile, and queued again), is skipped.
   virtual Status put_precomputed(const std::vector<Precomputed>& batch) = 0;
   // Every structure whose stored values were computed under another definitions version loses
-  // them and is queued again (soiqd calls it at start, before serving). Returns how many.
-  virtual Result<int64_t> requeue_precompute(int definitions_version) = 0;
+  // them and is queued again; one whose values are of this version but of a smaller set than `set`
+  // is queued again keeping them (they are right, only fewer: stage 1 goes on filtering on them).
+  // soiqd calls it at start, before serving. Returns how many were queued.
+  virtual Result<int64_t> requeue_precompute(int definitions_version, PrecomputedSet set) = 0;
 
   // The cached entries under each key (one round trip for many keys): those named in `entries`,
   // or every one when it is empty. A query wants a few of the ~75 entries a key holds; the others

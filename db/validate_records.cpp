@@ -194,6 +194,9 @@ Status validate_precomputed(const Precomputed& p) {
     return invalid_argument("precomputed values: " + std::to_string(p.values.size()) + " given, " + std::to_string(n) +
                             " stored features");
   }
+  if (p.set != PrecomputedSet::kDefault && p.set != PrecomputedSet::kWithWeighted) {
+    return invalid_argument("precomputed set " + std::to_string(int(p.set)) + " is none of soiqd's");
+  }
   for (const CachedFeature& f : p.cache_entries) {
     if (f.key.empty() || f.entry.empty()) return invalid_argument("a cached feature needs a key and an entry name");
   }

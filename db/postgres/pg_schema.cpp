@@ -239,6 +239,11 @@ constexpr char kSchemaV8[] = R"sql(
 ALTER TABLE series ADD COLUMN slice_positions text COLLATE "C" NOT NULL DEFAULT '';
 )sql";
 
+// Version 9: SQLite's version 13, which features precompute computed for each structure.
+constexpr char kSchemaV9[] = R"sql(
+ALTER TABLE stored_features ADD COLUMN precomputed_set integer NOT NULL DEFAULT 0;
+)sql";
+
 // Version 5: SQLite's version 9, no stored byte unchecked: surface blobs in version 3 and cached
 // values with their checksum (db/sql/checksum_stored_bytes.h, the same step). No table changes.
 Status checksum_stored_bytes_step(PgConnection& c) {
@@ -256,7 +261,7 @@ struct Step {
 const std::vector<Step>& steps() {
   static const std::vector<Step> kSteps = {
       {kSchemaV1}, {kSchemaV2}, {kSchemaV3}, {kSchemaV4}, {"", checksum_stored_bytes_step},
-      {kSchemaV6}, {kSchemaV7}, {kSchemaV8},
+      {kSchemaV6}, {kSchemaV7}, {kSchemaV8}, {kSchemaV9},
   };
   return kSteps;
 }

@@ -85,7 +85,7 @@ class SqlStore : public Store {
   Status put_cached_features(const std::string& surface_sha256, const std::vector<CachedFeature>& entries) override;
   Status put_cached_features(const std::vector<SurfaceFeatures>& batch) override;
   Status put_precomputed(const std::vector<Precomputed>& batch) override;
-  Result<int64_t> requeue_precompute(int definitions_version) override;
+  Result<int64_t> requeue_precompute(int definitions_version, PrecomputedSet set) override;
 
   Result<PatientRecord> get_patient(const std::string& patient_id) override;
   Result<Page<PatientRecord>> list_patients(const PatientFilter& f, const PageRequest& p) override;

@@ -50,16 +50,18 @@ std::string feature_assignments(const Value& value) {
   return out;
 }
 
-// ?1 the structure, ?2 the definitions version, then the values; replacing stored ones.
+// ?1 the structure, ?2 the definitions version, ?3 the precomputed set, then the values; replacing
+// stored ones.
 const std::string& store_features_sql() {
   static const std::string sql = [] {
-    std::string values, replace = "definitions_version = excluded.definitions_version";
+    std::string values,
+        replace = "definitions_version = excluded.definitions_version, precomputed_set = excluded.precomputed_set";
     for (size_t i = 0; i < stored_feature_names().size(); ++i) {
-      values += ", ?" + std::to_string(i + 3);
+      values += ", ?" + std::to_string(i + 4);
       replace += ", " + stored_feature_names()[i] + " = excluded." + stored_feature_names()[i];
     }
-    return "INSERT INTO stored_features(structure_id, definitions_version, " + feature_columns() + ") VALUES (?1, ?2" +
-           values + ") ON CONFLICT(structure_id) DO UPDATE SET " + replace;
+    return "INSERT INTO stored_features(structure_id, definitions_version, precomputed_set, " + feature_columns() +
+           ") VALUES (?1, ?2, ?3" + values + ") ON CONFLICT(structure_id) DO UPDATE SET " + replace;
   }();
   return sql;
 }
@@ -93,6 +95,12 @@ const std::string& unstore_stale_rows_sql() {
 }
 constexpr char kDeleteStaleSql[] = R"sql(
   DELETE FROM stored_features WHERE definitions_version <> ?1)sql";
+// Values of this version but of a smaller set (?2) than soiqd computes now: queued again, and kept,
+// since what they hold is right; the next precompute finds those in the feature cache.
+constexpr char kRequeueSmallerSetSql[] = R"sql(
+  INSERT INTO precompute_queue(structure_id)
+  SELECT structure_id FROM stored_features WHERE definitions_version = ?1 AND precomputed_set < ?2
+  ON CONFLICT(structure_id) DO UPDATE SET failure = '')sql";
 
 }  // namespace
 
@@ -158,7 +166,8 @@ Status store_precomputed(SqlSession& c, const Precomputed& p, std::vector<Surfac
   SOIQ_ASSIGN_OR_RETURN(SqlStatement store, c.prepare(store_features_sql()));
   store.bind(1, p.structure_id);
   store.bind(2, int64_t{p.definitions_version});
-  for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 3), i);
+  store.bind(3, int64_t(p.set));
+  for (size_t i = 0; i < n; ++i) bind_value(store, int(i + 4), i);
   SOIQ_RETURN_IF_ERROR(store.run());
   SOIQ_ASSIGN_OR_RETURN(SqlStatement row, c.prepare(stage1_features_sql()));
   row.bind(1, p.structure_id);
@@ -181,7 +190,7 @@ Status SqlStore::put_precomputed(const std::vector<Precomputed>& batch) {
   });
 }
 
-Result<int64_t> SqlStore::requeue_precompute(int definitions_version) {
+Result<int64_t> SqlStore::requeue_precompute(int definitions_version, PrecomputedSet set) {
   int64_t requeued = 0;
   SOIQ_RETURN_IF_ERROR(write([&](SqlSession& c) -> Status {
     for (const std::string_view sql : {std::string_view(kRequeueStaleSql), std::string_view(unstore_stale_rows_sql()),
@@ -191,6 +200,11 @@ Result<int64_t> SqlStore::requeue_precompute(int definitions_version) {
       SOIQ_RETURN_IF_ERROR(st.run());
       requeued = st.changes();  // the last statement's: the values deleted
     }
+    SOIQ_ASSIGN_OR_RETURN(SqlStatement smaller, c.prepare(kRequeueSmallerSetSql));
+    smaller.bind(1, int64_t{definitions_version});
+    smaller.bind(2, int64_t(set));
+    SOIQ_RETURN_IF_ERROR(smaller.run());
+    requeued += smaller.changes();
     return ok_status();
   }));
   return requeued;

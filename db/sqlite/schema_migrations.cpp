@@ -309,6 +309,12 @@ constexpr char kSchemaV12[] = R"sql(
 ALTER TABLE series ADD COLUMN slice_positions TEXT NOT NULL DEFAULT '';
 )sql";
 
+// Version 13: which features precompute computed for each structure (db::PrecomputedSet): 0, the
+// default ones, for every structure an older store holds.
+constexpr char kSchemaV13[] = R"sql(
+ALTER TABLE stored_features ADD COLUMN precomputed_set INTEGER NOT NULL DEFAULT 0;
+)sql";
+
 // Append new steps here; never edit a released one.
 const std::vector<Migration>& migrations() {
   static const std::vector<Migration> kMigrations = {
@@ -324,6 +330,7 @@ const std::vector<Migration>& migrations() {
       {10, kSchemaV10},
       {11, kSchemaV11},
       {12, kSchemaV12},
+      {13, kSchemaV13},
   };
   return kMigrations;
 }

@@ -24,7 +24,9 @@ SoiqService::SoiqService(db::Store& store, const ServerConfig& config, std::stri
                          SharingOptions{config.replica_id, std::chrono::milliseconds(config.replica_live_ms)})
                    : nullptr),
       queries_(store, features_, pool_, QueryLimits{config.query_result_cap, config.stage1_cap}, sharing_.get()),
-      precompute_(store, features_, [this] { return !sharing_ || sharing_->leads(); }) {}
+      precompute_(store, features_,
+                  config.precompute_weighted ? db::PrecomputedSet::kWithWeighted : db::PrecomputedSet::kDefault,
+                  [this] { return !sharing_ || sharing_->leads(); }) {}
 
 Status SoiqService::start_background_work() {
   if (sharing_) SOIQ_RETURN_IF_ERROR(sharing_->start());

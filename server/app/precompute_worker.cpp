@@ -20,6 +20,33 @@ namespace {
 const std::vector<std::string> kIntensityNames = {"mean", "minimum", "maximum"};
 const std::vector<RegionSpec> kIntensityRegions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};
 
+// The weighted set's region: weighted intensities are defined inside only (structure_features.h).
+const std::vector<RegionSpec> kWeightedRegions = {RegionSpec{}};
+
+// Every coverage-weighted name: one coverage conversion gives them all, so naming fewer would save
+// nothing and leave a query naming another one to convert again. Without images, the volume alone.
+std::vector<std::string> weighted_names(bool with_images) {
+  std::vector<std::string> names;
+  for (const std::string& n : weighted_feature_names())
+    if (with_images || find_intensity_feature(n) == nullptr) names.push_back(n);
+  return names;
+}
+
+void log_image_failed(const db::StructureRecord& structure, const std::string& series, const Status& error) {
+  log_event("warn", {{"event", "precompute_image_failed"},
+                     {"structure", std::to_string(structure.id)},
+                     {"series", series},
+                     {"error", error.to_string()}});
+}
+
+// The weighted set's failures apart: the default values of the same image may well be stored.
+void log_weighted_failed(const db::StructureRecord& structure, const std::string& series, const Status& error) {
+  log_event("warn", {{"event", "precompute_weighted_failed"},
+                     {"structure", std::to_string(structure.id)},
+                     {"series", series},
+                     {"error", error.to_string()}});
+}
+
 // Structures read from the queue at once: few, so that a structure deleted or replaced meanwhile
 // costs little, and a stop is quick.
 constexpr int64_t kBatch = 16;
@@ -45,11 +72,13 @@ PrecomputeWorker::~PrecomputeWorker() {
 }
 
 Status PrecomputeWorker::start() {
-  SOIQ_ASSIGN_OR_RETURN(const int64_t stale, store_.requeue_precompute(feature_definitions_version()));
+  SOIQ_ASSIGN_OR_RETURN(const int64_t stale, store_.requeue_precompute(feature_definitions_version(), set_));
   if (stale > 0) {
     log_event("info", {{"event", "precompute_requeued"},
                        {"structures", std::to_string(stale)},
-                       {"why", "feature definitions changed"}});
+                       {"why", set_ == db::PrecomputedSet::kDefault
+                                   ? "feature definitions changed"
+                                   : "feature definitions changed, or values stored without the weighted set"}});
   }
   thread_ = std::thread([this] { loop(); });
   return ok_status();
@@ -84,11 +113,39 @@ Result<FeatureValues> PrecomputeWorker::values(const db::StructureRecord& struct
   return v;
 }
 
+Status PrecomputeWorker::weighted_values(const db::StructureRecord& structure,
+                                         const std::vector<db::SeriesRecord>& series, db::Precomputed& out) {
+  // An open surface has no inside every line agrees on, hence no fractions (FAILED_PRECONDITION
+  // each time): a query naming them meets that error itself.
+  if (structure.robust) return ok_status();
+  FeatureAsk all;
+  all.names = weighted_names(!series.empty());
+  all.regions = kWeightedRegions;
+  for (const db::SeriesRecord& s : series) all.images.push_back(s.series_uid);
+  const Result<FeatureValues> v = values(structure, series, all, out);
+  if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
+  if (v.ok()) return ok_status();
+  if (series.size() <= 1) {
+    log_weighted_failed(structure, series.empty() ? "" : series[0].series_uid, v.status());
+    return ok_status();
+  }
+  // As for the default set: one bad image costs only its own values.
+  for (const db::SeriesRecord& s : series) {
+    FeatureAsk one = all;
+    one.images = {s.series_uid};
+    const Result<FeatureValues> w = values(structure, series, one, out);
+    if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
+    if (!w.ok()) log_weighted_failed(structure, s.series_uid, w.status());
+  }
+  return ok_status();
+}
+
 Result<db::Precomputed> PrecomputeWorker::precompute(const db::StructureRecord& structure) {
   db::Precomputed out;
   out.structure_id = structure.id;
   out.surface_sha256 = structure.surface.sha256;
   out.definitions_version = feature_definitions_version();
+  out.set = set_;
   SOIQ_ASSIGN_OR_RETURN(const std::vector<db::SeriesRecord> series, store_.list_series(structure.study_uid));
 
   FeatureAsk shape;
@@ -120,20 +177,11 @@ Result<db::Precomputed> PrecomputeWorker::precompute(const db::StructureRecord& 
       one.images = {series[i].series_uid};
       const Result<FeatureValues> v = values(structure, series, one, out);
       if (stopping_) return Status(StatusCode::kCancelled, "soiqd is stopping");
-      if (!v.ok()) {
-        log_event("warn", {{"event", "precompute_image_failed"},
-                           {"structure", std::to_string(structure.id)},
-                           {"series", series[i].series_uid},
-                           {"error", v.status().to_string()}});
-      }
+      if (!v.ok()) log_image_failed(structure, series[i].series_uid, v.status());
     }
-    if (series.size() == 1) {
-      log_event("warn", {{"event", "precompute_image_failed"},
-                         {"structure", std::to_string(structure.id)},
-                         {"series", series[0].series_uid},
-                         {"error", images_failed.to_string()}});
-    }
+    if (series.size() == 1) log_image_failed(structure, series[0].series_uid, images_failed);
   }
+  if (set_ == db::PrecomputedSet::kWithWeighted) SOIQ_RETURN_IF_ERROR(weighted_values(structure, series, out));
   for (const std::string& name : db::stored_feature_names()) {
     const auto it = shape_values->find(feature_entry(name, "", "", Interpolation::kNearest));
     if (it == shape_values->end() || it->second.size() != 1) {

@@ -59,9 +59,11 @@ constexpr OptionText kOptionTexts[] = {
     {"--pacs", "AE@HOST:PORT", "none (the pacs calls are refused)", "the PACS of soiq pacs echo, find, pull and push"},
     {"--pacs-calling-ae", "AE", "SOIQ", "soiqd's AE title towards the PACS"},
     {"--pacs-timeout", "SECONDS", "30", "the PACS's connect, association and message timeout"},
-    {"--precompute", "on|off", "on",
+    {"--precompute", "on|weighted|off", "on",
      "compute every new structure's default features in the background, at nice 19, so that "
-     "queries read them and stage 1 filters on them"},
+     "queries read them and stage 1 filters on them; weighted: also its coverage-weighted features "
+     "(volume_w_mm3, mean_w, ... inside, on every image), a coverage conversion each (about 4x a plain "
+     "one); turned on, it queues again the structures precomputed without them"},
     {"--http", "HOST:PORT", "none (no DICOMweb)",
      "also serve DICOMweb (QIDO-RS, WADO-RS, STOW-RS) and soiq's JSON queries there, with the same TLS "
      "and token; port 0 binds any free port (see --http-port-file)"},
@@ -192,7 +194,14 @@ Result<ServerConfig> parse_server_config(int argc, char** argv, bool& help,
       {"--pacs", text(c.pacs)},
       {"--pacs-calling-ae", text(c.pacs_calling_ae)},
       {"--pacs-timeout", count(c.pacs_timeout_seconds, 1, 3600)},
-      {"--precompute", on_off(c.precompute)},
+      {"--precompute",
+       [&c](const std::string& v, const std::string& what) -> Status {
+         if (v != "on" && v != "weighted" && v != "off")
+           return invalid_argument(what + " must be on, weighted or off, got '" + v + "'");
+         c.precompute = v != "off";
+         c.precompute_weighted = v == "weighted";
+         return ok_status();
+       }},
       {"--http", text(c.http_listen)},
       {"--http-port-file", text(c.http_port_file)},
       {"--http-timeout", count(c.http_timeout_seconds, 1, 3600)},

@@ -34,6 +34,8 @@ struct ServerConfig {
   std::string pacs_calling_ae = "SOIQ";
   int pacs_timeout_seconds = 30;
   bool precompute = true;  // compute every structure's default features in the background
+  // With precompute, also its coverage-weighted features (--precompute weighted; precompute_worker.h).
+  bool precompute_weighted = false;
   // DICOMweb (server/http/): "" serves none; HOST:PORT, port 0 any free one (see http_port_file).
   std::string http_listen;
   std::string http_port_file;

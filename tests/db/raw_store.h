@@ -34,6 +34,11 @@ void drop_instances(const Raw& raw) {
 }
 
 template <typename Raw>
+void drop_precomputed_set(const Raw& raw) {
+  raw.run("ALTER TABLE stored_features DROP COLUMN precomputed_set");
+}
+
+template <typename Raw>
 void drop_slice_positions(const Raw& raw) {
   raw.run("ALTER TABLE series DROP COLUMN slice_positions");
 }
@@ -50,6 +55,7 @@ struct RawSqlite {
   static constexpr int kWindows = 10;
   static constexpr int kInstances = 11;
   static constexpr int kSlicePositions = 12;
+  static constexpr int kPrecomputedSet = 13;
   explicit RawSqlite(const TempDir& dir) : location(dir.file("store.db")) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -77,6 +83,7 @@ struct RawSqlite {
   }
 
   void set_schema_version(int v) const {
+    if (v < kPrecomputedSet) drop_precomputed_set(*this);
     if (v < kSlicePositions) drop_slice_positions(*this);
     if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);
@@ -92,6 +99,7 @@ struct RawPostgres {
   static constexpr int kWindows = 6;
   static constexpr int kInstances = 7;
   static constexpr int kSlicePositions = 8;
+  static constexpr int kPrecomputedSet = 9;
   explicit RawPostgres(const TempDir&) : location(fresh_postgres_database()) {}
 
   std::unique_ptr<SqlStore> open(bool read_only = false) const {
@@ -117,6 +125,7 @@ struct RawPostgres {
   }
 
   void set_schema_version(int v) const {
+    if (v < kPrecomputedSet) drop_precomputed_set(*this);
     if (v < kSlicePositions) drop_slice_positions(*this);
     if (v < kInstances) drop_instances(*this);
     if (v < kWindows) drop_windows(*this);

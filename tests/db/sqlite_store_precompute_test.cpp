@@ -93,5 +93,26 @@ TEST(SchemaMigration5, EveryStructureOfAVersion4FileIsQueuedAndEveryImageReencod
   EXPECT_EQ(*blob, series.image_blob);  // what this version writes, bit for bit
 }
 
+TEST(SqlitePrecomputeMigration, AFileOfSchemaTwelveKeepsItsValuesAsTheDefaultSet) {
+  TempDir dir;
+  const std::string path = dir.file("v12.db");
+  int64_t id = 0;
+  {
+    auto store = open_store(path);
+    auto a = store->add_structure(new_structure("P1", "1.1", "A", 0));
+    ASSERT_TRUE(a.ok());
+    id = a->structure.id;
+    ASSERT_TRUE(store->put_precomputed(values_for(a->structure, 500)).ok());
+  }
+  testing::exec_sql(path, std::string(testing::kBackToSchemaV12) + "PRAGMA user_version = 12");
+  auto store = open_store(path);
+  ASSERT_TRUE(store);
+  EXPECT_EQ(*store->schema_version(), latest_schema_version());
+  EXPECT_EQ(large(*store), std::vector<int64_t>{id});
+  EXPECT_EQ(*store->requeue_precompute(7, PrecomputedSet::kDefault), 0);
+  EXPECT_EQ(*store->requeue_precompute(7, PrecomputedSet::kWithWeighted), 1);
+  EXPECT_EQ(queued_ids(*store), std::vector<int64_t>{id});
+}
+
 }  // namespace
 }  // namespace soiq::db

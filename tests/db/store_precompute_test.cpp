@@ -100,11 +100,34 @@ TYPED_TEST(Precompute, ValuesOfAnotherDefinitionVersionAreQueuedAgain) {
   auto a = this->store_->add_structure(new_structure("P1", "1.1", "A", 0));
   ASSERT_TRUE(a.ok());
   ASSERT_TRUE(this->features().put_precomputed(values_for(a->structure, 50)).ok());  // version 7
-  EXPECT_EQ(*this->features().requeue_precompute(7), 0);
+  EXPECT_EQ(*this->features().requeue_precompute(7, PrecomputedSet::kDefault), 0);
   EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_TRUE(large(*this->store_).empty());
-  EXPECT_EQ(*this->features().requeue_precompute(8), 1);
+  EXPECT_EQ(*this->features().requeue_precompute(8, PrecomputedSet::kDefault), 1);
   EXPECT_EQ(queued_ids(*this->store_), std::vector<int64_t>{a->structure.id});
+  EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});
+}
+
+TYPED_TEST(Precompute, ALargerSetQueuesAgainAndKeepsTheValuesStage1Reads) {
+  auto a = this->store_->add_structure(new_structure("P1", "1.1", "A", 0));
+  ASSERT_TRUE(a.ok());
+  ASSERT_TRUE(this->features().put_precomputed(values_for(a->structure, 500)).ok());  // the default set
+  EXPECT_EQ(*this->features().requeue_precompute(7, PrecomputedSet::kWithWeighted), 1);
+  EXPECT_EQ(queued_ids(*this->store_), std::vector<int64_t>{a->structure.id});
+  // Still stored: a stored-feature condition goes on deciding it in stage 1.
+  Stage1Filter small;
+  small.stored_features.push_back({"voxel_volume_mm3", Comparison::kLess, 100});
+  EXPECT_TRUE(this->store_->stage1(small, 10)->empty());
+  EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});
+
+  Precomputed wider = values_for(a->structure, 500);
+  wider.set = PrecomputedSet::kWithWeighted;
+  ASSERT_TRUE(this->features().put_precomputed(wider).ok());
+  EXPECT_TRUE(queued_ids(*this->store_).empty());
+  EXPECT_EQ(*this->features().requeue_precompute(7, PrecomputedSet::kWithWeighted), 0);
+  // The smaller set again (the option turned off) keeps the values and queues nothing.
+  EXPECT_EQ(*this->features().requeue_precompute(7, PrecomputedSet::kDefault), 0);
+  EXPECT_TRUE(queued_ids(*this->store_).empty());
   EXPECT_EQ(large(*this->store_), std::vector<int64_t>{a->structure.id});
 }
 

@@ -34,10 +34,12 @@ inline TriangleMesh tetrahedron(double offset) {
   return m;
 }
 
-// The SQL that takes a store of the latest schema back to version 11's tables, to version 10's, 9's,
-// 7's, 6's, 4's and 3's, for the tests of older files' migration (each test then drops what its own
+// The SQL that takes a store of the latest schema back to version 12's tables, to version 11's, 10's,
+// 9's, 7's, 6's, 4's and 3's, for the tests of older files' migration (each test then drops what its own
 // older version lacked too).
-#define SOIQ_BACK_TO_SCHEMA_V11 "ALTER TABLE series DROP COLUMN slice_positions; "
+#define SOIQ_BACK_TO_SCHEMA_V12 "ALTER TABLE stored_features DROP COLUMN precomputed_set; "
+inline constexpr char kBackToSchemaV12[] = SOIQ_BACK_TO_SCHEMA_V12;
+#define SOIQ_BACK_TO_SCHEMA_V11 SOIQ_BACK_TO_SCHEMA_V12 "ALTER TABLE series DROP COLUMN slice_positions; "
 inline constexpr char kBackToSchemaV11[] = SOIQ_BACK_TO_SCHEMA_V11;
 #define SOIQ_BACK_TO_SCHEMA_V10 SOIQ_BACK_TO_SCHEMA_V11 "DROP TABLE instances; DROP TABLE instance_files; "
 inline constexpr char kBackToSchemaV10[] = SOIQ_BACK_TO_SCHEMA_V10;
@@ -67,6 +69,7 @@ inline constexpr char kBackToSchemaV4[] = SOIQ_BACK_TO_SCHEMA_V4;
 inline constexpr char kBackToSchemaV3[] = SOIQ_BACK_TO_SCHEMA_V4
     "ALTER TABLE structures DROP COLUMN surface_perimeter_bound_mm; "
     "ALTER TABLE structures DROP COLUMN surface_area_bound_mm2; ";
+#undef SOIQ_BACK_TO_SCHEMA_V12
 #undef SOIQ_BACK_TO_SCHEMA_V11
 #undef SOIQ_BACK_TO_SCHEMA_V4
 #undef SOIQ_BACK_TO_SCHEMA_V6

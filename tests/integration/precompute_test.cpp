@@ -2,11 +2,14 @@
 // background, a query then reads every value from the feature cache, a content filter with no
 // structured filter keeps in stage 1 exactly the structures whose stored values satisfy it, and the
 // rows equal a brute-force evaluation of the predicate over every structure, stored or not. The
-// queue survives a restart.
+// queue survives a restart. With --precompute weighted the coverage-weighted features are stored
+// too, bit for bit those a query computes, and turning it on queues the stored structures again.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <map>
 #include <set>
 #include <thread>
 
@@ -73,6 +76,34 @@ class PrecomputeTest : public ServiceTest {
     if (s.ok()) a.summary = *s;
     EXPECT_EQ(a.summary.failed(), 0);
     return a;
+  }
+
+  // Each structure's volume_w_mm3 and mean_w inside the MR image, by id, from one query, and how
+  // the query got them.
+  struct Weighted {
+    std::map<int64_t, std::vector<double>> values;
+    v1::QuerySummary summary;
+  };
+  Weighted query_weighted() {
+    v1::QueryRequest q;
+    v1::Predicate* p = q.add_where();
+    p->mutable_feature()->set_name("volume_w_mm3");
+    p->set_op(v1::GT);
+    p->set_value(0);
+    q.add_select()->set_name("mean_w");
+    q.mutable_select(0)->set_image("MR");
+    Weighted w;
+    client::QueryHandlers h;
+    h.on_row = [&](const v1::QueryRow& r) {
+      std::vector<double>& v = w.values[r.structure().id()];
+      for (const v1::FeatureValue& f : r.values()) v.insert(v.end(), f.value().begin(), f.value().end());
+      return true;
+    };
+    Result<v1::QuerySummary> s = client_->query(q, h);
+    EXPECT_TRUE(s.ok()) << s.status().to_string();
+    if (s.ok()) w.summary = *s;
+    EXPECT_EQ(w.summary.failed(), 0);
+    return w;
   }
 };
 
@@ -152,6 +183,62 @@ TEST_F(PrecomputeTest, AQueryOnAnotherGridDoesNotUseTheStoredValues) {
   // Values stored at 1 mm say nothing about 0.5 mm: every structure reaches stage 2.
   EXPECT_EQ(s->stage1_candidates(), int64_t(c.structures.size()));
   EXPECT_EQ(s->matched(), 0);
+}
+
+TEST_F(PrecomputeTest, WeightedPrecomputeStoresWhatAQueryWouldComputeBitForBit) {
+  restart("weighted");
+  const Cohort c = load_cohort(*this, *client_, dir_, 2);
+  EXPECT_EQ(drained().precompute_failed(), 0);
+  const Weighted stored = query_weighted();
+  EXPECT_EQ(stored.summary.computed(), 0);
+  EXPECT_EQ(stored.summary.cache_hits(), int64_t(c.structures.size()));
+  ASSERT_EQ(stored.values.size(), c.structures.size());
+
+  // The same cohort in a store that never precomputed: the query computes every value, and they
+  // are the very same doubles.
+  db_path_ = dir_.file("unprecomputed.db");
+  restart("off");
+  const Cohort fresh = load_cohort(*this, *client_, dir_, 2);
+  const Weighted computed = query_weighted();
+  EXPECT_EQ(computed.summary.computed(), int64_t(c.structures.size()));
+  ASSERT_EQ(fresh.structures.size(), c.structures.size());
+  for (size_t i = 0; i < c.structures.size(); ++i) {
+    ASSERT_EQ(stored.values.count(c.structures[i].id), 1u);
+    ASSERT_EQ(computed.values.count(fresh.structures[i].id), 1u);
+    const std::vector<double>& a = stored.values.at(c.structures[i].id);
+    const std::vector<double>& b = computed.values.at(fresh.structures[i].id);
+    ASSERT_EQ(a.size(), 2u);  // volume_w_mm3, mean_w
+    ASSERT_EQ(b.size(), 2u);
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), 2 * sizeof(double)), 0)
+        << c.structures[i].name << ": " << a[0] << " " << a[1] << " against " << b[0] << " " << b[1];
+  }
+}
+
+TEST_F(PrecomputeTest, ByDefaultPrecomputeComputesNoCoverage) {
+  const Cohort c = load_cohort(*this, *client_, dir_, 2);
+  drained();
+  // Precompute caches every value it computes: had it converted for coverage, these were cached.
+  EXPECT_EQ(query_weighted().summary.computed(), int64_t(c.structures.size()));
+}
+
+TEST_F(PrecomputeTest, TurningWeightedOnQueuesThePrecomputedAgainAndTurningItOffKeepsTheValues) {
+  const Cohort c = load_cohort(*this, *client_, dir_, 2);
+  drained();
+  const int64_t n = int64_t(c.structures.size());
+  restart("weighted");
+  EXPECT_NE(server_->log().find("event=precompute_requeued structures=" + std::to_string(n)), std::string::npos)
+      << server_->log();
+  // Stage 1 goes on filtering on the stored values meanwhile: nothing is that large.
+  EXPECT_EQ(query_larger_than(1e12).summary.stage1_candidates(), 0);
+  drained();
+  EXPECT_EQ(query_weighted().summary.computed(), 0);
+
+  // Off again: nothing is queued, nothing dropped.
+  restart("on");
+  EXPECT_EQ(server_->log().find("precompute_requeued"), std::string::npos) << server_->log();
+  EXPECT_EQ(client_->server_info()->precompute_queued(), 0);
+  EXPECT_EQ(query_weighted().summary.computed(), 0);
+  EXPECT_EQ(query_larger_than(1e12).summary.stage1_candidates(), 0);
 }
 
 }  // namespace

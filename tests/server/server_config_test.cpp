@@ -134,14 +134,28 @@ TEST(ServerConfig, EveryFlagTheHelpDescribesIsParsedAndNamedWithItsVariable) {
   EXPECT_TRUE(says(typo.config.status(), "did you mean '--listen'?")) << typo.config.status().message();
 }
 
-TEST(ServerConfig, PrecomputeIsOnUnlessTurnedOffAndTakesOnlyOnOrOff) {
+TEST(ServerConfig, PrecomputeIsOnUnlessTurnedOffAndTakesOnlyOnWeightedOrOff) {
   EXPECT_TRUE(parse({}).config->precompute);
   EXPECT_FALSE(parse({"--precompute", "off"}).config->precompute);
   EXPECT_FALSE(parse({}, {{"SOIQ_PRECOMPUTE", "off"}}).config->precompute);
   EXPECT_TRUE(parse({"--precompute=on"}, {{"SOIQ_PRECOMPUTE", "off"}}).config->precompute);
   const Parsed bad = parse({"--precompute", "yes"});
   ASSERT_FALSE(bad.config.ok());
-  EXPECT_TRUE(says(bad.config.status(), "--precompute must be on or off, got 'yes'")) << bad.config.status().message();
+  EXPECT_TRUE(says(bad.config.status(), "--precompute must be on, weighted or off, got 'yes'"))
+      << bad.config.status().message();
+}
+
+TEST(ServerConfig, WeightedPrecomputeIsOffUnlessAsked) {
+  EXPECT_FALSE(parse({}).config->precompute_weighted);
+  EXPECT_FALSE(parse({"--precompute", "on"}).config->precompute_weighted);
+  const Parsed weighted = parse({"--precompute", "weighted"});
+  ASSERT_TRUE(weighted.config.ok());
+  EXPECT_TRUE(weighted.config->precompute);
+  EXPECT_TRUE(weighted.config->precompute_weighted);
+  EXPECT_TRUE(parse({}, {{"SOIQ_PRECOMPUTE", "weighted"}}).config->precompute_weighted);
+  const Parsed off = parse({"--precompute=off"}, {{"SOIQ_PRECOMPUTE", "weighted"}});
+  EXPECT_FALSE(off.config->precompute);
+  EXPECT_FALSE(off.config->precompute_weighted);
 }
 
 TEST(ServerConfig, DicomwebIsOffAndNamesAreDroppedUnlessAsked) {
