@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "core/base/physical_to_lattice.h"
+
 namespace soiq {
 
 Vec3 ImageGeometry::lattice_to_physical(const Vec3& ijz) const {
@@ -96,24 +98,7 @@ Vec3 ImageGeometry::physical_to_index(const Vec3& p_mm) const {
   return {l[0], l[1], slice_index(l[2])};
 }
 
-Vec3 ImageGeometry::physical_to_lattice(const Vec3& p_mm) const {
-  const Vec3 d = p_mm - origin_mm;
-  if (sheared()) {
-    // The slice first, from the distance along the normal (k alone moves a point off its plane),
-    // then the in-plane position from that slice's own origin.
-    const Vec3 row = column(direction, 0), col = column(direction, 1), k_axis = column(direction, 2);
-    const Vec3 n = cross(row, col);
-    const double k = dot(d, n) / (dot(k_axis, n) * spacing_mm[2]);
-    const Vec3 in_plane = d - (k * spacing_mm[2]) * k_axis;
-    return {dot(in_plane, row) / spacing_mm[0], dot(in_plane, col) / spacing_mm[1], k};
-  }
-  // D is orthonormal (validate_geometry), so its inverse is its transpose.
-  Vec3 out{};
-  for (int c = 0; c < 3; ++c) {
-    out[c] = (direction[0][c] * d[0] + direction[1][c] * d[1] + direction[2][c] * d[2]) / spacing_mm[c];
-  }
-  return out;
-}
+Vec3 ImageGeometry::physical_to_lattice(const Vec3& p_mm) const { return PhysicalToLattice(*this)(p_mm); }
 
 Status validate_geometry(const ImageGeometry& g) {
   for (int a = 0; a < 3; ++a) {

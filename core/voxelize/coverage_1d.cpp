@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/base/cpu_dispatch.h"
 #include "core/base/run_tasks.h"
 #include "core/voxelize/coverage_line.h"
 #include "core/voxelize/scan_lattice.h"
@@ -28,13 +29,11 @@ SliceCoverage cover_slice(const scanline::ScanProblem& p, const scanline::SlabTr
   const int64_t ny = p.ny / n, k0 = k * n, k1 = k0 + n;
   thread_local std::vector<SampleCrossingAt> crossings;
   crossings.clear();
-  for (int64_t i = by_slice.slab_start[size_t(k)]; i < by_slice.slab_start[size_t(k + 1)]; ++i) {
-    const size_t t = size_t(by_slice.order[size_t(i)]);
-    scanline::for_each_hit(p, (*p.triangles)[t], std::max<int64_t>(by_slice.k_first[t], k0),
-                           std::min<int64_t>(by_slice.k_last[t], k1 - 1), [&](const scanline::LineHit& h) {
-                             crossings.push_back({h.j + p.ny * (h.k - k0), {h.x, h.normal_x_sign > 0 ? -1 : 1}});
-                           });
-  }
+  by_slice.for_each_in_slab(k, p.triangles->size(), [&](size_t t) {
+    scanline::for_each_hit(p, (*p.triangles)[t], k0, k1 - 1, [&](const scanline::LineHit& h) {
+      crossings.push_back({h.j + p.ny * (h.k - k0), {h.x, h.normal_x_sign > 0 ? -1 : 1}});
+    });
+  });
   // Group by sample line (a counting sort).
   const int64_t lines = p.ny * n;
   thread_local std::vector<int64_t> start;
@@ -115,7 +114,9 @@ Result<CoverageVolume> coverage_1d(const TriangleMesh& mesh, const ImageGeometry
   slabs.count = nz;
   const scanline::SlabTriangles by_slice = scanline::triangles_by_slab(p, slabs, threads);
   std::vector<coverage_1d_detail::SliceCoverage> slices{size_t(nz)};
-  run_tasks(nz, threads, [&](int64_t k) { slices[size_t(k)] = coverage_1d_detail::cover_slice(p, by_slice, k, n); });
+  run_tasks(nz, threads, [&](int64_t k) {
+    slices[size_t(k)] = cpu_dispatch([&] { return coverage_1d_detail::cover_slice(p, by_slice, k, n); });
+  });
 
   // Concatenate in slice order (serially: it copies only the output, O(runs + partial voxels)).
   int64_t unbalanced = 0;

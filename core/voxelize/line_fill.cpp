@@ -3,15 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace soiq {
+#include "core/base/cpu_dispatch.h"
 
-int64_t clamped_ceil(double x, int64_t nx) {
-  // Clamped before the conversion so far-away crossings cannot overflow.
-  const double c = std::ceil(x);
-  if (!(c >= -1.0)) return -1;
-  if (c > double(nx + 1)) return nx + 1;
-  return int64_t(c);
-}
+namespace soiq {
 
 namespace {
 
@@ -68,8 +62,10 @@ bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rul
   return winding == 0;
 }
 
-LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
-                    bool drop_unbalanced) {
+namespace {
+
+LineRuns fill_lines_here(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+                         bool drop_unbalanced) {
   std::vector<int64_t> start(size_t(lines + 1), 0);
   for (const LineCrossingAt& c : crossings) ++start[size_t(c.line + 1)];
   for (int64_t l = 0; l < lines; ++l) start[size_t(l + 1)] += start[size_t(l)];
@@ -93,6 +89,13 @@ LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64
   }
   r.line_start[size_t(lines)] = int64_t(r.runs.size());
   return r;
+}
+
+}  // namespace
+
+LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+                    bool drop_unbalanced) {
+  return cpu_dispatch([&] { return fill_lines_here(crossings, lines, nx, rule, drop_unbalanced); });
 }
 
 }  // namespace soiq

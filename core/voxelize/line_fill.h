@@ -2,6 +2,7 @@
 // The line filler shared by the 1D method and the planar-contour fill (docs/DESIGN.md step 4): the
 // crossings of one row line -> its runs of inside voxel centres.
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,8 +30,14 @@ struct LineCrossing {
 bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rule, int64_t line_first_run,
                std::vector<Run>& runs);
 
-// ceil(x) clamped to [-1, nx + 1] (crossings beyond the grid only need to stay beyond it).
-int64_t clamped_ceil(double x, int64_t nx);
+// ceil(x) clamped to [-1, nx + 1] (crossings beyond the grid only need to stay beyond it); clamped
+// before the conversion so far-away crossings cannot overflow.
+inline int64_t clamped_ceil(double x, int64_t nx) {
+  const double c = std::ceil(x);
+  if (!(c >= -1.0)) return -1;
+  if (c > double(nx + 1)) return nx + 1;
+  return int64_t(c);
+}
 
 struct LineCrossingAt {
   int64_t line;  // index of the row line in the caller's numbering, in [0, lines)

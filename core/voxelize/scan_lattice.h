@@ -85,15 +85,39 @@ struct Slabs {
   int64_t of_slice(int64_t k) const { return ((k + 1) * count - 1) / nz; }  // inverse of k_begin
 };
 
-// The lattice slices each triangle reaches, and, with several slabs, the triangles each slab must
-// visit, in one flat array grouped by slab: counted, then placed, both passes in parallel over
-// chunks of triangles, so no slab ever scans every triangle, nothing grows, and no serial sort
-// stands in front of the threads. Within a slab the order follows the chunks; it is irrelevant:
-// crossings are grouped by line and sorted afterwards.
+// The lattice slices a triangle with vertex z's z0, z1, z2 reaches: those whose row lines' z
+// (p.plane_z) lies in its z range, ends included, clamped to the grid; first > last when none.
+struct SliceRange {
+  int64_t first, last;
+};
+inline SliceRange slice_range(const ScanProblem& p, double z0, double z1, double z2) {
+  const double zmin = std::min({z0, z1, z2}), zmax = std::max({z0, z1, z2});
+  if (p.slice_z.empty()) {
+    return {int64_t(std::max(std::ceil(zmin), 0.0)), int64_t(std::min(std::floor(zmax), double(p.nz - 1)))};
+  }
+  const auto& sz = p.slice_z;
+  return {std::lower_bound(sz.begin(), sz.end(), zmin) - sz.begin(),
+          (std::upper_bound(sz.begin(), sz.end(), zmax) - sz.begin()) - 1};
+}
+
+// With several slabs, the triangles each slab must visit, in one flat array grouped by slab:
+// counted, then placed, both passes in parallel over chunks of triangles, so no slab ever scans
+// every triangle, nothing grows, and no serial sort stands in front of the threads. Within a slab
+// the order follows the chunks; it is irrelevant: crossings are grouped by line and sorted
+// afterwards. With one slab nothing is built (and no pass made): the slab visits every triangle.
 struct SlabTriangles {
-  std::unique_ptr<int32_t[]> k_first, k_last;  // per triangle, clamped; first > last = none
-  std::vector<int32_t> order;                  // slab s: order[slab_start[s] .. slab_start[s+1])
-  std::vector<int64_t> slab_start;             // empty with one slab: every triangle is visited
+  std::vector<int32_t> order;       // slab s: order[slab_start[s] .. slab_start[s+1])
+  std::vector<int64_t> slab_start;  // empty with one slab: every triangle is visited
+
+  // Calls visit(t) for each triangle t that slab s must visit, of `triangle_count` in all.
+  template <typename Visit>
+  void for_each_in_slab(int64_t s, size_t triangle_count, Visit&& visit) const {
+    if (slab_start.empty()) {
+      for (size_t t = 0; t < triangle_count; ++t) visit(t);
+      return;
+    }
+    for (int64_t i = slab_start[size_t(s)]; i < slab_start[size_t(s + 1)]; ++i) visit(size_t(order[size_t(i)]));
+  }
 };
 
 SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int threads);
@@ -127,7 +151,9 @@ struct LineHit {
 
 // Calls on_hit(const LineHit&) for every row line (j,k), k in [k_lo, k_hi], whose perturbed lattice
 // point (j + e, k + e^2) lies inside the (y,z) projection of `tri`. Defined here so that each
-// caller's on_hit inlines into the hot loop.
+// caller's on_hit inlines into the hot loop (and, under cpu_dispatch, is compiled for the CPU).
+// Most triangles of a fine surface hold no lattice point: the cheapest tests that find so come
+// first (the y range, then the z range), before any per-edge work.
 template <typename OnHit>
 void for_each_hit(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64_t k_lo, int64_t k_hi, OnHit&& on_hit) {
   const size_t a = size_t(tri[0]), b = size_t(tri[1]), c = size_t(tri[2]);
@@ -135,10 +161,19 @@ void for_each_hit(const ScanProblem& p, const std::array<int32_t, 3>& tri, int64
   const int64_t j_lo = int64_t(std::max(std::ceil(ymin), 0.0));
   const int64_t j_hi = int64_t(std::min(std::floor(ymax), double(p.ny - 1)));
   if (j_lo > j_hi) return;
+  const SliceRange slices = slice_range(p, p.z[a], p.z[b], p.z[c]);
+  k_lo = std::max(k_lo, slices.first);
+  k_hi = std::min(k_hi, slices.last);
+  if (k_lo > k_hi) return;
   // A triangle whose (y,z) projection has zero area (edge-on to the rows: every face of a
   // marching-cubes surface parallel to x) contains no perturbed lattice point: skip it before any
   // lattice work. The area is the exact orient2d of its projected vertices.
-  if (orient2d_sign(p.y[a], p.z[a], p.y[b], p.z[b], p.y[c], p.z[c]) == 0) return;
+  {
+    const double t1 = (p.y[b] - p.y[a]) * (p.z[c] - p.z[a]), t2 = (p.z[b] - p.z[a]) * (p.y[c] - p.y[a]);
+    if (orient2d_sign_filtered(t1 - t2, orient2d_error_bound(t1, t2), p.y[a], p.z[a], p.y[b], p.z[b], p.y[c], p.z[c]) ==
+        0)
+      return;
+  }
   const ProjectedEdge ab(p.y[a], p.z[a], p.y[b], p.z[b]);
   const ProjectedEdge bc(p.y[b], p.z[b], p.y[c], p.z[c]);
   const ProjectedEdge ca(p.y[c], p.z[c], p.y[a], p.z[a]);

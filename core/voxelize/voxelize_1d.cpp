@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/base/cpu_dispatch.h"
 #include "core/base/parallel_for.h"
 #include "core/base/run_tasks.h"
 #include "core/geometry/exact_predicates.h"
@@ -77,17 +78,8 @@ LineRuns scan_slab(const ScanProblem& p, const SlabTriangles& slab_triangles, in
   // Enough for a closed surface crossing each line it reaches a few times, so growth (a copy of
   // every crossing) is rare.
   crossings.reserve(size_t(std::max<int64_t>(4 * p.ny * (k1 - k0), int64_t(tris.size()) / 2)));
-  auto visit = [&](size_t t) {
-    if (slab_triangles.k_last[t] < k0 || slab_triangles.k_first[t] >= k1) return;
-    triangle_crossings(p, tris[t], std::max<int64_t>(slab_triangles.k_first[t], k0),
-                       std::min<int64_t>(slab_triangles.k_last[t], k1 - 1), k0, crossings);
-  };
-  if (slab_triangles.slab_start.empty()) {
-    for (size_t t = 0; t < tris.size(); ++t) visit(t);
-  } else {
-    for (int64_t i = slab_triangles.slab_start[size_t(slab)]; i < slab_triangles.slab_start[size_t(slab + 1)]; ++i)
-      visit(size_t(slab_triangles.order[size_t(i)]));
-  }
+  slab_triangles.for_each_in_slab(slab, tris.size(),
+                                  [&](size_t t) { triangle_crossings(p, tris[t], k0, k1 - 1, k0, crossings); });
   return fill_lines(crossings, p.ny * (k1 - k0), p.nx, p.rule, drop_unbalanced);
 }
 
@@ -103,7 +95,8 @@ LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
   std::vector<LineRuns> results(static_cast<size_t>(slabs.count));
   // Slabs are handed out one at a time, so a slab heavy with surface does not hold up the rest.
   run_tasks(slabs.count, threads, [&](int64_t s) {
-    results[size_t(s)] = scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced);
+    results[size_t(s)] = cpu_dispatch(
+        [&] { return scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced); });
   });
   if (slabs.count == 1) return std::move(results[0]);
   // Concatenate in slice order; each slab copies its own part in parallel.
