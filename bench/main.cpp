@@ -5,6 +5,7 @@
 //   soiq-bench table7  [--runs N] [--pin CPU]
 //   soiq-bench scaling [--runs N] [--threads T] [--pin CPU]
 //   soiq-bench cpu-probe [--runs N]
+//   soiq-bench floor   --models DIR [--names SM1,SM6,SM11] [--runs N] [--pin CPU]
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
 //   soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
@@ -13,9 +14,12 @@
 //   soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
 //   soiq-bench viewer [--runs N] [--soiqd PATH]
+// Every subcommand takes --cpu-level x86-64|x86-64-v2|x86-64-v3: soiq's kernels run at most at that
+// level (core/base/cpu_level.h), to compare the levels within one binary.
 // Exit codes: 0 ok, 2 usage or invalid argument, 1 anything else.
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "bench/cli_args.h"
@@ -24,6 +28,7 @@
 #include "bench/cpu_probe.h"
 #include "bench/dicomweb_bench.h"
 #include "bench/features_bench.h"
+#include "bench/floor_bench.h"
 #include "bench/import_bench.h"
 #include "bench/pacs_bench.h"
 #include "bench/query_bench.h"
@@ -35,6 +40,7 @@
 #include "bench/table5.h"
 #include "bench/table7.h"
 #include "bench/viewer_bench.h"
+#include "core/base/cpu_level.h"
 
 namespace {
 
@@ -48,6 +54,7 @@ int usage() {
       "       soiq-bench table7 [--runs N] [--pin CPU]\n"
       "       soiq-bench scaling [--runs N] [--threads T] [--pin CPU]\n"
       "       soiq-bench cpu-probe [--runs N]\n"
+      "       soiq-bench floor --models DIR [--names SM1,SM6,SM11] [--runs N] [--pin CPU]\n"
       "       soiq-bench features --models DIR [--sts DIR] [--runs N]\n"
       "       soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]\n"
       "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
@@ -68,13 +75,22 @@ int main(int argc, char** argv) {
   if (argc < 2) return usage();
   const std::string command = argv[1];
   const auto args = parse_cli_args(
-      argc, argv, 2, {"--out",      "--spacing", "--reference", "--method",  "--runs",  "--threads", "--pin",
-                      "-o",         "--models",  "--sts",       "--dir",     "--soiqd", "--workers", "--seconds",
-                      "--patients", "--matched", "--label",     "--patient", "--image", "--batch"},
+      argc, argv, 2,
+      {"--out",    "--spacing", "--reference", "--method", "--runs",    "--threads",  "--pin",      "-o",
+       "--models", "--sts",     "--dir",       "--soiqd",  "--workers", "--seconds",  "--patients", "--matched",
+       "--label",  "--patient", "--image",     "--batch",  "--names",   "--cpu-level"},
       {"--json", "--small"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
     return 2;
+  }
+  if (args->has("--cpu-level")) {
+    const std::optional<soiq::CpuLevel> level = soiq::parse_cpu_level(args->get("--cpu-level", ""));
+    if (!level) {
+      std::fprintf(stderr, "soiq-bench %s: --cpu-level must be x86-64, x86-64-v2 or x86-64-v3\n", command.c_str());
+      return 2;
+    }
+    soiq::cap_cpu_level(*level);
   }
   if (command == "simgen") return run_simgen(*args);
   if (command == "convert") return run_convert(*args);
@@ -82,6 +98,7 @@ int main(int argc, char** argv) {
   if (command == "table7") return run_table7(*args);
   if (command == "scaling") return run_scaling(*args);
   if (command == "cpu-probe") return run_cpu_probe(*args);
+  if (command == "floor") return run_floor_bench(*args);
   if (command == "features") return run_features_bench(*args);
   if (command == "coverage") return run_coverage_bench(*args);
   if (command == "query") return run_query_bench(*args);
