@@ -20,15 +20,13 @@ void map_vertices(const TriangleMesh& mesh, const PhysicalToLattice& to_lattice,
   const size_t ax = size_t(axis), ay = size_t((axis + 1) % 3), az = size_t((axis + 2) % 3);
   for (size_t v = begin; v < end; ++v) {
     const Vec3 u = to_lattice(mesh.vertices_mm[v]);
-    p.x[v] = u[ax];
-    p.y[v] = u[ay];
-    p.z[v] = u[az];
+    p.xyz[v] = {u[ax], u[ay], u[az]};
   }
   if (lines_per_voxel > 1) {
     const double n = lines_per_voxel, shift = (n - 1) / 2;
     for (size_t v = begin; v < end; ++v) {
-      p.y[v] = n * p.y[v] + shift;
-      p.z[v] = n * p.z[v] + shift;
+      p.xyz[v][1] = n * p.xyz[v][1] + shift;
+      p.xyz[v][2] = n * p.xyz[v][2] + shift;
     }
   }
 }
@@ -49,7 +47,8 @@ SlabTriangles triangles_by_slab(const ScanProblem& p, const Slabs& slabs, int th
   for (int64_t k = 0; k < p.nz; ++k) slab_of[size_t(k)] = int32_t(slabs.of_slice(k));
   // The slabs a triangle reaches: [first, last], first > last when none.
   auto slabs_of = [&](size_t t) {
-    const SliceRange r = slice_range(p, p.z[size_t(tris[t][0])], p.z[size_t(tris[t][1])], p.z[size_t(tris[t][2])]);
+    const SliceRange r =
+        slice_range(p, p.xyz[size_t(tris[t][0])][2], p.xyz[size_t(tris[t][1])][2], p.xyz[size_t(tris[t][2])][2]);
     if (r.first > r.last) return std::pair<int32_t, int32_t>(1, 0);
     return std::pair<int32_t, int32_t>(slab_of[size_t(r.first)], slab_of[size_t(r.last)]);
   };
@@ -97,9 +96,7 @@ ScanProblem index_space_problem(const TriangleMesh& mesh, const ImageGeometry& g
                                 int lines_per_voxel) {
   ScanProblem p;
   const size_t n = mesh.vertices_mm.size();
-  p.x.resize(n);
-  p.y.resize(n);
-  p.z.resize(n);
+  p.xyz.resize(n);
   const PhysicalToLattice to_lattice(g);
   parallel_for(int64_t(n), threads, [&](int64_t begin, int64_t end) {
     cpu_dispatch([&] { map_vertices(mesh, to_lattice, axis, lines_per_voxel, size_t(begin), size_t(end), p); });
