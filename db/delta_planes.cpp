@@ -7,6 +7,8 @@
 #include <memory>
 #include <type_traits>
 
+#include "core/base/cpu_dispatch.h"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -180,7 +182,11 @@ void append_delta_planes(const void* values, size_t count, int width, size_t str
 
 Status read_delta_planes(std::string_view in, size_t& at, size_t count, int width, size_t stride, void* values) {
   auto* p = static_cast<uint8_t*>(values);
-  return width == 8 ? decode<uint64_t>(in, at, count, stride, p) : decode<uint32_t>(in, at, count, stride, p);
+  // The transposes and prefix sums compiled for the CPU (cpu_dispatch.h): AVX encodes the same
+  // SSE2 steps in fewer instructions; LZ4 is the library's own.
+  return cpu_dispatch([&] {
+    return width == 8 ? decode<uint64_t>(in, at, count, stride, p) : decode<uint32_t>(in, at, count, stride, p);
+  });
 }
 
 }  // namespace soiq::db

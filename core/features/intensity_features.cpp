@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 namespace {
 
@@ -98,7 +100,7 @@ constexpr double kPercentiles[] = {0.1, 0.25, 0.5, 0.75, 0.9};
 
 }  // namespace
 
-Result<IntensityFeatures> intensity_features(std::vector<double> values) {
+static Result<IntensityFeatures> intensity_features_here(std::vector<double> values) {
   if (values.empty()) return invalid_argument("no intensity values: the region has no voxel inside the image");
   IntensityFeatures f;
   const double n = double(values.size());
@@ -178,6 +180,11 @@ Result<IntensityFeatures> intensity_features(std::vector<double> values) {
   f.p90 = percentile(count, ranks, ordered, 0.9);
   f.interquartile_range = percentile(count, ranks, ordered, 0.75) - percentile(count, ranks, ordered, 0.25);
   return f;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+Result<IntensityFeatures> intensity_features(std::vector<double> values) {
+  return cpu_dispatch([&] { return intensity_features_here(std::move(values)); });
 }
 
 }  // namespace soiq

@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 namespace {
 
@@ -157,7 +159,7 @@ bool PlaneFamily::is_hull_vertex(int64_t plane, int64_t row, int64_t value) cons
   return (value == min[n] && (on_hull[n] & 1)) || (value == max[n] && (on_hull[n] & 2));
 }
 
-Result<MaskSurfaceSweep> mask_surface_sweep(const RunLengthVolume& volume) {
+static Result<MaskSurfaceSweep> mask_surface_sweep_here(const RunLengthVolume& volume) {
   SOIQ_RETURN_IF_ERROR(check_volume(volume));
   MaskSurfaceSweep out;
   const auto& d = volume.geometry.dims;
@@ -182,6 +184,11 @@ Result<MaskSurfaceSweep> mask_surface_sweep(const RunLengthVolume& volume) {
   }
   for (PlaneFamily& f : out.families) build_hulls(f);
   return out;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+Result<MaskSurfaceSweep> mask_surface_sweep(const RunLengthVolume& volume) {
+  return cpu_dispatch([&] { return mask_surface_sweep_here(volume); });
 }
 
 }  // namespace soiq

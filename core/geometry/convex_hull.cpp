@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/base/cpu_dispatch.h"
 #include "core/geometry/dyadic_lattice.h"
 #include "core/geometry/exact_predicates.h"
 
@@ -327,7 +328,7 @@ ConvexHull Quickhull::result() const {
 
 }  // namespace
 
-Result<ConvexHull> convex_hull(const std::vector<Vec3>& points_mm) {
+static Result<ConvexHull> convex_hull_here(const std::vector<Vec3>& points_mm) {
   const size_t n = points_mm.size();
   if (n < 4) return invalid_argument("convex hull needs at least 4 points, got " + std::to_string(n));
   if (n > size_t(INT32_MAX)) {
@@ -343,6 +344,11 @@ Result<ConvexHull> convex_hull(const std::vector<Vec3>& points_mm) {
   Quickhull quickhull(points_mm);
   SOIQ_RETURN_IF_ERROR(quickhull.run());
   return quickhull.result();
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+Result<ConvexHull> convex_hull(const std::vector<Vec3>& points_mm) {
+  return cpu_dispatch([&] { return convex_hull_here(points_mm); });
 }
 
 }  // namespace soiq

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <optional>
 
+#include "core/base/cpu_dispatch.h"
 #include "core/geometry/dyadic_lattice.h"
 #include "core/geometry/exact_predicates.h"
 #include "core/geometry/lattice_polygon.h"
@@ -154,7 +155,7 @@ std::optional<std::vector<int64_t>> lattice_candidates(const std::vector<Vec3>& 
 
 }  // namespace
 
-std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
+static std::vector<int64_t> hull_vertex_candidates_here(const std::vector<Vec3>& points) {
   if (const std::optional<int> exponent = dyadic_lattice_exponent(points)) {
     // Dense tables pay when they are not much larger than the set.
     const int64_t max_cells = 8 * int64_t(points.size()) + (int64_t(1) << 16);
@@ -212,6 +213,11 @@ std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
     for (const int64_t i : alive) vertex[size_t(i)] = 0;
   }
   return alive;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+std::vector<int64_t> hull_vertex_candidates(const std::vector<Vec3>& points) {
+  return cpu_dispatch([&] { return hull_vertex_candidates_here(points); });
 }
 
 }  // namespace soiq

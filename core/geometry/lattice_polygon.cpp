@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 namespace {
 
@@ -27,7 +29,7 @@ std::vector<LatticePoint> lattice_hull(const std::vector<LatticePoint>& points) 
   return lattice_hull_of_rows(rows);
 }
 
-std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows) {
+static std::vector<LatticePoint> lattice_hull_of_rows_here(const std::vector<LatticeRow>& rows) {
   const size_t n = rows.size();
   if (n == 0) return {};
   const LatticePoint first{rows[0].u, rows[0].lo}, last{rows[n - 1].u, rows[n - 1].hi};
@@ -46,6 +48,11 @@ std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& ro
   if (rows[0].hi != rows[0].lo) offer(first, lower);
   hull.resize(h - 1);  // the last point repeats the first
   return hull;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+std::vector<LatticePoint> lattice_hull_of_rows(const std::vector<LatticeRow>& rows) {
+  return cpu_dispatch([&] { return lattice_hull_of_rows_here(rows); });
 }
 
 namespace {

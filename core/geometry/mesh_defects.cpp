@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 
 namespace {
@@ -60,7 +62,7 @@ EdgeUses edge_uses(const TriangleMesh& mesh, const std::vector<uint8_t>& usable)
 
 }  // namespace
 
-MeshDefects mesh_defects(const TriangleMesh& mesh) {
+static MeshDefects mesh_defects_here(const TriangleMesh& mesh) {
   MeshDefects d;
   const int64_t nv = int64_t(mesh.vertices_mm.size());
   for (const Vec3& p : mesh.vertices_mm) {
@@ -101,6 +103,11 @@ MeshDefects mesh_defects(const TriangleMesh& mesh) {
     }
   }
   return d;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+MeshDefects mesh_defects(const TriangleMesh& mesh) {
+  return cpu_dispatch([&] { return mesh_defects_here(mesh); });
 }
 
 std::string describe(const MeshDefects& d) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 namespace {
 
@@ -97,7 +99,7 @@ int64_t ball_offset_lines(const ImageGeometry& grid, double radius_mm, int64_t s
   return count;
 }
 
-RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
+static RunLengthVolume ball_dilation_here(const RunLengthVolume& s, double radius_mm) {
   const int64_t nx = s.geometry.dims[0], ny = s.geometry.dims[1], nz = s.geometry.dims[2];
   BallPass pass(s, radius_mm);
   const std::vector<Offset>& offsets = pass.offsets;
@@ -134,7 +136,12 @@ RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
   return pass.finish();
 }
 
-RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+RunLengthVolume ball_dilation(const RunLengthVolume& s, double radius_mm) {
+  return cpu_dispatch([&] { return ball_dilation_here(s, radius_mm); });
+}
+
+static RunLengthVolume ball_erosion_here(const RunLengthVolume& s, double radius_mm) {
   const int64_t nx = s.geometry.dims[0], ny = s.geometry.dims[1], nz = s.geometry.dims[2];
   BallPass pass(s, radius_mm);
   const std::vector<Offset>& offsets = pass.offsets;
@@ -176,6 +183,11 @@ RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
     }
   }
   return pass.finish();
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+RunLengthVolume ball_erosion(const RunLengthVolume& s, double radius_mm) {
+  return cpu_dispatch([&] { return ball_erosion_here(s, radius_mm); });
 }
 
 }  // namespace soiq

@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "core/base/cpu_dispatch.h"
 #include "core/base/parallel_for.h"
 
 namespace soiq {
@@ -78,18 +79,20 @@ void transform_axis(std::vector<double>& dist, const std::array<int64_t, 3>& dim
   parallel_for(
       lines, threads,
       [&](int64_t first, int64_t last) {
-        LineScratch s(n);
-        for (int64_t l = first; l < last; ++l) {
-          const int64_t a = l % na, b = l / na;
-          int64_t base = 0;
-          if (axis == 0) base = dims[0] * (a + dims[1] * b);
-          if (axis == 1) base = a + dims[0] * dims[1] * b;
-          if (axis == 2) base = a + dims[0] * b;
-          double* line = dist.data() + base;
-          for (int64_t q = 0; q < n; ++q) s.f[size_t(q)] = line[q * stride];
-          transform_line(n, h, s);
-          for (int64_t q = 0; q < n; ++q) line[q * stride] = s.d[size_t(q)];
-        }
+        cpu_dispatch([&] {
+          LineScratch s(n);
+          for (int64_t l = first; l < last; ++l) {
+            const int64_t a = l % na, b = l / na;
+            int64_t base = 0;
+            if (axis == 0) base = dims[0] * (a + dims[1] * b);
+            if (axis == 1) base = a + dims[0] * dims[1] * b;
+            if (axis == 2) base = a + dims[0] * b;
+            double* line = dist.data() + base;
+            for (int64_t q = 0; q < n; ++q) s.f[size_t(q)] = line[q * stride];
+            transform_line(n, h, s);
+            for (int64_t q = 0; q < n; ++q) line[q * stride] = s.d[size_t(q)];
+          }
+        });
       },
       64);
 }

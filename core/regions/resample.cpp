@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/base/cpu_dispatch.h"
+
 namespace soiq {
 namespace {
 
@@ -111,8 +113,8 @@ bool sample(const Image& image, const IndexMap& map, bool same_grid, Interpolati
 
 }  // namespace
 
-Result<WeightedSamples> resample_weighted(const Image& image, const CoverageVolume& coverage,
-                                          Interpolation interpolation) {
+static Result<WeightedSamples> resample_weighted_here(const Image& image, const CoverageVolume& coverage,
+                                                      Interpolation interpolation) {
   RunLengthVolume any = any_coverage(coverage);
   SOIQ_RETURN_IF_ERROR(check_inputs(image, any));
   WeightedSamples out;
@@ -149,11 +151,18 @@ Result<WeightedSamples> resample_weighted(const Image& image, const CoverageVolu
   return out;
 }
 
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+Result<WeightedSamples> resample_weighted(const Image& image, const CoverageVolume& coverage,
+                                          Interpolation interpolation) {
+  return cpu_dispatch([&] { return resample_weighted_here(image, coverage, interpolation); });
+}
+
 const char* interpolation_name(Interpolation interpolation) {
   return interpolation == Interpolation::kLinear ? "linear" : "nearest";
 }
 
-Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region, Interpolation interpolation) {
+static Result<RegionSamples> resample_here(const Image& image, const RunLengthVolume& region,
+                                           Interpolation interpolation) {
   SOIQ_RETURN_IF_ERROR(check_inputs(image, region));
   RegionSamples out;
   out.interpolation = interpolation;
@@ -219,6 +228,11 @@ Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region
                             "): they do not overlap; is the image in the same frame of reference as the structure?");
   }
   return out;
+}
+
+// Compiled for the CPU it runs on (core/base/cpu_dispatch.h).
+Result<RegionSamples> resample(const Image& image, const RunLengthVolume& region, Interpolation interpolation) {
+  return cpu_dispatch([&] { return resample_here(image, region, interpolation); });
 }
 
 }  // namespace soiq

@@ -1,16 +1,20 @@
 // The kernels dispatched by CPU level (core/base/cpu_dispatch.h) give the same outputs, bit for bit,
-// at every level this CPU runs: the same voxels, the same coverage fractions. Each level is forced
+// at every level this CPU runs: the same voxels, the same coverage fractions, every feature to the
+// last bit. Each level is forced
 // with cap_cpu_level and compared with the baseline (x86-64) run.
 #include "core/base/cpu_level.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "core/base/coverage_volume.h"
+#include "core/features/feature_catalogue.h"
+#include "core/features/structure_features.h"
 #include "core/geometry/primitives.h"
 #include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/voxelize_1d.h"
@@ -133,6 +137,54 @@ TEST(CpuLevelTest, CoverageFractionsAreTheSameAtEveryLevel) {
           return Fractions{c->full_start, c->partial_start, c->full, c->partial};
         },
         "coverage n=" + std::to_string(n));
+  }
+}
+
+// Every feature soiq reports, as (name, region, image, the value's bits): NaN equals NaN here, and
+// -0 differs from +0, so "the same" is to the last bit.
+struct Report {
+  std::vector<std::string> keys;
+  std::vector<std::vector<uint64_t>> bits;
+  bool operator==(const Report&) const = default;
+};
+
+Report report(const Result<FeatureReport>& r) {
+  EXPECT_TRUE(r.ok()) << r.status().to_string();
+  Report out;
+  if (!r.ok()) return out;
+  for (const Feature& f : r->features) {
+    out.keys.push_back(f.name + "/" + f.region + "/" + f.image);
+    std::vector<uint64_t> b(f.value.size());
+    std::memcpy(b.data(), f.value.data(), b.size() * sizeof(uint64_t));
+    out.bits.push_back(std::move(b));
+  }
+  return out;
+}
+
+TEST(CpuLevelTest, EveryFeatureIsTheSameAtEveryLevel) {
+  const TriangleMesh sphere = uv_sphere_with_triangles({0.4, -0.7, 1.1}, 15.3, 20000);
+  const ImageGeometry g = oblique_grid({64, 60, 40});
+  const Result<Voxelization> v = voxelize_1d(sphere, g);
+  ASSERT_TRUE(v.ok()) << v.status().to_string();
+  Image ramp;
+  ramp.geometry = g;
+  ramp.voxels.resize(size_t(g.voxel_count()));
+  for (size_t i = 0; i < ramp.voxels.size(); ++i) ramp.voxels[i] = float(std::sin(0.001 * double(i)) * 100 + 0.37 * i);
+  const StructureInput input{v->volume, sphere};
+  for (const Interpolation interpolation : {Interpolation::kNearest, Interpolation::kLinear}) {
+    FeatureRequest request;  // every name
+    request.images = {{"ramp", &ramp}};
+    request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}, RegionSpec{RegionKind::kCore, 2}};
+    request.interpolation = interpolation;
+    request.threads = 2;
+    expect_same_at_every_level<Report>([&] { return report(structure_features(input, request)); },
+                                       std::string("features, ") + interpolation_name(interpolation));
+    FeatureRequest weighted;
+    weighted.names = weighted_feature_names();
+    weighted.images = {{"ramp", &ramp}};
+    weighted.interpolation = interpolation;
+    expect_same_at_every_level<Report>([&] { return report(structure_features(input, weighted)); },
+                                       std::string("weighted features, ") + interpolation_name(interpolation));
   }
 }
 

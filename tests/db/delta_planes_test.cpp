@@ -6,7 +6,10 @@
 
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
+
+#include "core/base/cpu_level.h"
 
 namespace soiq::db {
 namespace {
@@ -53,6 +56,28 @@ TEST(DeltaPlanes, RandomAndSmoothValuesRoundTripAtAnyStride) {
     expect_round_trip(corners, 3);
     expect_round_trip(corners, 1);
   }
+}
+
+// The decoder is compiled per CPU level (core/base/cpu_dispatch.h): each level this CPU runs
+// decodes every value exactly.
+TEST(DeltaPlanes, EveryCpuLevelDecodesExactly) {
+  std::mt19937_64 rng(11);
+  std::vector<uint64_t> smooth(70001);
+  std::vector<uint32_t> corners(70001);
+  uint64_t walk = 0x4059000000000000ull;
+  for (size_t i = 0; i < smooth.size(); ++i) {
+    walk += rng() % 4096 - 2048;
+    smooth[i] = walk;
+    corners[i] = uint32_t(rng() % 100000);
+  }
+  for (const CpuLevel level : {CpuLevel::kBaseline, CpuLevel::kV2, CpuLevel::kV3}) {
+    if (int(level) > int(detected_cpu_level())) continue;
+    SCOPED_TRACE(std::string(cpu_level_name(level)));
+    cap_cpu_level(level);
+    expect_round_trip(smooth, 3);
+    expect_round_trip(corners, 3);
+  }
+  cap_cpu_level(std::nullopt);
 }
 
 TEST(DeltaPlanes, SmoothValuesTakeLessThanTheirBytes) {
