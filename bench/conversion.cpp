@@ -2,7 +2,9 @@
 
 #include <memory>
 
+#include "bench/peer_cgal.h"
 #include "bench/peer_itk.h"
+#include "bench/peer_openvdb.h"
 #include "bench/peers_vtk.h"
 #include "core/base/run_length_volume.h"
 #include "core/reference/voxelize_2d_contours.h"
@@ -36,19 +38,41 @@ const char* method_name(Method m) {
       return "vtk-enclosed";
     case Method::kItk:
       return "itk";
+    case Method::kCgal:
+      return "cgal";
+    case Method::kOpenVdb:
+      return "openvdb";
   }
   return "?";
 }
 
-bool method_available(Method m) { return m != Method::kItk || itk_available(); }
+bool method_available(Method m) {
+  switch (m) {
+    case Method::kItk:
+      return itk_available();
+    case Method::kCgal:
+      return cgal_available();
+    case Method::kOpenVdb:
+      return openvdb_available();
+    default:
+      return true;
+  }
+}
 
 Result<Method> parse_method(const std::string& name) {
-  for (Method m : {Method::k1d, Method::k2d, Method::k3d, Method::kVtkStencil, Method::kVtkEnclosed, Method::kItk}) {
+  for (Method m : {Method::k1d, Method::k2d, Method::k3d, Method::kVtkStencil, Method::kVtkEnclosed, Method::kItk,
+                   Method::kCgal, Method::kOpenVdb}) {
     if (name != method_name(m)) continue;
-    if (!method_available(m)) return invalid_argument("method 'itk' needs a build with ITK (SOIQ_HAVE_ITK)");
+    if (!method_available(m)) {
+      const char* needs = m == Method::kItk    ? "ITK (SOIQ_HAVE_ITK)"
+                          : m == Method::kCgal ? "CGAL (SOIQ_HAVE_CGAL)"
+                                               : "OpenVDB (SOIQ_HAVE_OPENVDB)";
+      return invalid_argument("method '" + name + "' needs a build with " + needs);
+    }
     return m;
   }
-  return invalid_argument("unknown method '" + name + "'; use 1d, 2d, 3d, vtk-stencil, vtk-enclosed or itk");
+  return invalid_argument("unknown method '" + name +
+                          "'; use 1d, 2d, 3d, vtk-stencil, vtk-enclosed, itk, cgal or openvdb");
 }
 
 Result<Conversion> prepare_conversion(Method method, const TriangleMesh& mesh, const ImageGeometry& geometry,
@@ -79,6 +103,10 @@ Result<Conversion> prepare_conversion(Method method, const TriangleMesh& mesh, c
       return prepare_vtk_enclosed(mesh, geometry, threads);
     case Method::kItk:
       return prepare_itk(mesh, geometry);
+    case Method::kCgal:
+      return prepare_cgal(mesh, geometry);
+    case Method::kOpenVdb:
+      return prepare_openvdb(mesh, geometry, threads);
   }
   return invalid_argument("unknown method");
 }

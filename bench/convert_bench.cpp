@@ -35,7 +35,7 @@ int run_convert(const CliArgs& args) {
   if (args.positional.size() != 1 || !args.has("--reference")) {
     std::fprintf(stderr,
                  "usage: soiq-bench convert MESH --reference IMAGE --method 1d|2d|3d|vtk-stencil|"
-                 "vtk-enclosed|itk [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n");
+                 "vtk-enclosed|itk|cgal|openvdb [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n");
     return 2;
   }
   const Result<Method> method = parse_method(args.get("--method", "1d"));

@@ -1,4 +1,5 @@
-// soiq-bench: the paper's simulated models and conversion timings side by side with VTK and ITK.
+// soiq-bench: the paper's simulated models and conversion timings side by side with VTK, ITK, CGAL and
+// OpenVDB.
 //   soiq-bench simgen  --out DIR [--spacing S]
 //   soiq-bench convert MESH --reference IMAGE --method M [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]
 //   soiq-bench table5  --models DIR [--runs N] [--threads T] [--pin CPU]
@@ -48,7 +49,7 @@ int usage() {
   std::fprintf(
       stderr,
       "usage: soiq-bench simgen --out DIR [--spacing S]\n"
-      "       soiq-bench convert MESH --reference IMAGE --method 1d|2d|3d|vtk-stencil|vtk-enclosed|itk\n"
+      "       soiq-bench convert MESH --reference IMAGE --method 1d|2d|3d|vtk-stencil|vtk-enclosed|itk|cgal|openvdb\n"
       "                  [--runs N] [--threads T] [--pin CPU] [--json] [-o OUT]\n"
       "       soiq-bench table5 --models DIR [--runs N] [--threads T] [--pin CPU]\n"
       "       soiq-bench table7 [--runs N] [--pin CPU]\n"

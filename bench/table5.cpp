@@ -29,15 +29,22 @@ struct Column {
   Method method;
   int threads;
   std::string title;
+  std::string ratio_title;  // a peer's "x / 1d" speed-up column; empty for ours
 };
 
-// The table's method columns; print_times' ratio columns name them by these positions.
+// The table's method columns: ours, then VTK and each optional peer this soiq-bench was built with
+// (one not built would only be a column of n/a; print_times names those).
 std::vector<Column> table5_columns(int threads) {
-  return {
-      {Method::k1d, 1, "1d"},   {Method::k1d, threads, "1d x" + std::to_string(threads)},
-      {Method::k2d, 1, "2d"},   {Method::kVtkStencil, 1, "vtk-stencil"},
-      {Method::kItk, 1, "itk"},
+  std::vector<Column> columns = {
+      {Method::k1d, 1, "1d", ""},
+      {Method::k1d, threads, "1d x" + std::to_string(threads), ""},
+      {Method::k2d, 1, "2d", ""},
+      {Method::kVtkStencil, 1, "vtk-stencil", "vtk / 1d"},
   };
+  for (Method m : {Method::kItk, Method::kCgal, Method::kOpenVdb}) {
+    if (method_available(m)) columns.push_back({m, 1, method_name(m), std::string(method_name(m)) + " / 1d"});
+  }
+  return columns;
 }
 
 // Best ms of `runs` mesh defect checks, the cost a conversion pays once when a mesh is loaded;
@@ -97,19 +104,32 @@ void print_times(const std::vector<Row>& rows, const std::vector<Column>& column
       "see\n"
       "the same machine (grid from SMn_V1, mesh SMn_S1 = marching cubes of V1). \"check\" is the\n"
       "mesh defect check (closedness, orientation) done once when a mesh is loaded; the speed-ups compare 1d on one\n"
-      "thread with the peers on one thread, and 1d on %d threads with 1d on one.\n\n",
+      "thread with the peers on one thread, and 1d on %d threads with 1d on one.\n",
       runs, threads);
-  std::printf("| model | triangles | V1 voxels | check ms |");
+  std::string missing;
+  for (Method m : {Method::kItk, Method::kCgal, Method::kOpenVdb}) {
+    if (!method_available(m)) missing += std::string(missing.empty() ? "" : ", ") + method_name(m);
+  }
+  if (!missing.empty()) std::printf("Peers not in this build of soiq-bench: %s.\n", missing.c_str());
+  std::printf("\n| model | triangles | V1 voxels | check ms |");
+  size_t ratios = 0;
   for (const Column& c : columns) std::printf(" %s ms |", c.title.c_str());
-  std::printf(" itk / 1d | vtk / 1d | 1d x%d speed-up |\n|---|---:|---:|---:|", threads);
-  for (size_t c = 0; c < columns.size() + 3; ++c) std::printf("---:|");
+  for (const Column& c : columns) {
+    if (c.ratio_title.empty()) continue;
+    std::printf(" %s |", c.ratio_title.c_str());
+    ++ratios;
+  }
+  std::printf(" 1d x%d speed-up |\n|---|---:|---:|---:|", threads);
+  for (size_t c = 0; c < columns.size() + ratios + 1; ++c) std::printf("---:|");
   std::printf("\n");
   for (const Row& r : rows) {
     std::printf("| %s | %zu | %lld | %.1f |", r.model.c_str(), r.triangles, (long long)r.voxels, r.check_ms);
     for (const auto& cell : r.cells) std::printf(" %s |", time_cell(cell).c_str());
-    // Columns: 0 = 1d, 1 = 1d xT, 2 = 2d, 3 = vtk-stencil, 4 = itk.
-    std::printf(" %s | %s | %s |\n", ratio(r.cells[4], r.cells[0]).c_str(), ratio(r.cells[3], r.cells[0]).c_str(),
-                ratio(r.cells[0], r.cells[1]).c_str());
+    // Columns 0 and 1 are 1d on one thread and on `threads`.
+    for (size_t c = 0; c < columns.size(); ++c) {
+      if (!columns[c].ratio_title.empty()) std::printf(" %s |", ratio(r.cells[c], r.cells[0]).c_str());
+    }
+    std::printf(" %s |\n", ratio(r.cells[0], r.cells[1]).c_str());
   }
 }
 
