@@ -59,6 +59,7 @@ Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage
   const server::GridChoice choice;  // the default: axis-aligned 1 mm grid, 2-voxel margin
   SOIQ_ASSIGN_OR_RETURN(const RegionSpec shell, parse_region("shell:3"));
   std::map<std::string, std::shared_ptr<const Image>> images;
+  std::vector<db::SurfaceFeatures> to_store;
   int64_t sampled = 0;  // by study, as the server caches them
   for (const db::Candidate& cand : candidates) {
     const db::StructureRecord& s = cand.structure;
@@ -78,7 +79,7 @@ Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage
     // on one structure in 10 only, as the hull costs ~100x the rest; totals are extrapolated.
     const bool sample = out.structures % kBeforeSampling == 0;
     if (sample) {
-      parts.run("(before) mesh copy into StructureInput", [&] { return StructureInput{{}, mesh}; });
+      parts.run("(before) mesh copy into StructureInput", [&] { return TriangleMesh(mesh); });
       ++sampled;
     }
     SOIQ_ASSIGN_OR_RETURN(const VolumeShape vs, parts.run("volume features", [&] { return volume_shape(v.volume); }));
@@ -113,14 +114,16 @@ Result<ColdBreakdown> cold_breakdown(const std::string& db_path, const db::Stage
     const std::vector<db::CachedFeature> entries = {{key, "voxel_volume_mm3", {vs.voxel_volume_mm3}},
                                                     {key, "sphericity", {sphericity}},
                                                     {key, "mean|shell:3|" + mr.sha256 + "|nearest", {f.mean}}};
-    SOIQ_RETURN_IF_ERROR(
-        parts.run("cache write", [&] { return store->put_cached_features(s.surface.sha256, entries); }));
+    to_store.push_back({s.surface.sha256, entries});
     ++out.structures;
     out.triangles += int64_t(mesh.triangles.size());
     out.voxels += vs.voxel_count;
     out.shell_voxels += voxel_count(r);
     out.values[s.id] = {vs.voxel_volume_mm3, sphericity, f.mean};
   }
+  // The server writes what its workers computed in batches, one transaction per round of the query
+  // thread (query_engine.cpp): here all in one.
+  SOIQ_RETURN_IF_ERROR(parts.run("cache write", [&] { return store->put_cached_features(to_store); }));
   out.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.parts_ms = parts.take();
   for (auto& [part, ms] : out.parts_ms)

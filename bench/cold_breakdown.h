@@ -8,7 +8,8 @@
 // and the mesh copy, as the server did before: timed on one structure in 10, totals extrapolated),
 // the 3 mm shell, the image read and decode
 // (once per study, as the server caches images), resampling, intensity features, and the cache
-// write (one transaction per structure, as the server does it).
+// write (one transaction for all: the server batches what its workers finish between two rounds
+// of its query thread).
 // `db_path` is written to (cache entries): pass a copy. Errors: the store's and the parts'.
 
 #include <array>

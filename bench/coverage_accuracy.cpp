@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "bench/smoothed_structure.h"
@@ -43,7 +44,7 @@ std::map<std::string, double> features_of(const TriangleMesh& mesh, const ImageG
   FeatureRequest request;
   request.names = names;
   request.images = {{"image", &image}};
-  auto r = structure_features({v->volume, mesh}, request);
+  auto r = structure_features({v->volume, std::make_shared<const TriangleMesh>(mesh)}, request);
   if (!r.ok()) {
     std::fprintf(stderr, "coverage: %s\n", r.status().to_string().c_str());
     return out;

@@ -142,7 +142,7 @@ Status surface_row(const std::string& name, TriangleMesh mesh, const ImageGeomet
   request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 3}};
   double best = 1e300;
   StructureInput input;
-  input.surface = std::move(mesh);
+  input.surface = std::make_shared<const TriangleMesh>(std::move(mesh));
   for (int r = 0; r < runs; ++r) {
     const auto t0 = Clock::now();
     SOIQ_ASSIGN_OR_RETURN(Voxelization out, voxelize_1d(*input.surface, grid, options));
@@ -230,7 +230,7 @@ Status sts_rows(const std::string& dir, int runs, std::vector<Row>& rows) {
       request.images = {{"PET", &*pet}};
       request.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 5}};
     }
-    SOIQ_RETURN_IF_ERROR(measure(row, StructureInput{from_mask(mask_from_image(mask)), std::nullopt}, request, runs));
+    SOIQ_RETURN_IF_ERROR(measure(row, StructureInput{from_mask(mask_from_image(mask)), nullptr}, request, runs));
     rows.push_back(std::move(row));
   }
   return ok_status();

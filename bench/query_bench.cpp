@@ -179,6 +179,8 @@ Status breakdown(const WorkDir& work, const std::string& pristine, QueryBenchFig
   note("soiq-bench query: where the cold time goes (in-process, one thread)\n");
   fs::copy_file(pristine, work.path() + "/breakdown.db", fs::copy_options::overwrite_existing);
   SOIQ_ASSIGN_OR_RETURN(f.breakdown, cold_breakdown(work.path() + "/breakdown.db", query_stage1_filter()));
+  note("soiq-bench query: the same surfaces converted alone\n");
+  SOIQ_ASSIGN_OR_RETURN(f.alone, conversions_alone(pristine, query_stage1_filter(), f.workers));
   for (const ServerRun& r : f.runs) {
     for (const TimedQuery* t : {&r.cold, &r.warm.back()}) {
       if (t->kept.size() != size_t(std::min<int64_t>(20, int64_t(f.candidates))))

@@ -81,6 +81,57 @@ double print_timings(const QueryBenchFigures& f) {
   return cs2.best;
 }
 
+// The query's costs as ratios to what they cannot be cheaper than, each measured in this run: this
+// machine's absolute speed varies by half from day to day, its ratios far less.
+void print_ratios(const QueryBenchFigures& f, double cold_stage2_best_ms) {
+  std::vector<double> warm_total, warm_stage1;
+  for (const ServerRun& r : f.runs) {
+    for (const TimedQuery& w : r.warm) {
+      warm_total.push_back(w.summary.total_ms());
+      warm_stage1.push_back(w.summary.stage1_ms());
+    }
+  }
+  const Stats wt = stats(warm_total), ws1 = stats(warm_stage1);
+  double one = 0, eight = 0, p95_eight = 0;
+  for (const Throughput& t : f.load) {
+    if (t.clients == 1) one = t.per_second;
+    if (t.clients == 8) {
+      eight = t.per_second;
+      p95_eight = t.latency.p95;
+    }
+  }
+  const auto at_most = [](double v, double limit) { return v <= limit ? "met" : "**not met**"; };
+  std::printf("| ratio | value | from | target |\n|---|---:|---|---|\n");
+  const double cold_ratio = cold_stage2_best_ms / f.alone.convert_ms;
+  std::printf(
+      "| cold query / the same %lld surfaces converted alone on %d threads | %.2fx | stage2_ms %.0f ms (best), "
+      "conversions %.0f ms (their read and decode another %.0f ms) | <= 1.5x: %s |\n",
+      (long long)f.alone.structures, f.alone.threads, cold_ratio, cold_stage2_best_ms, f.alone.convert_ms,
+      f.alone.read_decode_ms, at_most(cold_ratio, 1.5));
+  const double cold_with_decode = cold_stage2_best_ms / (f.alone.convert_ms + f.alone.read_decode_ms);
+  std::printf("| cold query / the same surfaces read, decoded and converted alone | %.2fx | | |\n", cold_with_decode);
+  const double warm_ratio = wt.best / ws1.best;
+  std::printf("| warm query's server total_ms / its stage1_ms | %.2fx | %.1f ms / %.1f ms (bests) | <= 1.5x: %s |\n",
+              warm_ratio, wt.best, ws1.best, at_most(warm_ratio, 1.5));
+  if (one > 0 && eight > 0) {
+    const double scaling = eight / one;
+    std::printf(
+        "| 8 clients' queries/s / 1 client's | %.2fx | %.1f / %.1f q/s, p95 at 8 clients %.1f ms | >= 1.9x: %s |\n",
+        scaling, eight, one, p95_eight, scaling >= 1.9 ? "met" : "**not met**");
+  }
+  std::vector<double> after, stored;
+  if (f.precompute.benchmark_after.client_ms > 0) after.push_back(f.precompute.benchmark_after.client_ms);
+  for (const TimedQuery& t : f.precompute.precomputed_set) stored.push_back(t.client_ms);
+  if (!after.empty() && !stored.empty()) {
+    const double r = after[0] / stats(stored).best;
+    std::printf(
+        "| benchmark query after precompute / query of stored values only (clients) | %.2fx | %.1f ms / %.1f ms "
+        "| <= 2x: %s |\n",
+        r, after[0], stats(stored).best, at_most(r, 2));
+  }
+  std::printf("\n");
+}
+
 void print_concurrent_clients(const QueryBenchFigures& f) {
   std::printf("Concurrent clients repeating the warm query for %.0f s each (own channel per client):\n\n", f.seconds);
   std::printf("| clients | queries | queries/s | p50 | p95 |\n|---:|---:|---:|---:|---:|\n");
@@ -169,6 +220,7 @@ void print_query_report(const QueryBenchFigures& f) {
   print_concurrent_clients(f);
   print_breakdown(f, cold_stage2_best_ms);
   print_precompute(f);
+  print_ratios(f, cold_stage2_best_ms);
 }
 
 }  // namespace soiq::bench

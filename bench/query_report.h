@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bench/cold_breakdown.h"
+#include "bench/conversions_alone.h"
 #include "bench/query_cohort.h"
 #include "bench/query_load.h"
 #include "bench/query_precompute.h"
@@ -24,6 +25,7 @@ struct QueryBenchFigures {
   std::vector<ServerRun> runs;
   std::vector<Throughput> load;
   ColdBreakdown breakdown;
+  ConversionsAlone alone;  // the same surfaces converted alone on the workers' thread count
   PrecomputeFigures precompute;
   IngestFigures ingest_precompute_on;
 };

@@ -111,7 +111,7 @@ Result<StructureInput> load_structure(const FeaturesArgs& a) {
   }
   SOIQ_ASSIGN_OR_RETURN(MeshOnGrid m, convert_mesh_file(a.input, a.grid));
   s.volume = std::move(m.voxels.volume);
-  s.surface = std::move(m.mesh);
+  s.surface = std::make_shared<const TriangleMesh>(std::move(m.mesh));
   return s;
 }
 

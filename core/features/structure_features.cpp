@@ -231,7 +231,7 @@ Status region_section(const Ask& ask, const RegionSpec& spec, FeatureReport& rep
 }  // namespace
 
 Result<FeatureReport> structure_features(const StructureInput& input, const FeatureRequest& request) {
-  const bool has_surface = input.surface.has_value();
+  const bool has_surface = input.surface != nullptr;
   for (const std::string& n : request.names) {
     SOIQ_RETURN_IF_ERROR(check_feature_name(n));
     if (!has_surface && mask_feature(n)) {

@@ -46,6 +46,7 @@
 // call. On our 2-vCPU machines two threads take SM1's full set from 11 to 7 ms (BENCHMARKS.md).
 // Safe to call from several threads at once.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,7 +65,9 @@ namespace soiq {
 
 struct StructureInput {
   RunLengthVolume volume;
-  std::optional<TriangleMesh> surface;
+  // Shared, not copied: a service keeps decoded surfaces in a cache, and a copy of a large one
+  // cost a tenth of its conversion.
+  std::shared_ptr<const TriangleMesh> surface;
 };
 
 struct NamedImage {

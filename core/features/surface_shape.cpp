@@ -32,15 +32,18 @@ Result<SurfaceShape> surface_shape(const TriangleMesh& mesh, const Mat3& box_axe
   // The used vertices, and their extents along the box axes (the columns of box_axes).
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  // The hull and the diameter work on a copy of the used vertices; without them none is made (a
+  // fresh copy of a large surface's vertices was a tenth of a cold query, most of it page faults).
+  const bool keep_points = hull_part != HullPart::kSkip;
   std::vector<Vec3> points;
-  points.reserve(nv);
+  if (keep_points) points.reserve(nv);
   for (size_t v = 0; v < nv; ++v) {
     if (!measures.used[v]) continue;
     const Vec3& p = mesh.vertices_mm[v];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
       return invalid_argument("mesh vertex " + std::to_string(v) + " has a non-finite coordinate");
     }
-    points.push_back(p);
+    if (keep_points) points.push_back(p);
     for (int c = 0; c < 3; ++c) {
       const double x = box_axes[0][c] * p[0] + box_axes[1][c] * p[1] + box_axes[2][c] * p[2];
       lo[c] = std::min(lo[c], x), hi[c] = std::max(hi[c], x);

@@ -64,15 +64,24 @@ bool fill_line(LineCrossing* first, LineCrossing* last, int64_t nx, FillRule rul
 
 namespace {
 
-LineRuns fill_lines_here(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
-                         bool drop_unbalanced) {
+LineRuns fill_lines_here(const std::vector<const std::vector<LineCrossingAt>*>& parts, int64_t first_line,
+                         int64_t lines, int64_t nx, FillRule rule, bool drop_unbalanced) {
+  // Line l of this range is line first_line + l of the parts; the unsigned comparison also drops
+  // lines before the range.
+  auto in_range = [&](const LineCrossingAt& c) { return uint64_t(c.line - first_line) < uint64_t(lines); };
   std::vector<int64_t> start(size_t(lines + 1), 0);
-  for (const LineCrossingAt& c : crossings) ++start[size_t(c.line + 1)];
+  for (const auto* part : parts) {
+    for (const LineCrossingAt& c : *part)
+      if (in_range(c)) ++start[size_t(c.line - first_line + 1)];
+  }
   for (int64_t l = 0; l < lines; ++l) start[size_t(l + 1)] += start[size_t(l)];
-  std::vector<LineCrossing> grouped(crossings.size());
+  std::vector<LineCrossing> grouped(size_t(start[size_t(lines)]));
   {
     std::vector<int64_t> fill(start.begin(), start.end() - 1);
-    for (const LineCrossingAt& c : crossings) grouped[size_t(fill[size_t(c.line)]++)] = c.crossing;
+    for (const auto* part : parts) {
+      for (const LineCrossingAt& c : *part)
+        if (in_range(c)) grouped[size_t(fill[size_t(c.line - first_line)]++)] = c.crossing;
+    }
   }
   LineRuns r;
   r.line_start.resize(size_t(lines + 1));
@@ -93,9 +102,14 @@ LineRuns fill_lines_here(std::vector<LineCrossingAt>& crossings, int64_t lines, 
 
 }  // namespace
 
-LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+LineRuns fill_lines(const std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
                     bool drop_unbalanced) {
-  return cpu_dispatch([&] { return fill_lines_here(crossings, lines, nx, rule, drop_unbalanced); });
+  return cpu_dispatch([&] { return fill_lines_here({&crossings}, 0, lines, nx, rule, drop_unbalanced); });
+}
+
+LineRuns fill_lines(const std::vector<const std::vector<LineCrossingAt>*>& parts, int64_t first_line, int64_t lines,
+                    int64_t nx, FillRule rule, bool drop_unbalanced) {
+  return cpu_dispatch([&] { return fill_lines_here(parts, first_line, lines, nx, rule, drop_unbalanced); });
 }
 
 }  // namespace soiq

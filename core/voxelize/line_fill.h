@@ -53,8 +53,14 @@ struct LineRuns {
 
 // Groups `crossings` by line (a counting sort, O(crossings + lines)) and fills every line with
 // fill_line. Unbalanced lines keep their runs, or have none when `drop_unbalanced` (robust mode's
-// abstention). Reorders `crossings`' storage as scratch.
-LineRuns fill_lines(std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
+// abstention).
+LineRuns fill_lines(const std::vector<LineCrossingAt>& crossings, int64_t lines, int64_t nx, FillRule rule,
                     bool drop_unbalanced);
+
+// The same for lines [first_line, first_line + lines) of the crossings in several buffers (numbered
+// from first_line in the result); crossings of other lines are left out. A line's crossings are
+// taken in the order of the parts, then of each part.
+LineRuns fill_lines(const std::vector<const std::vector<LineCrossingAt>*>& parts, int64_t first_line, int64_t lines,
+                    int64_t nx, FillRule rule, bool drop_unbalanced);
 
 }  // namespace soiq

@@ -8,6 +8,7 @@
 #include "core/base/parallel_for.h"
 #include "core/base/run_tasks.h"
 #include "core/geometry/exact_predicates.h"
+#include "core/voxelize/crossing_buffers.h"
 #include "core/voxelize/line_fill.h"
 #include "core/voxelize/scan_lattice.h"
 #include "core/voxelize/three_axis_vote.h"
@@ -19,8 +20,6 @@ namespace {
 using scanline::index_space_problem;
 using scanline::ScanProblem;
 using scanline::Slabs;
-using scanline::SlabTriangles;
-using scanline::triangles_by_slab;
 
 // The first voxel centre at or after the crossing of line (j,k) with the plane of triangle abc
 // (index space, vertices v[0..2]); `x` is the interpolated crossing, `tolerance` a bound on its
@@ -67,38 +66,54 @@ void triangle_crossings(const ScanProblem& p, const std::array<int32_t, 3>& tri,
   });
 }
 
-LineRuns scan_slab(const ScanProblem& p, const SlabTriangles& slab_triangles, int64_t slab, int64_t k0, int64_t k1,
-                   bool drop_unbalanced) {
+// Every row line of slices [k0, k1) from the triangles they reach, on one thread; lines numbered
+// from slice k0.
+LineRuns scan_slices(const ScanProblem& p, int64_t k0, int64_t k1, bool drop_unbalanced) {
   const auto& tris = *p.triangles;
-  // Each thread keeps its crossing buffer from one slab and conversion to the next: a fresh
-  // megabyte-sized buffer per slab came from mmap (or a trimmed arena) each time, and its page
-  // faults made whole processes run 2-thread conversions at 1-thread speed.
+  // Each thread keeps its crossing buffer from one conversion to the next: a fresh megabyte-sized
+  // buffer each time came from mmap (or a trimmed arena), and its page faults cost as much as the
+  // walk.
   thread_local std::vector<LineCrossingAt> crossings;
   crossings.clear();
   // Enough for a closed surface crossing each line it reaches a few times, so growth (a copy of
   // every crossing) is rare.
   crossings.reserve(size_t(std::max<int64_t>(4 * p.ny * (k1 - k0), int64_t(tris.size()) / 2)));
-  slab_triangles.for_each_in_slab(slab, tris.size(),
-                                  [&](size_t t) { triangle_crossings(p, tris[t], k0, k1 - 1, k0, crossings); });
+  for (const auto& tri : tris) triangle_crossings(p, tri, k0, k1 - 1, k0, crossings);
   return fill_lines(crossings, p.ny * (k1 - k0), p.nx, p.rule, drop_unbalanced);
 }
 
-// Scans every row line of the grid, slabs of slices in parallel, and concatenates the slabs in
-// slice order, so the result does not depend on the thread count.
+// Scans every row line of the grid. With several threads, each walks an equal share of the
+// triangles over the whole grid, then each fills the lines of one slab of slices from every
+// share's crossings there, and the slabs are concatenated in slice order. A triangle is visited
+// once, by one thread, with no pass sorting triangles into slabs first (two passes over them that
+// cost as much as a third of the walk), and a slab heavy with surface costs only its fill, which
+// is small. The crossings of a line come in triangle order either way, so the result does not
+// depend on the thread count.
 LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
+  if (threads <= 1 || p.nz < 2) {
+    return cpu_dispatch([&] { return scan_slices(p, 0, p.nz, drop_unbalanced); });
+  }
+  const auto& tris = *p.triangles;
+  const int64_t shares = threads;
+  std::vector<CrossingBufferLease> found(static_cast<size_t>(shares));
+  run_tasks(shares, threads, [&](int64_t c) {
+    cpu_dispatch([&] {
+      std::vector<LineCrossingAt>& out = *found[size_t(c)];
+      const size_t begin = tris.size() * size_t(c) / size_t(shares), end = tris.size() * size_t(c + 1) / size_t(shares);
+      out.reserve(size_t(std::max<int64_t>(4 * p.ny * p.nz / shares, int64_t(end - begin) / 2)));
+      for (size_t t = begin; t < end; ++t) triangle_crossings(p, tris[t], 0, p.nz - 1, 0, out);
+    });
+  });
   Slabs slabs;
   slabs.nz = p.nz;
-  // Two slabs per thread: a slab heavy with surface does not leave the other threads idle, and few
-  // slabs keep the per-slab costs (bucketing, merging) small (4 per thread was 7 % slower on SM1).
-  slabs.count = std::max<int64_t>(1, std::min<int64_t>(p.nz, threads <= 1 ? 1 : int64_t(threads) * 2));
-  const SlabTriangles slab_triangles = triangles_by_slab(p, slabs, threads);
+  slabs.count = std::min<int64_t>(p.nz, threads);
+  std::vector<const std::vector<LineCrossingAt>*> parts;
+  for (CrossingBufferLease& share : found) parts.push_back(&*share);
   std::vector<LineRuns> results(static_cast<size_t>(slabs.count));
-  // Slabs are handed out one at a time, so a slab heavy with surface does not hold up the rest.
   run_tasks(slabs.count, threads, [&](int64_t s) {
-    results[size_t(s)] = cpu_dispatch(
-        [&] { return scan_slab(p, slab_triangles, s, slabs.k_begin(s), slabs.k_begin(s + 1), drop_unbalanced); });
+    const int64_t first_line = p.ny * slabs.k_begin(s), end_line = p.ny * slabs.k_begin(s + 1);
+    results[size_t(s)] = fill_lines(parts, first_line, end_line - first_line, p.nx, p.rule, drop_unbalanced);
   });
-  if (slabs.count == 1) return std::move(results[0]);
   // Concatenate in slice order; each slab copies its own part in parallel.
   std::vector<int64_t> run_base(size_t(slabs.count + 1), 0);
   LineRuns out;

@@ -294,8 +294,7 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
     images.push_back(*img);
     request.images.push_back(NamedImage{s.sha256, img->get()});
   }
-  StructureInput input{std::move(v.volume), std::nullopt};
-  if (core_needs_mesh) input.surface = *mesh;
+  StructureInput input{std::move(v.volume), core_needs_mesh ? mesh : nullptr};
   Result<FeatureReport> report = structure_features(input, request);
   if (!report.ok()) {
     return Status(report.status().code(),

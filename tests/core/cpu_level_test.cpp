@@ -170,7 +170,7 @@ TEST(CpuLevelTest, EveryFeatureIsTheSameAtEveryLevel) {
   ramp.geometry = g;
   ramp.voxels.resize(size_t(g.voxel_count()));
   for (size_t i = 0; i < ramp.voxels.size(); ++i) ramp.voxels[i] = float(std::sin(0.001 * double(i)) * 100 + 0.37 * i);
-  const StructureInput input{v->volume, sphere};
+  const StructureInput input{v->volume, std::make_shared<const TriangleMesh>(sphere)};
   for (const Interpolation interpolation : {Interpolation::kNearest, Interpolation::kLinear}) {
     FeatureRequest request;  // every name
     request.images = {{"ramp", &ramp}};

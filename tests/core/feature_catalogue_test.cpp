@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -182,7 +183,7 @@ TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsk
   ASSERT_TRUE(grid.ok());
   const auto v = voxelize_1d(mesh, *grid);
   ASSERT_TRUE(v.ok());
-  const auto all = structure_features({v->volume, mesh}, FeatureRequest{});
+  const auto all = structure_features({v->volume, std::make_shared<const TriangleMesh>(mesh)}, FeatureRequest{});
   ASSERT_TRUE(all.ok()) << all.status().to_string();
   // Shape features come in catalogue order, the stored surface's before the mask's; the
   // coverage-weighted ones only when named.
@@ -202,7 +203,7 @@ TEST(FeatureCatalogue, AReportFollowsTheCatalogueOrderAndHasNoHullValueUnlessAsk
   FeatureRequest lean;
   // The diameters alone are computed without the hulls (HullPart::kDiameterOnly): same values.
   lean.names = {"sphericity", "mask_surface_area_mm2", "maximum_3d_diameter_mm", "mask_maximum_3d_diameter_mm"};
-  const auto some = structure_features({v->volume, mesh}, lean);
+  const auto some = structure_features({v->volume, std::make_shared<const TriangleMesh>(mesh)}, lean);
   ASSERT_TRUE(some.ok());
   ASSERT_EQ(some->features.size(), 4u);
   for (const Feature& f : some->features) {

@@ -56,7 +56,7 @@ StructureInput sphere_structure(int segments, int64_t n) {
   g.origin_mm = {o, o, o};
   auto v = voxelize_1d(sphere, g);
   EXPECT_TRUE(v.ok()) << v.status().to_string();
-  return {v.ok() ? v->volume : empty_volume(g), sphere};
+  return {v.ok() ? v->volume : empty_volume(g), std::make_shared<const TriangleMesh>(sphere)};
 }
 
 TEST(StructureFeatures, IbsiPhantomThroughTheEntryPoint) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -218,7 +219,7 @@ TEST(UnevenGrid, MaskSurfaceFeaturesAreThoseOfVtksMarchingCubesInMm) {
       FeatureRequest request;
       request.names = {"mesh_volume_mm3", "surface_area_mm2", "maximum_2d_diameter_row_mm",
                        "maximum_2d_diameter_slice_mm", "voxel_volume_mm3"};
-      auto report = structure_features({v->volume, std::nullopt}, request);
+      auto report = structure_features({v->volume, nullptr}, request);
       ASSERT_TRUE(report.ok()) << report.status().to_string();
       auto d = maximum_2d_diameters(*vtk, g);
       ASSERT_TRUE(d.ok());

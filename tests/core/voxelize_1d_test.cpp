@@ -92,6 +92,33 @@ TEST(Voxelize1D, ThreadCountChangesNothing) {
   }
 }
 
+// Threads share the triangles, then the slabs of slices: grids with fewer slices than threads, and
+// robust mode's open lines (dropped per slab), must come out as with one thread.
+TEST(Voxelize1D, ThreadCountChangesNothingOnThinGridsOrOpenSurfaces) {
+  const TriangleMesh m = merge(torus({20, 21, 19.5}, 12, 4, 90, 40), uv_sphere({20.3, 20, 20}, 6, 40, 80));
+  for (int64_t slices : {1, 2, 3}) {
+    ImageGeometry g = cube_grid(41);
+    g.dims[2] = slices;
+    g.origin_mm[2] = 18.5;
+    const auto one = must_voxelize(m, g);
+    EXPECT_GT(voxel_count(one.volume), 0) << slices << " slices";
+    for (int t : {2, 8}) {
+      VoxelizeOptions o;
+      o.threads = t;
+      EXPECT_EQ(one.volume.runs, must_voxelize(m, g, o).volume.runs) << slices << " slices, " << t << " threads";
+    }
+  }
+  TriangleMesh open = m;
+  open.triangles.erase(open.triangles.begin() + 300, open.triangles.begin() + 320);
+  VoxelizeOptions robust;
+  robust.robust = true;
+  const auto one = must_voxelize(open, cube_grid(41), robust);
+  robust.threads = 3;
+  const auto three = must_voxelize(open, cube_grid(41), robust);
+  EXPECT_EQ(one.volume.runs, three.volume.runs);
+  EXPECT_EQ(one.volume.line_start, three.volume.line_start);
+}
+
 TEST(Voxelize1D, RobustModeEqualsPlainModeOnClosedMeshes) {
   const TriangleMesh m = merge(torus({20, 21, 19.5}, 12, 4, 60, 30), uv_sphere({20.3, 20, 20}, 6, 30, 60));
   const auto g = cube_grid(41);

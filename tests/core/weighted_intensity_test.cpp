@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 
 #include "core/features/intensity_features.h"
 #include "core/features/structure_features.h"
@@ -81,7 +82,7 @@ TEST(WeightedIntensity, MeanOverASmallSphereInALinearField) {
         }
     auto v = voxelize_1d(sphere, g);
     ASSERT_TRUE(v.ok());
-    StructureInput input{v->volume, sphere};
+    StructureInput input{v->volume, std::make_shared<const TriangleMesh>(sphere)};
     FeatureRequest request;
     request.names = {"mean", "mean_w", "voxel_count_w", "volume_w_mm3", "integrated_intensity_w", "voxel_volume_mm3"};
     request.images = {{"field", &field}};
@@ -111,18 +112,18 @@ TEST(WeightedIntensity, OnlyWhenNamedAndOnlyWithASurface) {
   Image flat{g, std::vector<float>(size_t(g.voxel_count()), 7.f)};
   FeatureRequest every;
   every.images = {{"flat", &flat}};
-  auto r = structure_features({v->volume, sphere}, every);
+  auto r = structure_features({v->volume, std::make_shared<const TriangleMesh>(sphere)}, every);
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   for (const Feature& f : r->features) EXPECT_EQ(f.name.find("_w"), std::string::npos) << f.name << " not named";
   FeatureRequest named = every;
   named.names = {"mean_w"};
-  r = structure_features({v->volume, std::nullopt}, named);
+  r = structure_features({v->volume, nullptr}, named);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(r.status().message().find("surface model"), std::string::npos) << r.status().message();
   // A shell has no coverage weights: only the inside region answers mean_w.
   named.regions = {RegionSpec{}, RegionSpec{RegionKind::kShell, 2}};
-  r = structure_features({v->volume, sphere}, named);
+  r = structure_features({v->volume, std::make_shared<const TriangleMesh>(sphere)}, named);
   ASSERT_TRUE(r.ok()) << r.status().to_string();
   ASSERT_EQ(r->features.size(), 1u);
   EXPECT_EQ(r->features[0].region, "inside");

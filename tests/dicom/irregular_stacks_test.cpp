@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -206,7 +207,8 @@ TEST_P(IrregularStack, ImportedContoursEqualPydicomsFillOnEachSlice) {
   // The voxels' volume (each slice's voxels times their own volume) is the ellipsoid's to within
   // the slices' sampling of its ends; the feature engine measures it so, and the surface (marching
   // cubes of the mask, in mm) agrees.
-  auto report = structure_features({study.structure->volume, study.structure->surface}, {});
+  auto report =
+      structure_features({study.structure->volume, std::make_shared<const TriangleMesh>(study.structure->surface)}, {});
   ASSERT_TRUE(report.ok()) << report.status().to_string();
   std::map<std::string, double> f;
   for (const Feature& x : report->features)

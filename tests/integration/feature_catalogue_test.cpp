@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -112,7 +113,7 @@ TEST_F(FeatureCatalogueTest, EveryFeatureIsTheSameFromTheServerTheLibraryAndTheC
   FeatureRequest request;
   request.names = names;
   request.images.push_back({"MR", &*image});
-  Result<FeatureReport> report = structure_features({v->volume, *mesh}, request);
+  Result<FeatureReport> report = structure_features({v->volume, std::make_shared<const TriangleMesh>(*mesh)}, request);
   ASSERT_TRUE(report.ok()) << report.status().to_string();
   Values library;
   for (const Feature& f : report->features) library[key(f.name, f.region, f.image)] = f.value;

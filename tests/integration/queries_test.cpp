@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <thread>
 
 #include "core/features/asymmetry_index.h"
@@ -39,7 +40,7 @@ std::map<std::string, double> offline_features(const CohortStructure& s, const s
   request.regions.clear();
   for (const auto& r : regions) request.regions.push_back(*parse_region(r));
   request.images.push_back({"MR", &*image});
-  Result<FeatureReport> report = structure_features({v->volume, *mesh}, request);
+  Result<FeatureReport> report = structure_features({v->volume, std::make_shared<const TriangleMesh>(*mesh)}, request);
   EXPECT_TRUE(report.ok()) << report.status().to_string();
   std::map<std::string, double> out;
   for (const Feature& f : report->features) out[f.name + (f.region.empty() ? "" : "[" + f.region + "]")] = f.value[0];
@@ -142,7 +143,7 @@ TEST_F(QueryTest, TheMaskSurfaceValuesOfAStoredSurfaceAreServedAlone) {
   ASSERT_TRUE(v.ok());
   FeatureRequest request;
   request.names = {"mask_sphericity"};
-  Result<FeatureReport> offline = structure_features({v->volume, *mesh}, request);
+  Result<FeatureReport> offline = structure_features({v->volume, std::make_shared<const TriangleMesh>(*mesh)}, request);
   ASSERT_TRUE(offline.ok()) << offline.status().to_string();
   ASSERT_EQ(offline->features.size(), 1u);
   EXPECT_DOUBLE_EQ(r->features(0).value(0), offline->features[0].value[0]);
