@@ -85,10 +85,9 @@ LineRuns scan_slices(const ScanProblem& p, int64_t k0, int64_t k1, bool drop_unb
 // Scans every row line of the grid. With several threads, each walks an equal share of the
 // triangles over the whole grid, then each fills the lines of one slab of slices from every
 // share's crossings there, and the slabs are concatenated in slice order. A triangle is visited
-// once, by one thread, with no pass sorting triangles into slabs first (two passes over them that
-// cost as much as a third of the walk), and a slab heavy with surface costs only its fill, which
-// is small. The crossings of a line come in triangle order either way, so the result does not
-// depend on the thread count.
+// once, by one thread, with no pass sorting triangles into slabs first (two more passes over every
+// triangle), and a slab heavy with surface costs only its fill, which is small. The crossings of a
+// line come in triangle order either way, so the result does not depend on the thread count.
 LineRuns scan(const ScanProblem& p, int threads, bool drop_unbalanced) {
   if (threads <= 1 || p.nz < 2) {
     return cpu_dispatch([&] { return scan_slices(p, 0, p.nz, drop_unbalanced); });

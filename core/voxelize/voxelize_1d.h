@@ -22,7 +22,7 @@
 //                      (message names robust mode).
 //   RESOURCE_EXHAUSTED  grid over options.max_voxels (checked before allocating).
 // Cost
-//   O(T + crossings + lines): each slab of slices visits only the triangles listed for it; memory
+//   O(T + crossings + lines): each triangle is visited once, on one thread; memory
 //   O(crossings + runs + lines). Robust mode materialises three dense votes: O(voxels).
 //   Thread-safe; results are identical for any thread count.
 // Caveats
