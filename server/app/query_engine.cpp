@@ -271,36 +271,49 @@ class QueryRun {
       skips_.add(s.error, s.structure.study_uid, s.structure.id);
       return ok_status();
     }
-    QueryRow row;
+    // Only the scalars the predicates and the order read; the row itself is built when it is
+    // sent, so an ordered query with a limit copies records and values for its limit rows alone.
     std::vector<std::optional<double>> scalar(q_.features.size());
-    for (size_t f = 0; f < q_.features.size(); ++f) {
-      std::optional<std::vector<double>> v = value_for(f, i);
-      RowValue& out = row.values.emplace_back(RowValue{q_.features[f].label, {}});
-      if (!v) continue;
-      out.values = *v;
-      if (v->size() == 1) scalar[f] = (*v)[0];
+    auto scalar_of = [&](size_t f) -> const std::optional<double>& {
+      if (!scalar[f]) {
+        std::optional<std::vector<double>> v = value_for(f, i);
+        if (v && v->size() == 1) scalar[f] = (*v)[0];
+      }
+      return scalar[f];
+    };
+    for (const QueryPredicate& p : q_.where) {
+      const std::optional<double>& v = scalar_of(p.feature);
+      if (!v || !compare(*v, p.op, p.value)) return ok_status();
     }
-    for (const QueryPredicate& p : q_.where)
-      if (!scalar[p.feature] || !compare(*scalar[p.feature], p.op, p.value)) return ok_status();
     ++summary_.matched;
-    row.structure = s.structure;
-    row.patient = candidates_[i].patient;
-    row.study = candidates_[i].study;
     if (q_.order_by) {
-      const std::optional<double> key = scalar[*q_.order_by];
-      ordered_.emplace_back(key ? *key : std::nan(""), std::move(row));
+      const std::optional<double>& key = scalar_of(*q_.order_by);
+      ordered_.emplace_back(key ? *key : std::nan(""), i);
       return ok_status();
     }
-    return send(std::move(row));
+    return send(i);
   }
 
-  Status send(QueryRow&& row) {
+  // Candidate i's row: its records and every asked value it has.
+  QueryRow row_of(size_t i) const {
+    QueryRow row;
+    for (size_t f = 0; f < q_.features.size(); ++f) {
+      RowValue& out = row.values.emplace_back(RowValue{q_.features[f].label, {}});
+      if (std::optional<std::vector<double>> v = value_for(f, i)) out.values = std::move(*v);
+    }
+    row.structure = subjects_[own_[i]].structure;
+    row.patient = candidates_[i].patient;
+    row.study = candidates_[i].study;
+    return row;
+  }
+
+  Status send(size_t candidate) {
     if (summary_.returned >= q_.limit) {
       enough_ = true;
       return ok_status();
     }
     ++summary_.returned;
-    SOIQ_RETURN_IF_ERROR(out_.row(std::move(row)));
+    SOIQ_RETURN_IF_ERROR(out_.row(row_of(candidate)));
     if (summary_.returned >= q_.limit) enough_ = true;
     return ok_status();
   }
@@ -341,7 +354,7 @@ class QueryRun {
     });
     for (auto& entry : ordered_) {
       if (enough_) break;
-      SOIQ_RETURN_IF_ERROR(send(std::move(entry.second)));
+      SOIQ_RETURN_IF_ERROR(send(entry.second));
     }
     return ok_status();
   }
@@ -362,7 +375,7 @@ class QueryRun {
   std::vector<std::optional<size_t>> twin_;  // candidate -> its twin's subject
   std::map<std::string, std::vector<db::SeriesRecord>> series_of_;
   std::vector<bool> evaluated_;
-  std::vector<std::pair<double, QueryRow>> ordered_;
+  std::vector<std::pair<double, size_t>> ordered_;  // order key, candidate
   int64_t done_ = 0;
   bool enough_ = false;  // limit rows sent: nothing more to compute
   QuerySummary summary_;
