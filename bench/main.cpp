@@ -10,7 +10,7 @@
 //   soiq-bench features --models DIR [--sts DIR] [--runs N]
 //   soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]
 //   soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]
-//   soiq-bench codec [--runs N] [--label LABEL_IMAGE] [--image IMAGE]
+//   soiq-bench codec [--runs N] [--label LABEL_IMAGE] [--image IMAGE] [--decode-only]
 //   soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]
 //   soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]
 //                    [--patients N] [--matched N]
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
       {"--out",    "--spacing", "--reference", "--method", "--runs",    "--threads",  "--pin",      "-o",
        "--models", "--sts",     "--dir",       "--soiqd",  "--workers", "--seconds",  "--patients", "--matched",
        "--label",  "--patient", "--image",     "--batch",  "--names",   "--cpu-level"},
-      {"--json", "--small"});
+      {"--json", "--small", "--decode-only"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());
     return 2;
