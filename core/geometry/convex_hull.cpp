@@ -109,17 +109,33 @@ class Quickhull {
     return int32_t(faces_.size() - 1);
   }
 
-  // Puts q into the outside set of the first of `candidates` it lies strictly above; a point
-  // above none is inside or on the hull and is dropped for good.
-  void assign(int32_t q, const std::vector<int32_t>& candidates) {
-    for (const int32_t f : candidates) {
+  // Puts q into the outside set of the first face of cone_ it lies strictly above; a point above
+  // none is inside or on the hull and is dropped for good. The filter reads the cone's planes
+  // from planes_ (set_planes()), packed in cone order, not from the faces scattered in faces_.
+  void assign(int32_t q) {
+    const Vec3& p = p_[size_t(q)];
+    for (size_t c = 0; c < planes_.size(); ++c) {
+      const Plane& plane = planes_[c];
+      // side()'s height: the same operations in the same order, so the same double.
+      double d = plane.normal[0] * (p[0] - plane.origin[0]) + plane.normal[1] * (p[1] - plane.origin[1]) +
+                 plane.normal[2] * (p[2] - plane.origin[2]);
+      if (!(d > plane.bound)) {
+        if (d < -plane.bound || lattice_) continue;
+        if (orient(plane.v0, plane.v1, plane.v2, q) <= 0) continue;  // within the bound: exact
+      }
+      const int32_t f = cone_[c];
       Face& face = faces_[size_t(f)];
-      double d = 0;
-      if (side(face, q, d) <= 0) continue;
       if (face.outside < 0) pending_.push_back(f);
       next_[size_t(q)] = face.outside, face.outside = q;
       if (face.furthest < 0 || d > face.furthest_distance) face.furthest = q, face.furthest_distance = d;
       return;
+    }
+  }
+  void set_planes() {
+    planes_.clear();
+    for (const int32_t f : cone_) {
+      const Face& face = faces_[size_t(f)];
+      planes_.push_back({face.normal, face.origin, face.bound, face.v[0], face.v[1], face.v[2]});
     }
   }
 
@@ -134,6 +150,12 @@ class Quickhull {
   std::vector<int32_t> pending_;  // faces that got a non-empty outside set; a stack, newest first
                                   // (a reused slot may be listed again: checked when popped)
   std::vector<int32_t> free_faces_, cone_;
+  struct Plane {
+    Vec3 normal, origin;
+    double bound;
+    int32_t v0, v1, v2;
+  };
+  std::vector<Plane> planes_;  // of cone_'s faces, in order
   Vec3 interior_{0, 0, 0};
   uint32_t epoch_ = 0;
   std::vector<int32_t> stack_, visible_;
@@ -226,9 +248,10 @@ Status Quickhull::initial_tetrahedron() {
       }
     }
   }
+  set_planes();
   for (size_t i = 0; i < n; ++i) {
     const auto q = int32_t(i);
-    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q, cone_);
+    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q);
   }
   return ok_status();
 }
@@ -278,12 +301,13 @@ void Quickhull::add_point(int32_t start) {
     faces_[size_t(f)].adj[1] = g;
     faces_[size_t(g)].adj[2] = f;
   }
+  set_planes();
   for (const int32_t f : visible_) {
     Face& dead = faces_[size_t(f)];
     dead.alive = false;
     for (int32_t q = dead.outside; q >= 0;) {
       const int32_t after = next_[size_t(q)];
-      if (q != apex) assign(q, cone_);
+      if (q != apex) assign(q);
       q = after;
     }
     dead.outside = -1;
@@ -313,7 +337,8 @@ ConvexHull Quickhull::result() const {
       for (const int32_t w : other.v) {
         if (w != face.v[e] && w != face.v[(e + 1) % 3]) opposite = w;
       }
-      if (orient(face.v[0], face.v[1], face.v[2], opposite) != 0) {
+      double height = 0;
+      if (side(face, opposite, height) != 0) {  // the exact sign, the filter first
         for (const int32_t w : {face.v[e], face.v[(e + 1) % 3]}) {
           if (creases[size_t(w)] < 3) ++creases[size_t(w)];
         }
