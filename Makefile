@@ -73,8 +73,9 @@ soak: build
 # Benchmarks build apart (build-bench) as `make run` builds, portably: the hot kernels pick the CPU's
 # level at run time (core/base/cpu_dispatch.h). A second soiq-bench tuned for this CPU
 # (build-bench-native, -march=native) runs beside it once, to show what the flag would still add.
+# SOIQ_ARCH= is passed explicitly: a build-bench configured before keeps its cached -march otherwise.
 bench:
-	$(MAKE) build BUILD=build-bench
+	$(MAKE) build BUILD=build-bench CMAKE_FLAGS=-DSOIQ_ARCH=
 	cmake -S . -B build-bench-native -DSOIQ_ARCH=native >/dev/null
 	cmake --build build-bench-native -j $(JOBS) --target soiq-bench
 	bench/run build-bench build-bench-native
