@@ -75,7 +75,7 @@ LineRuns fill_lines_here(const std::vector<const std::vector<LineCrossingAt>*>& 
       if (in_range(c)) ++start[size_t(c.line - first_line + 1)];
   }
   for (int64_t l = 0; l < lines; ++l) start[size_t(l + 1)] += start[size_t(l)];
-  std::vector<LineCrossing> grouped(size_t(start[size_t(lines)]));
+  std::vector<LineCrossing> grouped(static_cast<size_t>(start[size_t(lines)]));
   {
     std::vector<int64_t> fill(start.begin(), start.end() - 1);
     for (const auto* part : parts) {
