@@ -101,7 +101,8 @@ inline SliceRange slice_range(const ScanProblem& p, double z0, double z1, double
           (std::upper_bound(sz.begin(), sz.end(), zmax) - sz.begin()) - 1};
 }
 
-// With several slabs, the triangles each slab must visit, in one flat array grouped by slab:
+// Coverage fractions (coverage_1d.h), whose slices each need all their triangles at once: with
+// several slabs, the triangles each slab must visit, in one flat array grouped by slab:
 // counted, then placed, both passes in parallel over chunks of triangles, so no slab ever scans
 // every triangle, nothing grows, and no serial sort stands in front of the threads. Within a slab
 // the order follows the chunks; it is irrelevant: crossings are grouped by line and sorted
