@@ -62,7 +62,7 @@ FeatureEngine::FeatureEngine(db::Store& store, int64_t max_grid_voxels, MemoryBu
     : store_(store),
       max_grid_voxels_(max_grid_voxels),
       budget_(budget),
-      surfaces_(cache_budget_bytes / 2),
+      surfaces_(cache_budget_bytes / 2, LruCache<TriangleMesh>::Keep::kOnSecondUse),
       measures_(int64_t(64) << 20),
       images_(cache_budget_bytes / 2) {}
 
@@ -162,6 +162,11 @@ Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db:
                           " was about to be converted outside its memory admission");
   SOIQ_RETURN_IF_ERROR(check_grid_size(geometry, max_grid_voxels_));
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(structure));
+  return convert_mesh(structure, *mesh, geometry, fill_rule);
+}
+
+Result<Voxelization> FeatureEngine::convert_mesh(const db::StructureRecord& structure, const TriangleMesh& mesh,
+                                                 const ImageGeometry& geometry, FillRule fill_rule) const {
   VoxelizeOptions options;
   options.fill_rule = fill_rule;
   options.robust = structure.robust;
@@ -171,7 +176,7 @@ Result<Voxelization> FeatureEngine::convert(const Admission& admitted, const db:
   // A surface stored without robust mode was checked closed at upload: no need to count its
   // defects again on every conversion (that costs as much as the conversion).
   if (!structure.robust) options.known_defects = MeshDefects{};
-  return voxelize_1d(*mesh, geometry, options);
+  return voxelize_1d(mesh, geometry, options);
 }
 
 Result<CoverageVolume> FeatureEngine::cover(const Admission& admitted, const db::StructureRecord& structure,
@@ -265,9 +270,12 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   });
   if (weighted) extras.coverage_lines = kWeightedFeatureLines;
   SOIQ_ASSIGN_OR_RETURN(const Admission admitted, admit(plan.structure, plan.grid.geometry, extras, check_cancel));
-  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert(admitted, plan.structure, plan.grid.geometry, ask.fill_rule));
-  SOIQ_RETURN_IF_ERROR(check_cancel());
+  // One decode serves the conversion and the surface features: the surface cache keeps a mesh only
+  // on its second use (lru_cache.h), so asking twice here would decode twice.
+  SOIQ_RETURN_IF_ERROR(check_grid_size(plan.grid.geometry, max_grid_voxels_));
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure));
+  SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert_mesh(plan.structure, *mesh, plan.grid.geometry, ask.fill_rule));
+  SOIQ_RETURN_IF_ERROR(check_cancel());
 
   // structure_features computes the convex hull only for the features that read it. Every stored
   // structure has a surface: the mesh is passed (no copy otherwise) whenever a surface value of it,

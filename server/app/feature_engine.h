@@ -116,7 +116,8 @@ class FeatureEngine {
   Result<FeatureValues> compute(const FeaturePlan& plan, const FeatureAsk& ask,
                                 const std::atomic<bool>* cancelled = nullptr, db::SurfaceFeatures* to_store = nullptr);
 
-  // The structure's stored surface, decoded (cached). DATA_LOSS naming the structure and its
+  // The structure's stored surface, decoded (cached from its second use on: a pass over many
+  // surfaces each used once does not fill the cache; lru_cache.h). DATA_LOSS naming the structure and its
   // surface when the blob is damaged: its checksum differs, or, for a blob without one, its mesh's
   // sha256 (db/surface_blob.h).
   Result<std::shared_ptr<const TriangleMesh>> surface(const db::StructureRecord& structure);
@@ -155,6 +156,9 @@ class FeatureEngine {
   Result<std::shared_ptr<const Image>> image(const db::SeriesRecord& series);
 
  private:
+  // convert()'s work on a decoded mesh, the admission checked by the caller.
+  Result<Voxelization> convert_mesh(const db::StructureRecord& structure, const TriangleMesh& mesh,
+                                    const ImageGeometry& geometry, FillRule fill_rule) const;
   // admit()'s reservation once the surface's measure is known.
   Result<Admission> reserve_for(const db::StructureRecord& structure, const ImageGeometry& geometry,
                                 const WorkExtras& extras, const SurfaceMeasure& measure,

@@ -290,7 +290,9 @@ static_assert(!std::is_copy_constructible_v<FeatureEngine::Admission>);
 static_assert(!std::is_copy_assignable_v<FeatureEngine::Admission>);
 static_assert(!std::is_constructible_v<FeatureEngine::Admission, MemoryBudget::Reservation, int64_t, ImageGeometry>);
 
-TEST_F(FeatureEngineTest, AStoredSurfaceIsDecodedOnceAndShared) {
+// The surface cache keeps a mesh from its second use on (a cold query's pass over many surfaces,
+// each used once, does not fill it): the first two uses decode, the third shares the second's.
+TEST_F(FeatureEngineTest, AStoredSurfaceIsKeptFromItsSecondUseAndShared) {
   Result<db::StructureRecord> s = store_->get_structure(id_);
   ASSERT_TRUE(s.ok());
   Result<std::shared_ptr<const TriangleMesh>> first = features_.surface(*s);
@@ -298,7 +300,11 @@ TEST_F(FeatureEngineTest, AStoredSurfaceIsDecodedOnceAndShared) {
   EXPECT_EQ((*first)->triangles.size(), size_t(s->surface.triangle_count));
   Result<std::shared_ptr<const TriangleMesh>> second = features_.surface(*s);
   ASSERT_TRUE(second.ok());
-  EXPECT_EQ(first->get(), second->get());
+  EXPECT_NE(first->get(), second->get());
+  Result<std::shared_ptr<const TriangleMesh>> third = features_.surface(*s);
+  ASSERT_TRUE(third.ok());
+  EXPECT_EQ(second->get(), third->get());
+  EXPECT_EQ((*third)->triangles, (*first)->triangles);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The decoded-object cache: a key loads once however many threads ask at once, the byte budget
-// holds, and an error is not kept.
+// holds, an error is not kept, and a cache that keeps on second use is not filled by a single pass.
 #include "server/util/lru_cache.h"
 
 #include <gtest/gtest.h>
@@ -73,6 +73,41 @@ TEST(LruCache, TheLeastRecentlyUsedGoFirstAndTheBudgetHolds) {
   ASSERT_TRUE(big.ok());
   ASSERT_TRUE(cache.get_or_load("big", load(std::string(11, 'x')), size_of).ok());
   EXPECT_EQ(loads, 6);
+}
+
+TEST(LruCache, KeepingOnSecondUseLeavesObjectsUsedOnceOutAndKeepsThoseUsedAgain) {
+  LruCache<std::string> cache(1 << 20, LruCache<std::string>::Keep::kOnSecondUse);
+  int loads = 0;
+  auto load = [&]() -> Result<std::string> {
+    ++loads;
+    return std::string("mesh");
+  };
+  // A pass over many keys, each once: none is kept, so the second pass loads them all again...
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int k = 0; k < 100; ++k) ASSERT_TRUE(cache.get_or_load("s" + std::to_string(k), load, size_of).ok());
+  }
+  EXPECT_EQ(loads, 200);
+  // ...and keeps them: a third pass loads none.
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(cache.get_or_load("s" + std::to_string(k), load, size_of).ok());
+  EXPECT_EQ(loads, 200);
+}
+
+TEST(LruCache, KeysRememberedForASecondUseAreBounded) {
+  using Cache = LruCache<std::string>;
+  Cache cache(1 << 20, Cache::Keep::kOnSecondUse);
+  int loads = 0;
+  auto load = [&]() -> Result<std::string> {
+    ++loads;
+    return std::string("m");
+  };
+  ASSERT_TRUE(cache.get_or_load("first", load, size_of).ok());
+  // As many other keys as the cache remembers push "first" out of its memory...
+  for (size_t k = 0; k < Cache::kSeenKeys; ++k) ASSERT_TRUE(cache.get_or_load(std::to_string(k), load, size_of).ok());
+  // ...so its next use counts as a first use again: loaded, not kept; the one after that is kept.
+  ASSERT_TRUE(cache.get_or_load("first", load, size_of).ok());
+  ASSERT_TRUE(cache.get_or_load("first", load, size_of).ok());
+  ASSERT_TRUE(cache.get_or_load("first", load, size_of).ok());
+  EXPECT_EQ(loads, int(Cache::kSeenKeys) + 3);
 }
 
 }  // namespace
