@@ -43,8 +43,12 @@ template <typename U>
 void encode(const uint8_t* values, size_t count, size_t stride, std::string& out) {
   constexpr size_t kWidth = sizeof(U);
   constexpr size_t kPerBlock = kBlockBytes / kWidth;
-  std::unique_ptr<uint8_t[]> planes(new uint8_t[kBlockBytes]);
-  std::string compressed(size_t(LZ4_compressBound(int(kBlockBytes))), '\0');
+  // Buffers of the largest block this array has, not of kBlockBytes, and not zeroed: most arrays
+  // are small, and zeroing half a megabyte twice per array was most of encoding a small mesh.
+  const size_t largest = std::min(kPerBlock, count) * kWidth;
+  std::unique_ptr<uint8_t[]> planes(new uint8_t[largest]);
+  const int bound = LZ4_compressBound(int(largest));
+  std::unique_ptr<char[]> compressed(new char[size_t(bound)]);
   U prev = 0;
   for (size_t from = 0; from < count; from += kPerBlock) {
     const size_t n = std::min(kPerBlock, count - from);
@@ -55,15 +59,14 @@ void encode(const uint8_t* values, size_t count, size_t stride, std::string& out
       for (size_t b = 0; b < kWidth; ++b) planes[b * n + i] = uint8_t(z >> (8 * b));
     }
     const int raw = int(n * kWidth);
-    const int size = LZ4_compress_default(reinterpret_cast<const char*>(planes.get()), compressed.data(), raw,
-                                          int(compressed.size()));
+    const int size = LZ4_compress_default(reinterpret_cast<const char*>(planes.get()), compressed.get(), raw, bound);
     const bool stored = size <= 0 || size >= raw;
     const uint32_t header = stored ? uint32_t(raw) | kStoredFlag : uint32_t(size);
     out.append(reinterpret_cast<const char*>(&header), sizeof header);
     if (stored) {
       out.append(reinterpret_cast<const char*>(planes.get()), size_t(raw));
     } else {
-      out.append(compressed.data(), size_t(size));
+      out.append(compressed.get(), size_t(size));
     }
   }
 }
