@@ -21,7 +21,11 @@ Result<std::vector<db::CachedFeature>> read(db::FeatureStore& store, const std::
 }
 
 void add(std::vector<db::CachedFeature>&& found, CachedValues& out) {
-  for (auto& e : found) out.by_key[e.key][e.entry] = std::move(e.value);
+  for (auto& e : found) {
+    std::shared_ptr<FeatureValues>& values = out.by_key[e.key];
+    if (!values) values = std::make_shared<FeatureValues>();
+    (*values)[e.entry] = std::move(e.value);
+  }
 }
 
 }  // namespace

@@ -9,8 +9,9 @@
 // naming its structure; the others get their values.
 // Errors: the store's others. Cost: one read; one per subject after a damaged value.
 
-#include <map>
+#include <memory>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -21,8 +22,8 @@
 namespace soiq::server::query_run {
 
 struct CachedValues {
-  std::map<std::string, FeatureValues> by_key;     // cache key -> its entries
-  std::vector<std::pair<size_t, Status>> damaged;  // subject -> why its values cannot be read
+  std::unordered_map<std::string, std::shared_ptr<FeatureValues>> by_key;  // cache key -> its entries
+  std::vector<std::pair<size_t, Status>> damaged;                          // subject -> why its values cannot be read
 };
 
 Result<CachedValues> read_cached_values(db::FeatureStore& store, const std::vector<Subject>& subjects,

@@ -80,7 +80,7 @@ class QueryRun {
   void add_subjects() {
     auto add = [&](const db::StructureRecord& s, size_t candidate) {
       auto [it, fresh] = subject_of_.emplace(s.id, subjects_.size());
-      if (fresh) subjects_.push_back(Subject{s, std::nullopt, ok_status(), {}, false, {}});
+      if (fresh) subjects_.push_back(Subject{s, std::nullopt, ok_status(), nullptr, {}, false, {}});
       subjects_[it->second].dependents.push_back(candidate);
       return it->second;
     };
@@ -121,21 +121,44 @@ class QueryRun {
     for (size_t i : planned) {
       Subject& s = subjects_[i];
       if (s.ready) continue;  // its stored values are damaged
-      const FeatureValues& have = cached.by_key[s.plan->cache_key];
-      if (!has_all(s, have)) {
+      std::shared_ptr<const FeatureValues> have = all_wanted(cached, s);
+      if (!have) {
         misses.push_back(i);
         continue;
       }
-      s.values = have;
+      set_values(s, std::move(have));
       s.ready = true;
       ++summary_.cache_hits;
     }
     return misses;
   }
 
-  static bool has_all(const Subject& s, const FeatureValues& have) {
-    return std::all_of(s.plan->wants.begin(), s.plan->wants.end(),
-                       [&](const WantedValue& w) { return have.count(w.entry) > 0; });
+  // The cached values of the subject's key when they hold every value its plan wants, else null.
+  static std::shared_ptr<const FeatureValues> all_wanted(const CachedValues& cached, const Subject& s) {
+    auto it = cached.by_key.find(s.plan->cache_key);
+    if (it == cached.by_key.end()) return nullptr;
+    const FeatureValues& have = *it->second;
+    const bool all = std::all_of(s.plan->wants.begin(), s.plan->wants.end(),
+                                 [&](const WantedValue& w) { return have.count(w.entry) > 0; });
+    return all ? it->second : nullptr;
+  }
+
+  // The subject's values, and each query feature's among them.
+  void set_values(Subject& s, std::shared_ptr<const FeatureValues> values) {
+    s.values = std::move(values);
+    s.asked.assign(q_.features.size(), nullptr);
+    for (size_t f = 0; f < q_.features.size(); ++f) {
+      const QueryFeature& feature = q_.features[f];
+      std::string entry = feature.name;
+      if (feature.intensity) {
+        const auto& images = q_.ask.images;
+        const size_t image = std::find(images.begin(), images.end(), feature.image) - images.begin();
+        entry = feature_entry(feature.name, region_name(feature.region), s.plan->images.at(image).sha256,
+                              q_.ask.interpolation);
+      }
+      auto it = s.values->find(entry);
+      if (it != s.values->end()) s.asked[f] = &it->second;
+    }
   }
 
   // The misses computed by every live replica (shared_stage2.h), then read back from the shared
@@ -153,13 +176,14 @@ class QueryRun {
     std::vector<size_t> left;
     for (size_t i : misses) {
       if (subjects_[i].ready) continue;  // its stored values are damaged
-      const FeatureValues& have = cached.by_key[subjects_[i].plan->cache_key];
-      if (!has_all(subjects_[i], have)) {
+      std::shared_ptr<const FeatureValues> have = all_wanted(cached, subjects_[i]);
+      if (!have) {
         left.push_back(i);
         continue;
       }
       ++summary_.shared;
-      SOIQ_RETURN_IF_ERROR(complete(i, have));
+      ++summary_.computed;  // now, by one of the replicas
+      SOIQ_RETURN_IF_ERROR(complete_with(i, std::move(have)));
       if (enough_) break;
     }
     return left;
@@ -245,15 +269,21 @@ class QueryRun {
     return misses.size();
   }
 
+  // A subject computed here (or failed).
   Status complete(size_t idx, Result<FeatureValues> result) {
+    if (!result.ok()) {
+      subjects_[idx].error = result.status();
+      return complete_with(idx, nullptr);
+    }
+    ++summary_.computed;
+    return complete_with(idx, std::make_shared<const FeatureValues>(std::move(result).value()));
+  }
+
+  // A subject ready with `values` (null: with its error), then the candidates waiting for it.
+  Status complete_with(size_t idx, std::shared_ptr<const FeatureValues> values) {
     Subject& s = subjects_[idx];
     s.ready = true;
-    if (result.ok()) {
-      s.values = std::move(result).value();
-      ++summary_.computed;
-    } else {
-      s.error = result.status();
-    }
+    if (values) set_values(s, std::move(values));
     for (size_t c : s.dependents) SOIQ_RETURN_IF_ERROR(evaluate(c));
     return ok_status();
   }
@@ -273,21 +303,13 @@ class QueryRun {
     }
     // Only the scalars the predicates and the order read; the row itself is built when it is
     // sent, so an ordered query with a limit copies records and values for its limit rows alone.
-    std::vector<std::optional<double>> scalar(q_.features.size());
-    auto scalar_of = [&](size_t f) -> const std::optional<double>& {
-      if (!scalar[f]) {
-        std::optional<std::vector<double>> v = value_for(f, i);
-        if (v && v->size() == 1) scalar[f] = (*v)[0];
-      }
-      return scalar[f];
-    };
     for (const QueryPredicate& p : q_.where) {
-      const std::optional<double>& v = scalar_of(p.feature);
+      const std::optional<double> v = scalar_for(p.feature, i);
       if (!v || !compare(*v, p.op, p.value)) return ok_status();
     }
     ++summary_.matched;
     if (q_.order_by) {
-      const std::optional<double>& key = scalar_of(*q_.order_by);
+      const std::optional<double> key = scalar_for(*q_.order_by, i);
       ordered_.emplace_back(key ? *key : std::nan(""), i);
       return ok_status();
     }
@@ -320,29 +342,33 @@ class QueryRun {
 
   // Feature f of candidate i, or nothing when it cannot be had.
   std::optional<std::vector<double>> value_for(size_t f, size_t i) const {
-    const QueryFeature& feature = q_.features[f];
-    std::optional<std::vector<double>> v = stored_value(feature, subjects_[own_[i]]);
-    if (!feature.asymmetry) return v;
-    std::optional<std::vector<double>> t;
-    if (twin_[i]) t = stored_value(feature, subjects_[*twin_[i]]);
-    if (!v || !t || v->size() != 1 || t->size() != 1) return std::nullopt;
+    if (q_.features[f].asymmetry) {
+      const std::optional<double> a = scalar_for(f, i);
+      if (!a) return std::nullopt;
+      return std::vector<double>{*a};
+    }
+    const std::vector<double>* v = stored_value(f, subjects_[own_[i]]);
+    if (v == nullptr) return std::nullopt;
+    return *v;
+  }
+
+  // value_for() when it is one number, without a copy: what predicates and the order read.
+  std::optional<double> scalar_for(size_t f, size_t i) const {
+    const std::vector<double>* v = stored_value(f, subjects_[own_[i]]);
+    if (v == nullptr || v->size() != 1) return std::nullopt;
+    if (!q_.features[f].asymmetry) return (*v)[0];
+    const std::vector<double>* t = twin_[i] ? stored_value(f, subjects_[*twin_[i]]) : nullptr;
+    if (t == nullptr || t->size() != 1) return std::nullopt;
     const bool left = subjects_[own_[i]].structure.laterality == "L";
     Result<double> a = left ? asymmetry_index((*v)[0], (*t)[0]) : asymmetry_index((*t)[0], (*v)[0]);
     if (!a.ok()) return std::nullopt;
-    return std::vector<double>{*a};
+    return *a;
   }
 
-  std::optional<std::vector<double>> stored_value(const QueryFeature& f, const Subject& s) const {
-    if (!s.ready || !s.error.ok() || !s.plan) return std::nullopt;
-    std::string entry = f.name;
-    if (f.intensity) {
-      const auto& images = q_.ask.images;
-      const size_t image = std::find(images.begin(), images.end(), f.image) - images.begin();
-      entry = feature_entry(f.name, region_name(f.region), s.plan->images.at(image).sha256, q_.ask.interpolation);
-    }
-    auto it = s.values.find(entry);
-    if (it == s.values.end()) return std::nullopt;
-    return it->second;
+  // Subject s's value of query feature f (set_values), or null.
+  static const std::vector<double>* stored_value(size_t f, const Subject& s) {
+    if (!s.ready || !s.error.ok() || f >= s.asked.size()) return nullptr;
+    return s.asked[f];
   }
 
   // With an order: the matches sorted, missing values (NaN) last in either direction, up to limit.

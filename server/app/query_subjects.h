@@ -5,6 +5,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -20,7 +21,11 @@ struct Subject {
   db::StructureRecord structure;
   std::optional<FeaturePlan> plan;
   Status error;
-  FeatureValues values;
+  // Shared, not copied: subjects of one surface (and grid) read the same cached values.
+  std::shared_ptr<const FeatureValues> values;
+  // The query's features in its order, each a value in `values` or null: resolved once when the
+  // subject is ready, so evaluating a candidate looks up no entry names.
+  std::vector<const std::vector<double>*> asked;
   bool ready = false;
   std::vector<size_t> dependents;  // candidates waiting for this subject
 };
