@@ -81,9 +81,10 @@ Result<FeaturePlan> FeatureEngine::plan(const db::StructureRecord& structure,
   std::vector<std::string> refs;
   for (const std::string& ref : ask.images) {
     SOIQ_ASSIGN_OR_RETURN(db::SeriesRecord s, find_series(ref, study_series, structure.study_uid));
-    const bool seen = std::any_of(p.images.begin(), p.images.end(),
-                                  [&](const db::SeriesRecord& known) { return known.sha256 == s.sha256; });
-    if (seen) continue;
+    const auto seen = std::find_if(p.images.begin(), p.images.end(),
+                                   [&](const db::SeriesRecord& known) { return known.sha256 == s.sha256; });
+    p.image_of_ask.push_back(size_t(seen - p.images.begin()));
+    if (seen != p.images.end()) continue;
     p.images.push_back(std::move(s));
     refs.push_back(ref);
   }

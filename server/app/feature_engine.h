@@ -66,7 +66,8 @@ struct WantedValue {
 struct FeaturePlan {
   db::StructureRecord structure;
   ResolvedGrid grid;
-  std::vector<db::SeriesRecord> images;  // one per FeatureAsk::images
+  std::vector<db::SeriesRecord> images;  // each series FeatureAsk::images names, once
+  std::vector<size_t> image_of_ask;      // per FeatureAsk::images: its series' index in images
   std::string cache_key;
   std::vector<WantedValue> wants;
 };

@@ -153,8 +153,9 @@ class QueryRun {
       if (feature.intensity) {
         const auto& images = q_.ask.images;
         const size_t image = std::find(images.begin(), images.end(), feature.image) - images.begin();
-        entry = feature_entry(feature.name, region_name(feature.region), s.plan->images.at(image).sha256,
-                              q_.ask.interpolation);
+        // Two names of one series (modality and uid) share it in the plan: the plan maps each name.
+        const db::SeriesRecord& series = s.plan->images.at(s.plan->image_of_ask.at(image));
+        entry = feature_entry(feature.name, region_name(feature.region), series.sha256, q_.ask.interpolation);
       }
       auto it = s.values->find(entry);
       if (it != s.values->end()) s.asked[f] = &it->second;

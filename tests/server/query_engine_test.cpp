@@ -208,6 +208,22 @@ TEST_F(QueryEngineTest, AStructureWhoseFeaturesCannotBeHadIsCountedAsFailedWithI
       << ran.summary->failures[0];
 }
 
+// Two names of one series (its modality and its uid) are one image to compute on: each feature
+// still finds its value.
+TEST_F(QueryEngineTest, AnImageNamedByModalityAndByUidGivesBothFeaturesTheSameValue) {
+  // A box over the series' voxel centres (temp_store.h's new_series), in a study whose series uid
+  // reads as a uid.
+  add_pt_series("1.2.3");
+  testing::add_stored_box(*store_, {-10.4, 19.5, 29}, {-8.6, 21.9, 33.5}, "small", "1.2.3", "");
+  Ran ran = run(query_of({mean_of("PT"), mean_of("1.2.3.9")}));
+  ASSERT_TRUE(ran.summary.ok()) << ran.summary.status().to_string();
+  EXPECT_EQ(ran.summary->failed, 0) << (ran.summary->failures.empty() ? "" : ran.summary->failures[0]);
+  ASSERT_EQ(ran.rows.size(), 1u);
+  ASSERT_EQ(ran.rows[0].values.size(), 2u);
+  ASSERT_EQ(ran.rows[0].values[0].values.size(), 1u);
+  EXPECT_EQ(ran.rows[0].values[0].values, ran.rows[0].values[1].values);
+}
+
 TEST_F(QueryEngineTest, SkippedStructuresAreCountedByReasonLargestFirstWithTheirIds) {
   add_pt_series("S2");  // the store holds PT, but not in S1 or S3
   std::vector<int64_t> s1, s3;
