@@ -14,6 +14,7 @@
 #include "core/voxelize/coverage_1d.h"
 #include "core/voxelize/grid_around.h"
 #include "core/voxelize/voxelize_1d.h"
+#include "tests/support/address_sanitizer.h"
 
 namespace soiq {
 namespace {
@@ -201,9 +202,11 @@ TEST(MemoryEstimate, CoverageEstimateIsAboveWhatItHoldsAndItsPeak) {
       std::printf("%-6s n=%d: estimate %s, held %s, peak growth %s\n", name, n, human_bytes(e.bytes).c_str(),
                   human_bytes(coverage_bytes(*v)).c_str(), peak < 0 ? "?" : human_bytes(peak).c_str());
       if (peak >= 0) {
-        // Less ~1 MB that any work in the child adds (code pages, an allocator arena): measured
-        // for the bar, whose conversion holds a few KB.
-        EXPECT_LE(peak - (int64_t(2) << 20), e.bytes) << name << " n=" << n;
+        // Less what any work in the child adds (code pages, an allocator arena), measured for the
+        // bar, whose conversion holds a few KB: 0.8-1.1 MB here, 2.5-2.8 MB under AddressSanitizer
+        // (its allocator's regions and per-thread state), which a 2 MiB allowance failed now and then.
+        const int64_t overhead = (SOIQ_TEST_UNDER_ASAN ? int64_t(4) : int64_t(2)) << 20;
+        EXPECT_LE(peak - overhead, e.bytes) << name << " n=" << n;
       }
     }
   }
