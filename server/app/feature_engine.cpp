@@ -272,8 +272,8 @@ Result<FeatureValues> FeatureEngine::compute(const FeaturePlan& plan, const Feat
   if (weighted) extras.coverage_lines = kWeightedFeatureLines;
   SOIQ_ASSIGN_OR_RETURN(const Admission admitted, admit(plan.structure, plan.grid.geometry, extras, check_cancel));
   // One decode serves the conversion and the surface features: the surface cache keeps a mesh only
-  // on its second use (lru_cache.h), so asking twice here would decode twice.
-  SOIQ_RETURN_IF_ERROR(check_grid_size(plan.grid.geometry, max_grid_voxels_));
+  // on its second use (lru_cache.h), so asking twice here would decode twice. admit() checked the
+  // grid's size.
   SOIQ_ASSIGN_OR_RETURN(std::shared_ptr<const TriangleMesh> mesh, surface(plan.structure));
   SOIQ_ASSIGN_OR_RETURN(Voxelization v, convert_mesh(plan.structure, *mesh, plan.grid.geometry, ask.fill_rule));
   SOIQ_RETURN_IF_ERROR(check_cancel());
