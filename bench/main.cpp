@@ -60,6 +60,7 @@ int usage() {
       "       soiq-bench coverage --models DIR [--sts DIR] [--runs N] [--pin CPU]\n"
       "       soiq-bench query [--small] [--dir DIR] [--soiqd PATH] [--workers N] [--runs N] [--seconds S]\n"
       "       soiq-bench replicas [--small] [--soiqd PATH] [--workers N] [--seconds S] [--patients N] [--matched N]\n"
+      "                          [--stage1-patients N]\n"
       "       soiq-bench import DICOM_DIR... [--runs N] [--soiqd PATH]\n"
       "       soiq-bench pacs DICOM_DIR --patient ID [--runs N] [--soiqd PATH]\n"
       "       soiq-bench dicomweb [--patients N] [--batch B] [--runs R] [--soiqd PATH]\n"

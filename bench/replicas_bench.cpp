@@ -28,6 +28,7 @@ struct ReplicasOptions {
   std::string soiqd = SOIQD_BINARY;
   int workers = 2;
   double seconds = 3;
+  int stage1_patients = 1000000;  // the second cohort, for stage 1 alone at scale
 };
 
 struct ColdRun {
@@ -35,6 +36,13 @@ struct ColdRun {
   double client_ms = 0;
   int64_t computed = 0;
   std::vector<int64_t> shares;  // items each replica computed for the query
+};
+
+// One soiqd alone on a backend: the cold benchmark query on a fresh copy of the loaded store, then
+// the warm query repeated by 1 and by 8 clients.
+struct SingleServer {
+  double cold_client_ms = 0, cold_stage2_ms = 0;
+  Throughput one, eight;
 };
 
 struct Figures {
@@ -45,6 +53,9 @@ struct Figures {
   int64_t candidates = 0;
   std::vector<ColdRun> cold;
   Throughput load;
+  SingleServer single_sqlite, single_postgres;
+  int64_t million_patients = 0, million_structures = 0, million_candidates = 0, million_rows = 0;
+  Stats million_sqlite, million_postgres;
 };
 
 // A PostgreSQL database made from `template_db` (a file-level copy: fast, and every run starts equal).
@@ -87,6 +98,55 @@ Result<Stats> stage1_through(const std::string& address, int64_t& candidates) {
   return stats(ms);
 }
 
+Result<SingleServer> single_server(const ReplicasOptions& o, const std::string& db, const std::string& log_db) {
+  testing::SoiqdProcess server(log_db, {"--db", db, "--workers", std::to_string(o.workers)}, o.soiqd);
+  if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
+  SOIQ_ASSIGN_OR_RETURN(const client::Client c, connect(server.address()));
+  SingleServer out;
+  SOIQ_ASSIGN_OR_RETURN(const TimedQuery cold, timed_query(c, benchmark_request()));
+  out.cold_client_ms = cold.client_ms;
+  out.cold_stage2_ms = cold.summary.stage2_ms();
+  SOIQ_ASSIGN_OR_RETURN(out.one, throughput({server.address()}, 1, o.seconds));
+  SOIQ_ASSIGN_OR_RETURN(out.eight, throughput({server.address()}, 8, o.seconds));
+  if (server.terminate() != 0) return internal_error("soiqd did not stop cleanly: " + server.log());
+  return out;
+}
+
+// Stage 1 alone over `o.stage1_patients` patients (one structure each, the matched ones with their
+// 10), in SQLite and, migrated, in PostgreSQL: the index search at scale on both backends.
+Status stage1_at_scale(const ReplicasOptions& o, const testing::TempDir& dir, const testing::PostgresProcess& pg,
+                       Figures& f) {
+  QueryCohortSize size = o.size;
+  size.patients = o.stage1_patients;
+  const std::vector<CohortPatient> cohort = query_cohort_patients(size, 20250409);
+  note(std::to_string(size.patients) + " patients through SqliteStore, for stage 1 at scale");
+  const std::string sqlite = dir.file("million.db");
+  SOIQ_ASSIGN_OR_RETURN(const LoadFigures background, load_background(sqlite, cohort, size));
+  f.million_structures = background.structures;
+  {
+    testing::SoiqdProcess server(sqlite, {"--workers", std::to_string(o.workers)}, o.soiqd);
+    if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
+    SOIQ_ASSIGN_OR_RETURN(const LoadFigures matched,
+                          upload_matched(server.address(), dir.path().string(), cohort, size, 2));
+    f.million_structures += matched.structures;
+    if (server.terminate() != 0) return internal_error("soiqd did not stop cleanly: " + server.log());
+  }
+  note("migrated to PostgreSQL");
+  SOIQ_RETURN_IF_ERROR(make_database(pg, "million", ""));
+  SOIQ_ASSIGN_OR_RETURN(const std::vector<db::TableDigest> digests,
+                        server::migrate_store({server::StoreLocation::Kind::kSqlite, sqlite},
+                                              {server::StoreLocation::Kind::kPostgres, uri(pg, "million")}, {}));
+  for (const db::TableDigest& d : digests) f.million_rows += d.rows;
+  f.million_patients = size.patients;
+  for (const bool on_postgres : {false, true}) {
+    testing::SoiqdProcess server(sqlite, {"--db", on_postgres ? uri(pg, "million") : sqlite}, o.soiqd);
+    if (server.address().empty()) return internal_error("soiqd did not start: " + server.log());
+    SOIQ_ASSIGN_OR_RETURN((on_postgres ? f.million_postgres : f.million_sqlite),
+                          stage1_through(server.address(), f.million_candidates));
+  }
+  return ok_status();
+}
+
 Status run(const ReplicasOptions& o, Figures& f) {
   testing::TempDir dir;
   const std::vector<CohortPatient> cohort = query_cohort_patients(o.size, 20250409);
@@ -127,6 +187,14 @@ Status run(const ReplicasOptions& o, Figures& f) {
                           stage1_through(server.address(), f.candidates));
   }
 
+  note("one soiqd on each backend: the cold query, then the warm query by 1 and 8 clients");
+  const std::string sqlite_copy = dir.file("single.db");
+  fs::copy_file(sqlite, sqlite_copy, fs::copy_options::overwrite_existing);
+  SOIQ_ASSIGN_OR_RETURN(f.single_sqlite, single_server(o, sqlite_copy, sqlite_copy));
+  fs::remove(sqlite_copy);
+  SOIQ_RETURN_IF_ERROR(make_database(pg, "single", "pristine"));
+  SOIQ_ASSIGN_OR_RETURN(f.single_postgres, single_server(o, uri(pg, "single"), dir.file("single.log.db")));
+
   for (int n = 1; n <= 3; ++n) {
     note("the cold query on " + std::to_string(n) + " replica(s)");
     const std::string db = "cold" + std::to_string(n);
@@ -152,6 +220,7 @@ Status run(const ReplicasOptions& o, Figures& f) {
     }
     f.cold.push_back(run);
   }
+  if (o.stage1_patients > 0) SOIQ_RETURN_IF_ERROR(stage1_at_scale(o, dir, pg, f));
   return ok_status();
 }
 
@@ -170,6 +239,29 @@ void print(const ReplicasOptions& o, const Figures& f) {
               f.stage1_postgres.median);
   std::printf("Migration SQLite -> PostgreSQL (`soiq-admin migrate`, verified): %lld rows in %.1f s.\n\n",
               (long long)f.migrated_rows, f.migrate_s);
+  const SingleServer &sq = f.single_sqlite, &pq = f.single_postgres;
+  auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+  const double cold_ratio = ratio(pq.cold_client_ms, sq.cold_client_ms);
+  const double load_ratio = ratio(pq.eight.per_second, sq.eight.per_second);
+  std::printf("One soiqd (`--workers %d`) on each backend, on a fresh copy of the loaded store; the warm query\n",
+              o.workers);
+  std::printf("repeated for %.0f s by 1 client, then by 8:\n\n", o.seconds);
+  std::printf("| measure | SQLite | PostgreSQL | PostgreSQL / SQLite | target |\n|---|---:|---:|---:|---|\n");
+  std::printf("| cold query, client ms (server's stage2_ms) | %.0f (%.0f) | %.0f (%.0f) | %.2fx | <= 1.3x: %s |\n",
+              sq.cold_client_ms, sq.cold_stage2_ms, pq.cold_client_ms, pq.cold_stage2_ms, cold_ratio,
+              cold_ratio <= 1.3 ? "met" : "**not met**");
+  std::printf("| warm query, 1 client: queries/s (p95 ms) | %.1f (%.1f) | %.1f (%.1f) | %.2fx | |\n", sq.one.per_second,
+              sq.one.latency.p95, pq.one.per_second, pq.one.latency.p95, ratio(pq.one.per_second, sq.one.per_second));
+  std::printf("| warm query, 8 clients: queries/s (p95 ms) | %.1f (%.1f) | %.1f (%.1f) | %.2fx | >= 0.8x: %s |\n\n",
+              sq.eight.per_second, sq.eight.latency.p95, pq.eight.per_second, pq.eight.latency.p95, load_ratio,
+              load_ratio >= 0.8 ? "met" : "**not met**");
+  if (f.million_patients > 0) {
+    std::printf("Stage 1 at scale: %lld patients (%lld structures, %lld rows migrated), stage 1 alone through\n",
+                (long long)f.million_patients, (long long)f.million_structures, (long long)f.million_rows);
+    std::printf("soiqd, %lld candidates, best / median of 20 ms: SQLite %.1f / %.1f, PostgreSQL %.1f / %.1f.\n\n",
+                (long long)f.million_candidates, f.million_sqlite.best, f.million_sqlite.median,
+                f.million_postgres.best, f.million_postgres.median);
+  }
   std::printf("| cold query (%lld structures computed) | client ms | structures computed by each replica |\n",
               (long long)(f.cold.empty() ? 0 : f.cold[0].computed));
   std::printf("|---|---:|---|\n");
@@ -193,12 +285,14 @@ int run_replicas_bench(const CliArgs& args) {
     o.size.matched = 10;
     o.size.max_triangles = 20000;
     o.seconds = 1;
+    o.stage1_patients = 20000;
   }
   auto parsed = [&]() -> Status {
     SOIQ_ASSIGN_OR_RETURN(o.size.patients, args.get_int("--patients", o.size.patients));
     SOIQ_ASSIGN_OR_RETURN(o.size.matched, args.get_int("--matched", o.size.matched));
     SOIQ_ASSIGN_OR_RETURN(o.workers, args.get_int("--workers", o.workers));
     SOIQ_ASSIGN_OR_RETURN(o.seconds, args.get_double("--seconds", o.seconds));
+    SOIQ_ASSIGN_OR_RETURN(o.stage1_patients, args.get_int("--stage1-patients", o.stage1_patients));
     o.soiqd = args.get("--soiqd", o.soiqd);
     return ok_status();
   }();
