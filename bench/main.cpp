@@ -78,9 +78,10 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   const auto args = parse_cli_args(
       argc, argv, 2,
-      {"--out",    "--spacing", "--reference", "--method", "--runs",    "--threads",  "--pin",      "-o",
-       "--models", "--sts",     "--dir",       "--soiqd",  "--workers", "--seconds",  "--patients", "--matched",
-       "--label",  "--patient", "--image",     "--batch",  "--names",   "--cpu-level"},
+      {"--out",       "--spacing",        "--reference", "--method",  "--runs",  "--threads", "--pin",
+       "-o",          "--models",         "--sts",       "--dir",     "--soiqd", "--workers", "--seconds",
+       "--patients",  "--matched",        "--label",     "--patient", "--image", "--batch",   "--names",
+       "--cpu-level", "--stage1-patients"},
       {"--json", "--small", "--decode-only"});
   if (!args.ok()) {
     std::fprintf(stderr, "soiq-bench %s: %s\n", command.c_str(), args.status().message().c_str());

@@ -10,8 +10,10 @@
 // pool (pg_pool.h; DEADLINE_EXCEEDED when none comes free in time) for its whole transaction.
 //   - Writes run SERIALIZABLE: they read (is this study another patient's? is this surface stored?)
 //     before they write, and two replicas importing the same patient at once must not both insert
-//     it. PostgreSQL aborts one of two conflicting transactions (SQLSTATE 40001), which runs again
-//     after a random wait (pg_transaction), so callers see success or a real error.
+//     it. They also take turns, across replicas, on one advisory lock taken before BEGIN: overlapping
+//     writers conflicted so often that one could lose all its retries. A transaction PostgreSQL
+//     still aborts (SQLSTATE 40001, 40P01: against a writer outside soiqd) runs again after a random
+//     wait (pg_transaction), so callers see success or a real error.
 //   - Reads of several statements run in one REPEATABLE READ READ ONLY snapshot (a page and its
 //     counts agree); reads of one statement run alone, without BEGIN and COMMIT.
 //   - Blobs travel in binary, never as hex text.

@@ -17,6 +17,12 @@ std::string select_sql(std::initializer_list<std::string_view> column_lists,
   return sql;
 }
 
+std::string parameter_list(size_t n) {
+  std::string out;
+  for (size_t i = 1; i <= n; ++i) out.append(i > 1 ? ", ?" : "?").append(std::to_string(i));
+  return out;
+}
+
 std::string join_uid_list(const std::vector<std::string>& uids) {
   std::string out;
   for (size_t i = 0; i < uids.size(); ++i) {

@@ -85,6 +85,9 @@ inline constexpr char kSeriesModalitiesSql[] = R"sql(
 std::string select_sql(std::initializer_list<std::string_view> column_lists,
                        std::initializer_list<std::string_view> rest);
 
+// The parameters of an IN list of n values: "?1, ?2, …, ?n".
+std::string parameter_list(size_t n);
+
 // A list of UIDs as one column: joined with '\\' (DICOM's value separator; no UID contains it).
 std::string join_uid_list(const std::vector<std::string>& uids);
 std::vector<std::string> split_uid_list(const std::string& joined);  // "" -> {}

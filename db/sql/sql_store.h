@@ -93,6 +93,8 @@ class SqlStore : public Store {
   Result<Page<StudyRecord>> list_studies(const std::string& patient_id, const PageRequest& p) override;
   Result<SeriesRecord> get_series(const std::string& series_uid) override;
   Result<std::vector<SeriesRecord>> list_series(const std::string& study_uid) override;
+  Result<std::map<std::string, std::vector<SeriesRecord>>> series_of_studies(
+      const std::vector<std::string>& study_uids) override;
   Result<StructureRecord> get_structure(int64_t id) override;
   Result<Page<StructureRecord>> list_structures(const StructureFilter& f, const PageRequest& p) override;
   Result<std::vector<StudyHit>> search_studies(const StudySearch& s) override;

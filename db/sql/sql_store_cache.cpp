@@ -4,6 +4,7 @@
 #include <unordered_set>
 
 #include "db/cached_value.h"
+#include "db/sql/record_sql.h"
 #include "db/sql/sql_store.h"
 #include "db/sql/sql_store_writes.h"
 #include "db/validate_records.h"
@@ -23,11 +24,7 @@ constexpr char kCachedFeaturesSql[] = R"sql(
 constexpr char kCachedFeaturesOrderSql[] = R"sql()
   ORDER BY key, entry)sql";
 
-std::string in_list_sql(size_t n) {
-  std::string sql = kCachedFeaturesSql;
-  for (size_t i = 1; i <= n; ++i) sql += (i > 1 ? ", ?" : "?") + std::to_string(i);
-  return sql + kCachedFeaturesOrderSql;
-}
+std::string in_list_sql(size_t n) { return kCachedFeaturesSql + parameter_list(n) + kCachedFeaturesOrderSql; }
 
 }  // namespace
 

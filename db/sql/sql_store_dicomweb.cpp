@@ -115,13 +115,6 @@ constexpr char kStudySegCountsSql[] = R"sql(
   JOIN series se ON se.series_uid = ms.source_series_uid
   WHERE se.sop_class_uid <> '' AND ms.study_pk IN ()sql";
 
-// "?1, ?2, …" for n keys.
-std::string key_list(size_t n) {
-  std::string out;
-  for (size_t i = 1; i <= n; ++i) out += (i > 1 ? ", ?" : "?") + std::to_string(i);
-  return out;
-}
-
 }  // namespace
 
 Result<std::vector<StudyHit>> SqlStore::search_studies(const StudySearch& s) {
@@ -154,7 +147,7 @@ Result<std::vector<StudyHit>> SqlStore::search_studies(const StudySearch& s) {
     for (const char* sql : {kStudyImageCountsSql, kStudySegCountsSql}) {
       const bool images = sql == kStudyImageCountsSql;
       SOIQ_ASSIGN_OR_RETURN(SqlStatement q,
-                            c.prepare(sql + key_list(keys.size()) +
+                            c.prepare(sql + parameter_list(keys.size()) +
                                       (images ? ") GROUP BY se.study_pk, se.modality" : ") GROUP BY ms.study_pk")));
       for (size_t i = 0; i < keys.size(); ++i) q.bind(int(i + 1), keys[i]);
       while (true) {
@@ -286,9 +279,9 @@ Result<std::vector<SeriesHit>> SqlStore::search_series(const SeriesSearch& s) {
       if (ks.empty()) continue;
       const std::string sql =
           !structure ? select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "se.pk"},
-                                  {kImageSeriesByPkSql, key_list(ks.size()), ")"})
+                                  {kImageSeriesByPkSql, parameter_list(ks.size()), ")"})
                      : select_sql({kSeriesColumns, kStudyColumns, kPatientColumns, "s.id", kStructureColumns},
-                                  {kStructureSeriesByIdSql, key_list(ks.size()), ")"});
+                                  {kStructureSeriesByIdSql, parameter_list(ks.size()), ")"});
       SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql));
       for (size_t i = 0; i < ks.size(); ++i) q.bind(int(i + 1), ks[i]);
       constexpr int kKey = kSeriesColumnCount + kStudyColumnCount + kPatientColumnCount;

@@ -96,6 +96,7 @@ class QueryRun {
   // cache (or that cannot be planned) are ready; the others are returned, to compute.
   Result<std::vector<size_t>> plan_and_read_cache() {
     std::vector<size_t> planned;
+    if (!q_.ask.names.empty()) SOIQ_RETURN_IF_ERROR(read_study_series());
     for (size_t i = 0; i < subjects_.size(); ++i) {
       Subject& s = subjects_[i];
       if (q_.ask.names.empty()) {
@@ -190,13 +191,20 @@ class QueryRun {
     return left;
   }
 
-  // A study's series, read once per study.
+  // Every subject's study's series, in one read.
+  Status read_study_series() {
+    std::vector<std::string> uids;
+    for (const Subject& s : subjects_) uids.push_back(s.structure.study_uid);
+    std::sort(uids.begin(), uids.end());
+    uids.erase(std::unique(uids.begin(), uids.end()), uids.end());
+    SOIQ_ASSIGN_OR_RETURN(series_of_, store_.series_of_studies(uids));
+    return ok_status();
+  }
+
+  // A study's series (read_study_series read them); NOT_FOUND for a study deleted since stage 1.
   Result<const std::vector<db::SeriesRecord>*> study_series(const std::string& uid) {
     auto it = series_of_.find(uid);
-    if (it == series_of_.end()) {
-      SOIQ_ASSIGN_OR_RETURN(auto list, store_.list_series(uid));
-      it = series_of_.emplace(uid, std::move(list)).first;
-    }
+    if (it == series_of_.end()) return not_found("study '" + uid + "' not found");
     return &it->second;
   }
 

@@ -70,5 +70,39 @@ TYPED_TEST(StoreWriteSeries, SeriesOfAnotherPatientIsRefusedAndLeavesNothing) {
   EXPECT_EQ(this->counts().series, before.series);
 }
 
+// The series of many studies in one read, as list_series gives them study by study: a study with
+// none maps to an empty list, an unknown one is left out, and more UIDs than one statement takes
+// (256) are read in several.
+TYPED_TEST(StoreWriteSeries, SeriesOfStudiesAreThoseListSeriesGivesEachStudy) {
+  ASSERT_TRUE(this->store_->put_series(new_series("P1", "S1", "SE2", 1.0f)).ok());
+  ASSERT_TRUE(this->store_->put_series(new_series("P1", "S1", "SE1", 2.0f)).ok());
+  ASSERT_TRUE(this->store_->put_series(new_series("P3", "S3", "SE3", 3.0f)).ok());
+  ASSERT_TRUE(this->store_->add_structure(testing::new_structure("P2", "S2", "liver")).ok());
+  std::vector<std::string> uids = {"S2", "unknown", "S1"};
+  for (int i = 0; i < 300; ++i) uids.push_back("missing" + std::to_string(i));
+  uids.push_back("S3");  // in the second statement
+  uids.push_back("S1");  // twice
+  auto of = this->store_->series_of_studies(uids);
+  ASSERT_TRUE(of.ok()) << of.status().to_string();
+  ASSERT_EQ(of->size(), 3u);
+  EXPECT_TRUE(of->at("S2").empty());
+  for (const char* study : {"S1", "S3"}) {
+    auto listed = this->store_->list_series(study);
+    ASSERT_TRUE(listed.ok());
+    ASSERT_EQ(of->at(study).size(), listed->size()) << study;
+    for (size_t i = 0; i < listed->size(); ++i) {
+      EXPECT_EQ(of->at(study)[i].series_uid, (*listed)[i].series_uid);
+      EXPECT_EQ(of->at(study)[i].study_uid, study);
+      EXPECT_EQ(of->at(study)[i].geometry, (*listed)[i].geometry);
+      EXPECT_EQ(of->at(study)[i].sha256, (*listed)[i].sha256);
+    }
+  }
+  EXPECT_EQ(of->at("S1").size(), 2u);
+  EXPECT_EQ(of->at("S1")[0].series_uid, "SE1");
+  auto none = this->store_->series_of_studies({});
+  ASSERT_TRUE(none.ok());
+  EXPECT_TRUE(none->empty());
+}
+
 }  // namespace
 }  // namespace soiq::db
