@@ -20,6 +20,7 @@ struct PrecomputeFigures {
   double drain_s = 0;                       // until the queue was empty
   int64_t structures = 0;                   // in the database
   TimedQuery benchmark_after;               // the benchmark query, the first after precompute
+  std::vector<TimedQuery> benchmark_again;  // the same query repeated, as the stored-values query is
   std::vector<TimedQuery> precomputed_set;  // volume, sphericity, mean inside: every value stored
   double threshold_mm3 = 0;                 // of the content filter
   std::vector<TimedQuery> content_filter;   // voxel_volume_mm3 > threshold, no stage-1 filter

@@ -119,15 +119,17 @@ void print_ratios(const QueryBenchFigures& f, double cold_stage2_best_ms) {
         "| 8 clients' queries/s / 1 client's | %.2fx | %.1f / %.1f q/s, p95 at 8 clients %.1f ms | >= 1.9x: %s |\n",
         scaling, eight, one, p95_eight, scaling >= 1.9 ? "met" : "**not met**");
   }
+  // Bests of repeated runs on both sides: the first query a fresh server answers also pays for its
+  // first statements and pages, whatever it asks (shown beside, not in the ratio).
   std::vector<double> after, stored;
-  if (f.precompute.benchmark_after.client_ms > 0) after.push_back(f.precompute.benchmark_after.client_ms);
+  for (const TimedQuery& t : f.precompute.benchmark_again) after.push_back(t.client_ms);
   for (const TimedQuery& t : f.precompute.precomputed_set) stored.push_back(t.client_ms);
   if (!after.empty() && !stored.empty()) {
-    const double r = after[0] / stats(stored).best;
+    const double r = stats(after).best / stats(stored).best;
     std::printf(
         "| benchmark query after precompute / query of stored values only (clients) | %.2fx | %.1f ms / %.1f ms "
-        "| <= 2x: %s |\n",
-        r, after[0], stats(stored).best, at_most(r, 2));
+        "(bests of %zu; the first query after precompute %.1f ms) | <= 2x: %s |\n",
+        r, stats(after).best, stats(stored).best, after.size(), f.precompute.benchmark_after.client_ms, at_most(r, 2));
   }
   std::printf("\n");
 }
@@ -185,8 +187,12 @@ void print_precompute(const QueryBenchFigures& f) {
   std::printf("| measure | best | median | runs | target |\n|---|---:|---:|---:|---|\n");
   std::printf("| precompute: %lld queued structures drained | %.1f s (%.0f structures/s) | | 1 | |\n",
               (long long)p.queued, p.drain_s, double(p.queued) / p.drain_s);
-  std::printf("| benchmark query after precompute, client | %.1f ms | | 1 | <= 60 ms: %s |\n",
+  std::printf("| benchmark query after precompute, client (the first) | %.1f ms | | 1 | <= 60 ms: %s |\n",
               p.benchmark_after.client_ms, met(p.benchmark_after.client_ms, 60.0001));
+  std::vector<double> again;
+  for (const TimedQuery& t : p.benchmark_again) again.push_back(t.client_ms);
+  const Stats ag = stats(again);
+  std::printf("| same, repeated, client | %.1f ms | %.1f ms | %zu | |\n", ag.best, ag.median, again.size());
   std::printf(
       "| query of stored values only (volume, sphericity, mean inside; %zu candidates), client | %.1f ms | %.1f ms | "
       "%zu | <= 60 ms: %s |\n",
