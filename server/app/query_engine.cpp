@@ -11,7 +11,6 @@
 #include <mutex>
 #include <optional>
 
-#include "core/features/asymmetry_index.h"
 #include "server/app/query_cached_values.h"
 #include "server/app/query_skips.h"
 #include "server/app/query_subjects.h"
@@ -22,6 +21,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using query_run::CachedValues;
+using query_run::candidate_scalar;
+using query_run::candidate_value;
 using query_run::Completions;
 using query_run::Computed;
 using query_run::read_cached_values;
@@ -349,36 +350,14 @@ class QueryRun {
     return ok_status();
   }
 
-  // Feature f of candidate i, or nothing when it cannot be had.
+  // Query feature f of candidate i (query_subjects.h), or nothing when it cannot be had.
   std::optional<std::vector<double>> value_for(size_t f, size_t i) const {
-    if (q_.features[f].asymmetry) {
-      const std::optional<double> a = scalar_for(f, i);
-      if (!a) return std::nullopt;
-      return std::vector<double>{*a};
-    }
-    const std::vector<double>* v = stored_value(f, subjects_[own_[i]]);
-    if (v == nullptr) return std::nullopt;
-    return *v;
+    return candidate_value(f, q_.features[f].asymmetry, subjects_[own_[i]], twin_subject(i));
   }
-
-  // value_for() when it is one number, without a copy: what predicates and the order read.
   std::optional<double> scalar_for(size_t f, size_t i) const {
-    const std::vector<double>* v = stored_value(f, subjects_[own_[i]]);
-    if (v == nullptr || v->size() != 1) return std::nullopt;
-    if (!q_.features[f].asymmetry) return (*v)[0];
-    const std::vector<double>* t = twin_[i] ? stored_value(f, subjects_[*twin_[i]]) : nullptr;
-    if (t == nullptr || t->size() != 1) return std::nullopt;
-    const bool left = subjects_[own_[i]].structure.laterality == "L";
-    Result<double> a = left ? asymmetry_index((*v)[0], (*t)[0]) : asymmetry_index((*t)[0], (*v)[0]);
-    if (!a.ok()) return std::nullopt;
-    return *a;
+    return candidate_scalar(f, q_.features[f].asymmetry, subjects_[own_[i]], twin_subject(i));
   }
-
-  // Subject s's value of query feature f (set_values), or null.
-  static const std::vector<double>* stored_value(size_t f, const Subject& s) {
-    if (!s.ready || !s.error.ok() || f >= s.asked.size()) return nullptr;
-    return s.asked[f];
-  }
+  const Subject* twin_subject(size_t i) const { return twin_[i] ? &subjects_[*twin_[i]] : nullptr; }
 
   // With an order: the matches sorted, missing values (NaN) last in either direction, up to limit.
   Status stream_ordered() {

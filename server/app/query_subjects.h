@@ -1,6 +1,7 @@
 #pragma once
-// Internal to query_engine.cpp: the state a query run keeps per structure, and what its workers
-// hand back, in a header of their own so the run's steps read without them.
+// Internal to query_engine.cpp: the state a query run keeps per structure, what its workers hand
+// back, and a candidate's values read from its subjects, in a file of their own so the run's steps
+// read without them.
 
 #include <atomic>
 #include <condition_variable>
@@ -29,6 +30,15 @@ struct Subject {
   bool ready = false;
   std::vector<size_t> dependents;  // candidates waiting for this subject
 };
+
+// Subject s's value of the query's feature f (Subject::asked), or null when it has none.
+const std::vector<double>* asked_value(size_t f, const Subject& s);
+
+// A candidate's value of the query's feature f, read from its subject and, for an asymmetry
+// feature, its twin's (null when it has none): one number, what predicates and the order read,
+// without a copy; or the value as its row sends it. Nothing when it cannot be had.
+std::optional<double> candidate_scalar(size_t f, bool asymmetry, const Subject& own, const Subject* twin);
+std::optional<std::vector<double>> candidate_value(size_t f, bool asymmetry, const Subject& own, const Subject* twin);
 
 // What the workers hand back to the query's thread: a subject's computed features and the cache
 // entries still to be written.
