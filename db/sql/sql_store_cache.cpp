@@ -4,6 +4,7 @@
 #include <unordered_set>
 
 #include "db/cached_value.h"
+#include "db/sql/keyed_rows.h"
 #include "db/sql/record_sql.h"
 #include "db/sql/sql_store.h"
 #include "db/sql/sql_store_writes.h"
@@ -11,10 +12,6 @@
 
 namespace soiq::db {
 namespace {
-
-// Keys go into `key IN (?1, …, ?n)` with n a power of two up to this, the last key repeated as
-// padding: at most 9 statement shapes in the cache, and few round trips for many keys.
-constexpr size_t kMaxKeysPerQuery = 256;
 
 // Every entry under any of the keys: the IN list's parameters go between the two.
 constexpr char kCachedFeaturesSql[] = R"sql(
@@ -36,22 +33,14 @@ Result<std::vector<CachedFeature>> SqlStore::cached_features(const std::vector<s
   const std::unordered_set<std::string_view> wanted(entries.begin(), entries.end());
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     out.clear();
-    for (size_t begin = 0; begin < keys.size(); begin += kMaxKeysPerQuery) {
-      const size_t count = std::min(kMaxKeysPerQuery, keys.size() - begin);
-      const size_t padded = std::bit_ceil(count);
-      SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(in_list_sql(padded)));
-      for (size_t i = 0; i < padded; ++i) q.bind(int(i + 1), keys[begin + std::min(i, count - 1)]);
-      while (true) {
-        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-        if (!row) break;
-        const std::string_view entry = q.text_view(1);
-        if (!wanted.empty() && !wanted.count(entry)) continue;
-        CachedFeature f{q.text(0), std::string(entry), {}};
-        SOIQ_RETURN_IF_ERROR(set_cached_value(f, q.blob_view(2)));
-        out.push_back(std::move(f));
-      }
-    }
-    return ok_status();
+    return for_each_keyed_row(c, keys, in_list_sql, [&](const SqlStatement& q) -> Status {
+      const std::string_view entry = q.text_view(1);
+      if (!wanted.empty() && !wanted.count(entry)) return ok_status();
+      CachedFeature f{q.text(0), std::string(entry), {}};
+      SOIQ_RETURN_IF_ERROR(set_cached_value(f, q.blob_view(2)));
+      out.push_back(std::move(f));
+      return ok_status();
+    });
   }));
   return out;
 }

@@ -1,10 +1,10 @@
 // SqlStore's reads of single records and pages. Each method is one read transaction, so a page
 // and its counts come from one snapshot.
 #include <algorithm>
-#include <bit>
 
 #include "db/page_token.h"
 #include "db/sql/glob_range.h"
+#include "db/sql/keyed_rows.h"
 #include "db/sql/record_sql.h"
 #include "db/sql/sql_conditions.h"
 #include "db/sql/sql_store.h"
@@ -186,10 +186,6 @@ constexpr char kSeriesOfStudiesSql[] = R"sql(
 constexpr char kSeriesOfStudiesOrderSql[] = R"sql()
   ORDER BY st.study_uid, se.series_uid)sql";
 
-// UIDs per statement: the count is padded to a power of two (the last UID repeated), so at most 9
-// statement texts are prepared whatever the number of studies.
-constexpr size_t kMaxStudiesPerQuery = 256;
-
 }  // namespace
 
 Result<std::map<std::string, std::vector<SeriesRecord>>> SqlStore::series_of_studies(
@@ -202,22 +198,14 @@ Result<std::map<std::string, std::vector<SeriesRecord>>> SqlStore::series_of_stu
   if (study_uids.empty()) return out;
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     out.clear();
-    for (size_t begin = 0; begin < study_uids.size(); begin += kMaxStudiesPerQuery) {
-      const size_t count = std::min(kMaxStudiesPerQuery, study_uids.size() - begin);
-      const size_t padded = std::bit_ceil(count);
-      SOIQ_ASSIGN_OR_RETURN(
-          SqlStatement q,
-          c.prepare(select_sql({"st.study_uid", kSeriesColumns},
-                               {kSeriesOfStudiesSql, parameter_list(padded), kSeriesOfStudiesOrderSql})));
-      for (size_t i = 0; i < padded; ++i) q.bind(int(i + 1), study_uids[begin + std::min(i, count - 1)]);
-      while (true) {
-        SOIQ_ASSIGN_OR_RETURN(const bool row, q.step());
-        if (!row) break;
-        std::vector<SeriesRecord>& series = out[q.text(0)];
-        if (!q.is_null(1)) series.push_back(read_series(q, 1));  // NULL: a study without series
-      }
-    }
-    return ok_status();
+    const auto sql_for = [](size_t n) {
+      return select_sql({"st.study_uid", kSeriesColumns},
+                        {kSeriesOfStudiesSql, parameter_list(n), kSeriesOfStudiesOrderSql});
+    };
+    return for_each_keyed_row(c, study_uids, sql_for, [&](const SqlStatement& q) {
+      std::vector<SeriesRecord>& series = out[q.text(0)];
+      if (!q.is_null(1)) series.push_back(read_series(q, 1));  // NULL: a study without series
+    });
   }));
   return out;
 }

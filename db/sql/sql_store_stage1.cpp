@@ -1,12 +1,11 @@
 // SqlStore::stage1: the structured half of a query (docs/DESIGN.md "Queries"): the ids from one query
 // over stage1_rows (stage1_sql.h), then their records read in bulk, a few statements for a
 // thousand candidates (on PostgreSQL every statement is a round trip).
-#include <algorithm>
-#include <bit>
 #include <map>
 #include <optional>
 #include <utility>
 
+#include "db/sql/keyed_rows.h"
 #include "db/sql/record_sql.h"
 #include "db/sql/sql_store.h"
 #include "db/sql/stage1_sql.h"
@@ -15,33 +14,9 @@
 namespace soiq::db {
 namespace {
 
-// Keys go into `IN (?1, …, ?n)` with n a power of two up to this, the last key repeated as
-// padding: at most 9 statement shapes per list, each prepared once per connection.
-constexpr size_t kMaxKeysPerQuery = 256;
-
-std::string in_list(size_t n) {
-  std::string sql = " IN (";
-  for (size_t i = 1; i <= n; ++i) sql += (i > 1 ? ", ?" : "?") + std::to_string(i);
-  return sql + ")";
-}
-
-// Runs `sql_before_list` + IN (…keys…) for every key, in chunks, and calls `row(statement)` for
-// each row.
-template <typename Row>
-Status for_each_row_in(SqlSession& c, const std::string& sql_before_list, const std::vector<int64_t>& keys,
-                       const Row& row) {
-  for (size_t begin = 0; begin < keys.size(); begin += kMaxKeysPerQuery) {
-    const size_t count = std::min(kMaxKeysPerQuery, keys.size() - begin);
-    const size_t padded = std::bit_ceil(count);
-    SOIQ_ASSIGN_OR_RETURN(SqlStatement q, c.prepare(sql_before_list + in_list(padded)));
-    for (size_t i = 0; i < padded; ++i) q.bind(int(i + 1), keys[begin + std::min(i, count - 1)]);
-    while (true) {
-      SOIQ_ASSIGN_OR_RETURN(const bool more, q.step());
-      if (!more) break;
-      row(q);
-    }
-  }
-  return ok_status();
+// `sql` + " IN (?1, …, ?n)" for for_each_keyed_row.
+auto in_list_after(const std::string& sql) {
+  return [&sql](size_t n) { return sql + " IN (" + parameter_list(n) + ")"; };
 }
 
 // Structures with the keys of their study and patient; patients and studies by key. The key
@@ -109,10 +84,11 @@ Result<std::vector<Candidate>> SqlStore::stage1(const Stage1Filter& f, int64_t l
     }
     static const std::string structures_sql =
         select_sql({kStructureColumns, kStudyAndPatientKeyColumns}, {kStructureFrom, kStructuresByIdSql});
-    SOIQ_RETURN_IF_ERROR(for_each_row_in(c, structures_sql, keys_of(structures), [&](const SqlStatement& q) {
-      structures[q.int64(0)] = {read_structure(q, 0), q.int64(kStructureColumnCount),
-                                q.int64(kStructureColumnCount + 1)};
-    }));
+    SOIQ_RETURN_IF_ERROR(
+        for_each_keyed_row(c, keys_of(structures), in_list_after(structures_sql), [&](const SqlStatement& q) {
+          structures[q.int64(0)] = {read_structure(q, 0), q.int64(kStructureColumnCount),
+                                    q.int64(kStructureColumnCount + 1)};
+        }));
     std::map<int64_t, PatientRecord> patients;
     std::map<int64_t, StudyRecord> studies;
     for (const auto& [id, twin] : ids) {
@@ -123,13 +99,13 @@ Result<std::vector<Candidate>> SqlStore::stage1(const Stage1Filter& f, int64_t l
     }
     // The key goes last in these selects, after the record's columns.
     static const std::string patients_sql = select_sql({kPatientColumns, "p.pk"}, {kPatientsByKeySql});
-    SOIQ_RETURN_IF_ERROR(for_each_row_in(c, patients_sql, keys_of(patients), [&](const SqlStatement& q) {
-      patients[q.int64(kPatientColumnCount)] = read_patient(q, 0);
-    }));
+    SOIQ_RETURN_IF_ERROR(for_each_keyed_row(
+        c, keys_of(patients), in_list_after(patients_sql),
+        [&](const SqlStatement& q) { patients[q.int64(kPatientColumnCount)] = read_patient(q, 0); }));
     static const std::string studies_sql = select_sql({kStudyColumns, "st.pk"}, {kStudiesByKeySql});
-    SOIQ_RETURN_IF_ERROR(for_each_row_in(c, studies_sql, keys_of(studies), [&](const SqlStatement& q) {
-      studies[q.int64(kStudyColumnCount)] = read_study(q, 0);
-    }));
+    SOIQ_RETURN_IF_ERROR(
+        for_each_keyed_row(c, keys_of(studies), in_list_after(studies_sql),
+                           [&](const SqlStatement& q) { studies[q.int64(kStudyColumnCount)] = read_study(q, 0); }));
     out.reserve(ids.size());
     for (const auto& [id, twin] : ids) {
       const Keyed& s = structures[id];
