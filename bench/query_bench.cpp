@@ -113,15 +113,8 @@ Result<std::vector<CohortPatient>> checked_cohort(const QueryBenchOptions& o, Qu
 // Background rows through SqliteStore, then the matched patients uploaded through a real soiqd.
 Status load(const QueryBenchOptions& o, const std::vector<CohortPatient>& cohort, const WorkDir& work,
             const std::string& pristine, QueryBenchFigures& f) {
-  // Background rows on tmpfs (fsync is free there), then moved next to the rest.
   note("soiq-bench query: bulk load through SqliteStore\n");
-  std::string shm = "/dev/shm/soiq-bench-query-XXXXXX";
-  if (!mkdtemp(shm.data())) shm = work.path() + "/shm";
-  fs::create_directories(shm);
-  Result<LoadFigures> background = load_background(shm + "/cohort.db", cohort, o.size);
-  if (background.ok()) fs::copy_file(shm + "/cohort.db", pristine, fs::copy_options::overwrite_existing);
-  fs::remove_all(shm);
-  SOIQ_ASSIGN_OR_RETURN(f.background, background);
+  SOIQ_ASSIGN_OR_RETURN(f.background, load_background(pristine, cohort, o.size));
 
   note("soiq-bench query: uploads through soiqd\n");
   testing::SoiqdProcess server(pristine, {"--workers", std::to_string(o.workers)}, o.soiqd);

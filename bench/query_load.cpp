@@ -66,8 +66,28 @@ Status parallel(size_t n, int threads, const std::function<Status(size_t)>& fn) 
 
 }  // namespace
 
+namespace {
+Result<LoadFigures> load_background_into(const std::string& db_path, const std::vector<CohortPatient>& cohort,
+                                         const QueryCohortSize& size);
+}  // namespace
+
 Result<LoadFigures> load_background(const std::string& db_path, const std::vector<CohortPatient>& cohort,
                                     const QueryCohortSize& size) {
+  std::string shm = "/dev/shm/soiq-bench-load-XXXXXX";
+  if (!mkdtemp(shm.data())) return load_background_into(db_path, cohort, size);  // no tmpfs: fsync'd, slower
+  Result<LoadFigures> background = load_background_into(shm + "/cohort.db", cohort, size);
+  std::error_code ec;
+  if (background.ok())
+    std::filesystem::copy_file(shm + "/cohort.db", db_path, std::filesystem::copy_options::overwrite_existing, ec);
+  std::filesystem::remove_all(shm);
+  if (ec) return internal_error("cannot copy the loaded cohort to " + db_path + ": " + ec.message());
+  return background;
+}
+
+namespace {
+
+Result<LoadFigures> load_background_into(const std::string& db_path, const std::vector<CohortPatient>& cohort,
+                                         const QueryCohortSize& size) {
   SOIQ_ASSIGN_OR_RETURN(std::unique_ptr<db::SqliteStore> store, db::SqliteStore::open(db_path, {}));
   std::vector<db::EncodedSurface> blobs;
   for (int b = 0; b < std::max(1, size.background_blobs); ++b) {
@@ -95,6 +115,8 @@ Result<LoadFigures> load_background(const std::string& db_path, const std::vecto
   f.seconds = seconds_since(t0);
   return f;
 }
+
+}  // namespace
 
 Result<LoadFigures> upload_matched(const std::string& address, const std::string& work_dir,
                                    const std::vector<CohortPatient>& cohort, const QueryCohortSize& size, int threads) {

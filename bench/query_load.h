@@ -3,9 +3,9 @@
 //
 // load_background: the patients that do not match stage 1, each with its study and one structure
 // on a shared surface blob, straight through db::SqliteStore (one transaction per structure, as
-// the server would do it) into `db_path`. The caller puts that file where fsync is free (tmpfs)
-// and copies it afterwards: these rows only need to exist, and 100,000 fsync'd commits would
-// dominate the benchmark's set-up.
+// the server would do it) into `db_path`: written in a folder on tmpfs (/dev/shm), where fsync is
+// free, then copied there. These rows only need to exist, and 100,000 fsync'd commits would
+// dominate the benchmark's set-up (a million on disk took more than half an hour).
 // upload_matched: the matched patients through the real client to the real server: per patient
 // its MR image (NIfTI) and its 10 surfaces (binary PLY), files prepared beforehand in `work_dir`
 // (not timed), uploads timed, spread over `threads` clients.
