@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "db/cached_value.h"
+#include "db/sql/record_sql.h"
 #include "db/validate_records.h"
 
 namespace soiq::db {
@@ -24,26 +25,12 @@ constexpr char kUpsertSql[] = R"sql(
 
 }  // namespace
 
-std::string pg_array_literal(const std::vector<std::string>& values) {
-  std::string out = "{";
-  for (size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) out += ',';
-    out += '"';
-    for (const char ch : values[i]) {
-      if (ch == '"' || ch == '\\') out += '\\';
-      out += ch;
-    }
-    out += '"';
-  }
-  return out + "}";
-}
-
 Result<std::vector<CachedFeature>> pg_cached_features(PgConnection& c, const std::vector<std::string>& keys,
                                                       const std::vector<std::string>& entries) {
   std::vector<CachedFeature> out;
   if (keys.empty()) return out;
-  SOIQ_ASSIGN_OR_RETURN(
-      PgResult r, c.exec(kCachedSql, {pg_array_literal(keys), pg_array_literal(entries)}, "read cached features"));
+  SOIQ_ASSIGN_OR_RETURN(PgResult r,
+                        c.exec(kCachedSql, {array_literal(keys), array_literal(entries)}, "read cached features"));
   out.reserve(size_t(r.rows()));
   for (int i = 0; i < r.rows(); ++i) {
     CachedFeature f{r.text(i, 0), r.text(i, 1), {}};
@@ -71,8 +58,7 @@ Status pg_put_cached_features(PgConnection& c, const std::vector<SurfaceFeatures
   }
   if (keys.empty()) return ok_status();
   return c
-      .exec(kUpsertSql,
-            {pg_array_literal(keys), pg_array_literal(names), pg_array_literal(surfaces), pg_array_literal(values)},
+      .exec(kUpsertSql, {array_literal(keys), array_literal(names), array_literal(surfaces), array_literal(values)},
             "store cached features")
       .status();
 }

@@ -24,8 +24,4 @@ Result<std::vector<CachedFeature>> pg_cached_features(PgConnection& c, const std
                                                       const std::vector<std::string>& entries);
 Status pg_put_cached_features(PgConnection& c, const std::vector<SurfaceFeatures>& batch);
 
-// A PostgreSQL array literal of `values` ('{"a","b"}'), every element quoted and escaped, for a
-// text[] or (with hex bytea elements) a bytea[] parameter.
-std::string pg_array_literal(const std::vector<std::string>& values);
-
 }  // namespace soiq::db

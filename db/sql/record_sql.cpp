@@ -23,6 +23,26 @@ std::string parameter_list(size_t n) {
   return out;
 }
 
+std::string array_literal(const std::vector<int64_t>& values) {
+  std::string out = "{";
+  for (size_t i = 0; i < values.size(); ++i) out.append(i > 0 ? "," : "").append(std::to_string(values[i]));
+  return out + "}";
+}
+
+std::string array_literal(const std::vector<std::string>& values) {
+  std::string out = "{";
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) out += ',';
+    out += '"';
+    for (const char ch : values[i]) {
+      if (ch == '"' || ch == '\\') out += '\\';
+      out += ch;
+    }
+    out += '"';
+  }
+  return out + "}";
+}
+
 std::string join_uid_list(const std::vector<std::string>& uids) {
   std::string out;
   for (size_t i = 0; i < uids.size(); ++i) {

@@ -88,6 +88,11 @@ std::string select_sql(std::initializer_list<std::string_view> column_lists,
 // The parameters of an IN list of n values: "?1, ?2, …, ?n".
 std::string parameter_list(size_t n);
 
+// A PostgreSQL array literal of `values` as one text parameter: '{1,2}' for a bigint[], '{"a","b"}'
+// (every element quoted and escaped) for a text[] or, with hex bytea elements, a bytea[].
+std::string array_literal(const std::vector<int64_t>& values);
+std::string array_literal(const std::vector<std::string>& values);
+
 // A list of UIDs as one column: joined with '\\' (DICOM's value separator; no UID contains it).
 std::string join_uid_list(const std::vector<std::string>& uids);
 std::vector<std::string> split_uid_list(const std::string& joined);  // "" -> {}

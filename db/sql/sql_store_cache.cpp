@@ -13,15 +13,12 @@
 namespace soiq::db {
 namespace {
 
-// Every entry under any of the keys: the IN list's parameters go between the two.
-constexpr char kCachedFeaturesSql[] = R"sql(
+// Every entry under any of the keys.
+constexpr KeyedSql kCachedFeaturesSql{R"sql(
   SELECT key, entry, value
   FROM feature_cache
-  WHERE key IN ()sql";
-constexpr char kCachedFeaturesOrderSql[] = R"sql()
-  ORDER BY key, entry)sql";
-
-std::string in_list_sql(size_t n) { return kCachedFeaturesSql + parameter_list(n) + kCachedFeaturesOrderSql; }
+  WHERE key)sql",
+                                      "ORDER BY key, entry"};
 
 }  // namespace
 
@@ -33,7 +30,7 @@ Result<std::vector<CachedFeature>> SqlStore::cached_features(const std::vector<s
   const std::unordered_set<std::string_view> wanted(entries.begin(), entries.end());
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     out.clear();
-    return for_each_keyed_row(c, keys, in_list_sql, [&](const SqlStatement& q) -> Status {
+    return for_each_keyed_row(c, keys, kCachedFeaturesSql, [&](const SqlStatement& q) -> Status {
       const std::string_view entry = q.text_view(1);
       if (!wanted.empty() && !wanted.count(entry)) return ok_status();
       CachedFeature f{q.text(0), std::string(entry), {}};

@@ -182,8 +182,8 @@ namespace {
 constexpr char kSeriesOfStudiesSql[] = R"sql(
   FROM studies st
   LEFT JOIN series se ON se.study_pk = st.pk
-  WHERE st.study_uid IN ()sql";
-constexpr char kSeriesOfStudiesOrderSql[] = R"sql()
+  WHERE st.study_uid)sql";
+constexpr char kSeriesOfStudiesOrderSql[] = R"sql(
   ORDER BY st.study_uid, se.series_uid)sql";
 
 }  // namespace
@@ -198,11 +198,8 @@ Result<std::map<std::string, std::vector<SeriesRecord>>> SqlStore::series_of_stu
   if (study_uids.empty()) return out;
   SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
     out.clear();
-    const auto sql_for = [](size_t n) {
-      return select_sql({"st.study_uid", kSeriesColumns},
-                        {kSeriesOfStudiesSql, parameter_list(n), kSeriesOfStudiesOrderSql});
-    };
-    return for_each_keyed_row(c, study_uids, sql_for, [&](const SqlStatement& q) {
+    static const std::string sql = select_sql({"st.study_uid", kSeriesColumns}, {kSeriesOfStudiesSql});
+    return for_each_keyed_row(c, study_uids, KeyedSql{sql, kSeriesOfStudiesOrderSql}, [&](const SqlStatement& q) {
       std::vector<SeriesRecord>& series = out[q.text(0)];
       if (!q.is_null(1)) series.push_back(read_series(q, 1));  // NULL: a study without series
     });

@@ -14,11 +14,6 @@
 namespace soiq::db {
 namespace {
 
-// `sql` + " IN (?1, …, ?n)" for for_each_keyed_row.
-auto in_list_after(const std::string& sql) {
-  return [&sql](size_t n) { return sql + " IN (" + parameter_list(n) + ")"; };
-}
-
 // Structures with the keys of their study and patient; patients and studies by key. The key
 // list follows each.
 constexpr char kStructuresByIdSql[] = R"sql(
@@ -85,7 +80,7 @@ Result<std::vector<Candidate>> SqlStore::stage1(const Stage1Filter& f, int64_t l
     static const std::string structures_sql =
         select_sql({kStructureColumns, kStudyAndPatientKeyColumns}, {kStructureFrom, kStructuresByIdSql});
     SOIQ_RETURN_IF_ERROR(
-        for_each_keyed_row(c, keys_of(structures), in_list_after(structures_sql), [&](const SqlStatement& q) {
+        for_each_keyed_row(c, keys_of(structures), KeyedSql{structures_sql, ""}, [&](const SqlStatement& q) {
           structures[q.int64(0)] = {read_structure(q, 0), q.int64(kStructureColumnCount),
                                     q.int64(kStructureColumnCount + 1)};
         }));
@@ -100,12 +95,12 @@ Result<std::vector<Candidate>> SqlStore::stage1(const Stage1Filter& f, int64_t l
     // The key goes last in these selects, after the record's columns.
     static const std::string patients_sql = select_sql({kPatientColumns, "p.pk"}, {kPatientsByKeySql});
     SOIQ_RETURN_IF_ERROR(for_each_keyed_row(
-        c, keys_of(patients), in_list_after(patients_sql),
+        c, keys_of(patients), KeyedSql{patients_sql, ""},
         [&](const SqlStatement& q) { patients[q.int64(kPatientColumnCount)] = read_patient(q, 0); }));
     static const std::string studies_sql = select_sql({kStudyColumns, "st.pk"}, {kStudiesByKeySql});
-    SOIQ_RETURN_IF_ERROR(
-        for_each_keyed_row(c, keys_of(studies), in_list_after(studies_sql),
-                           [&](const SqlStatement& q) { studies[q.int64(kStudyColumnCount)] = read_study(q, 0); }));
+    SOIQ_RETURN_IF_ERROR(for_each_keyed_row(c, keys_of(studies), KeyedSql{studies_sql, ""}, [&](const SqlStatement& q) {
+      studies[q.int64(kStudyColumnCount)] = read_study(q, 0);
+    }));
     out.reserve(ids.size());
     for (const auto& [id, twin] : ids) {
       const Keyed& s = structures[id];

@@ -195,9 +195,7 @@ class QueryRun {
   // Every subject's study's series, in one read.
   Status read_study_series() {
     std::vector<std::string> uids;
-    for (const Subject& s : subjects_) uids.push_back(s.structure.study_uid);
-    std::sort(uids.begin(), uids.end());
-    uids.erase(std::unique(uids.begin(), uids.end()), uids.end());
+    for (const Subject& s : subjects_) uids.push_back(s.structure.study_uid);  // the store reads each once
     SOIQ_ASSIGN_OR_RETURN(series_of_, store_.series_of_studies(uids));
     return ok_status();
   }

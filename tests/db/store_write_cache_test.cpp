@@ -29,10 +29,18 @@ TYPED_TEST(StoreWriteCache, CachedFeaturesRoundTripManyKeysAndReplace) {
     entries.push_back({keys.back(), "mean|inside|", {double(i), 0.5}});
   }
   entries.push_back({"key3", "empty", {}});
+  // Characters an array literal must quote or escape (PostgreSQL reads every key as one).
+  keys.push_back(R"(odd "key" \ {a,b} NULL)");
+  entries.push_back({keys.back(), R"(entry "with" \ {quotes})", {7}});
   ASSERT_TRUE(this->features().put_cached_features(sha, entries).ok());
   auto got = this->features().cached_features(keys);
   ASSERT_TRUE(got.ok()) << got.status().to_string();
-  EXPECT_EQ(got->size(), 701u);
+  EXPECT_EQ(got->size(), 702u);
+  auto odd = this->features().cached_features({keys.back()}, {entries.back().entry});
+  ASSERT_TRUE(odd.ok()) << odd.status().to_string();
+  ASSERT_EQ(odd->size(), 1u);
+  EXPECT_EQ((*odd)[0].key, keys.back());
+  EXPECT_EQ((*odd)[0].value, std::vector<double>{7});
   ASSERT_TRUE(this->features().put_cached_features(sha, {{"key5", "mean|inside|", {-1}}}).ok());
   auto one = this->features().cached_features({"key5", "nope"});
   ASSERT_EQ(one->size(), 1u);
