@@ -196,7 +196,9 @@ Result<std::map<std::string, std::vector<SeriesRecord>>> SqlStore::series_of_stu
   std::sort(study_uids.begin(), study_uids.end());
   study_uids.erase(std::unique(study_uids.begin(), study_uids.end()), study_uids.end());
   if (study_uids.empty()) return out;
-  SOIQ_RETURN_IF_ERROR(read([&](SqlSession& c) -> Status {
+  // read_one: on PostgreSQL every key goes in one statement (keyed_rows.h), which needs no BEGIN and
+  // COMMIT of its own (two round trips of a warm query); SQLite's read_one is a transaction.
+  SOIQ_RETURN_IF_ERROR(read_one([&](SqlSession& c) -> Status {
     out.clear();
     static const std::string sql = select_sql({"st.study_uid", kSeriesColumns}, {kSeriesOfStudiesSql});
     return for_each_keyed_row(c, study_uids, KeyedSql{sql, kSeriesOfStudiesOrderSql}, [&](const SqlStatement& q) {
